@@ -1,0 +1,65 @@
+// What a component type declares about itself: its ports and parameters. The launcher validates a
+// scene against these before anything starts, and `uampc components` lists them.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "uampc/runtime/message_types.hpp"
+#include "uampc/runtime/parameter.hpp"
+#include "uampc/runtime/qos.hpp"
+
+namespace uampc {
+
+enum class PortDirection { kInput, kOutput };
+
+struct PortSpec {
+  std::string name;
+  PortDirection direction = PortDirection::kInput;
+  std::string type_name;      // ROS 2 name, e.g. "sensor_msgs/msg/PointCloud2"
+  std::string default_topic;  // ROS 2 topic name, e.g. "/lidar/points"
+  QosPreset qos = QosPreset::kControl;
+  std::string doc;
+};
+
+class ComponentSpec {
+ public:
+  std::string type;     // e.g. "motor_bridge"
+  std::string summary;  // one line: what the component does
+
+  template <typename Message>
+  PortSpec& input(const std::string& name, const std::string& default_topic, QosPreset qos,
+                  const std::string& doc) {
+    return addPort({name, PortDirection::kInput, MessageType<Message>::kRosName, default_topic, qos, doc});
+  }
+  template <typename Message>
+  PortSpec& output(const std::string& name, const std::string& default_topic, QosPreset qos,
+                   const std::string& doc) {
+    return addPort({name, PortDirection::kOutput, MessageType<Message>::kRosName, default_topic, qos, doc});
+  }
+
+  // Optional parameter with a default; the type follows the default's C++ type.
+  ParameterSpec& param(const std::string& name, bool default_value, const std::string& doc);
+  ParameterSpec& param(const std::string& name, int default_value, const std::string& doc);
+  ParameterSpec& param(const std::string& name, double default_value, const std::string& doc);
+  ParameterSpec& param(const std::string& name, const char* default_value, const std::string& doc);
+  ParameterSpec& param(const std::string& name, std::vector<double> default_value, const std::string& doc);
+  // A file path; empty default: none given. Non-empty values must name an existing file.
+  ParameterSpec& pathParam(const std::string& name, const std::string& default_value, const std::string& doc);
+  // A parameter the scene must set.
+  ParameterSpec& requiredParam(const std::string& name, ParameterType type, const std::string& doc);
+
+  const std::vector<PortSpec>& ports() const { return ports_; }
+  const std::vector<ParameterSpec>& parameters() const { return parameters_; }
+  const PortSpec* findPort(const std::string& name) const;
+  const ParameterSpec* findParameter(const std::string& name) const;
+
+ private:
+  PortSpec& addPort(PortSpec port);
+  ParameterSpec& addParameter(ParameterSpec parameter);
+
+  std::vector<PortSpec> ports_;
+  std::vector<ParameterSpec> parameters_;
+};
+
+}  // namespace uampc

@@ -1,0 +1,46 @@
+// Parameters a component declares, and the values a scene gives them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace uampc {
+
+enum class ParameterType {
+  kBool,
+  kInt,
+  kDouble,
+  kString,
+  kPath,        // a string naming a file that must exist; relative paths are from the scene file
+  kDoubleList,
+};
+
+const char* toString(ParameterType type);
+
+using ParameterValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
+
+// Human-readable value, as it would be written in YAML.
+std::string toString(const ParameterValue& value);
+
+struct ParameterSpec {
+  std::string name;
+  ParameterType type = ParameterType::kDouble;
+  std::optional<ParameterValue> default_value;  // none: the parameter is required
+  std::string doc;
+  std::optional<double> min;                    // numeric bounds, inclusive
+  std::optional<double> max;
+  std::vector<std::string> choices;             // allowed strings; empty: any
+
+  bool required() const { return !default_value.has_value(); }
+
+  // Fluent setters used in Component::describe().
+  ParameterSpec& atLeast(double v) { min = v; return *this; }
+  ParameterSpec& atMost(double v) { max = v; return *this; }
+  ParameterSpec& between(double lo, double hi) { min = lo; max = hi; return *this; }
+  ParameterSpec& oneOf(std::vector<std::string> allowed) { choices = std::move(allowed); return *this; }
+};
+
+}  // namespace uampc

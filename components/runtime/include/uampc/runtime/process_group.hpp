@@ -1,0 +1,21 @@
+// Runs the components of one process group of a scene: loads them, binds their ports to DDS,
+// and drives them from one thread, in lockstep with the clock or in real time.
+#pragma once
+
+#include <atomic>
+#include <string>
+
+#include "uampc/runtime/scene.hpp"
+
+namespace uampc {
+
+// Topics of the lockstep protocol (DESIGN.md section 3).
+constexpr const char* kClockTopic = "/clock";
+constexpr const char* kStepAckTopic = "/uampc/lockstep/ack";
+
+// Returns the process exit code: 0 after a clean stop, 1 when a component failed.
+// Stops when `stop` becomes true (a signal handler sets it).
+int runProcessGroup(const Scene& scene, const std::string& process, const std::string& output_directory,
+                    const std::atomic<bool>& stop);
+
+}  // namespace uampc

@@ -1,0 +1,16 @@
+// QoS presets (DESIGN.md section 4). A port names a preset; the runtime turns it into DDS QoS.
+// In lockstep mode every preset becomes reliable keep-all, so that no sample the loop depends on
+// is lost; transient-local stays transient-local.
+#pragma once
+
+namespace uampc {
+
+enum class QosPreset {
+  kSensor,   // streams: best-effort keep-last 5 in real time
+  kControl,  // commands and states: reliable keep-last 10
+  kLatched,  // maps, configuration: reliable transient-local keep-last 1
+};
+
+const char* toString(QosPreset preset);
+
+}  // namespace uampc

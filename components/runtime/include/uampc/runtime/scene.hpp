@@ -1,0 +1,87 @@
+// A scene: one YAML file that says which components run, with which parameters, wired to which
+// topics, under which clock, in which processes (DESIGN.md section 5). See config/scenes/README.md
+// for the format. loadScene() validates everything before anything starts and reports every
+// problem with file:line:column.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "uampc/runtime/component_library.hpp"
+#include "uampc/runtime/parameter.hpp"
+#include "uampc/runtime/time.hpp"
+
+namespace uampc {
+
+struct SourceLocation {
+  std::string file;  // or "--set" for command-line overrides
+  int line = 0;      // 1-based; 0 when unknown
+  int column = 0;    // 1-based
+  std::string str() const;
+};
+
+// All problems found in a scene, each "file:line:column: error: message".
+class SceneError : public std::runtime_error {
+ public:
+  explicit SceneError(std::vector<std::string> messages);
+  const std::vector<std::string>& messages() const { return messages_; }
+
+ private:
+  std::vector<std::string> messages_;
+};
+
+enum class ClockMode { kLockstep, kRealtime };
+enum class CrashPolicy { kStop, kRestart };
+
+struct ClockSettings {
+  ClockMode mode = ClockMode::kLockstep;
+  Time step = Time{5'000'000};  // lockstep step, 5 ms: one encoder period at 200 Hz
+  double duration_s = 0.0;      // sim (lockstep) or wall (real-time) seconds; 0: until Ctrl-C
+  double ack_timeout_s = 60.0;  // wall seconds one lockstep step may take before the run is hung
+  double real_time_factor = 0.0;  // lockstep pacing: 0 = as fast as possible, 1 = real time
+};
+
+struct ComponentInstance {
+  std::string name;
+  std::string type;
+  std::string process = "main";
+  SourceLocation location;
+  std::map<std::string, ParameterValue> params;  // every declared parameter, defaults filled in
+  std::map<std::string, std::string> topics;     // every port -> its topic after remapping
+  const ComponentLibrary* library = nullptr;
+};
+
+struct Scene {
+  std::string file;       // absolute path
+  std::string directory;  // its folder; relative paths in the scene are from here
+  std::string name;
+  int domain_id = 0;
+  std::string dds_profile;  // absolute path of a Fast DDS XML profile file, or empty
+  std::uint64_t seed = 1;
+  ClockSettings clock;
+  CrashPolicy on_crash = CrashPolicy::kStop;
+  int max_restarts = 3;
+  std::vector<ComponentInstance> components;  // in file order
+
+  std::vector<std::string> processes() const;  // in order of first appearance
+  // Number of input (readers) or output (writers) ports bound to a topic, over the whole scene.
+  int readersOf(const std::string& topic) const;
+  int writersOf(const std::string& topic) const;
+  const ComponentInstance* find(const std::string& name) const;
+};
+
+// "component.param=value", "clock.key=value" or "key=value" (top-level keys such as seed).
+struct Override {
+  std::string text;  // as given, for messages
+  std::vector<std::string> path;
+  std::string value;  // YAML scalar or flow text
+};
+Override parseOverride(const std::string& text);  // throws SceneError on bad syntax
+
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides,
+                ComponentCatalog& catalog);
+
+}  // namespace uampc

@@ -1,0 +1,56 @@
+// One Fast DDS participant per process, with its topics and registered types, and the translation
+// from our QoS presets and ROS 2 topic names to DDS (DESIGN.md section 4).
+#pragma once
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <map>
+#include <string>
+
+#include "uampc/runtime/component.hpp"
+#include "uampc/runtime/qos.hpp"
+
+namespace uampc {
+
+// "/motor/state" travels as "rt/motor/state", as in ROS 2.
+std::string ddsTopicName(const std::string& ros_topic);
+
+class DdsNode {
+ public:
+  // profile_file: Fast DDS XML profiles loaded before the participant is made (may be empty).
+  DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name);
+  ~DdsNode();
+  DdsNode(const DdsNode&) = delete;
+  DdsNode& operator=(const DdsNode&) = delete;
+
+  eprosima::fastdds::dds::DataWriter* createWriter(const std::string& ros_topic, const std::string& type_name,
+                                                   detail::TypeSupportFactory type_support, QosPreset qos);
+  eprosima::fastdds::dds::DataReader* createReader(const std::string& ros_topic, const std::string& type_name,
+                                                   detail::TypeSupportFactory type_support, QosPreset qos,
+                                                   eprosima::fastdds::dds::DataReaderListener* listener);
+  void deleteWriter(eprosima::fastdds::dds::DataWriter* writer);
+  void deleteReader(eprosima::fastdds::dds::DataReader* reader);
+
+  bool lockstep() const { return lockstep_; }
+
+ private:
+  eprosima::fastdds::dds::Topic* topic(const std::string& ros_topic, const std::string& type_name,
+                                       detail::TypeSupportFactory type_support);
+
+  bool lockstep_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::TypeSupport> types_;    // by ROS type name
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;         // by ROS topic name
+  std::map<std::string, std::string> topic_types_;                       // ROS topic -> ROS type
+};
+
+}  // namespace uampc

@@ -1,0 +1,150 @@
+#include "lockstep_clock.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "dds_node.hpp"
+#include "wakeup.hpp"
+#include "uampc/runtime/process_group.hpp"
+
+namespace uampc {
+
+using namespace eprosima::fastdds::dds;
+using SteadyClock = std::chrono::steady_clock;
+
+namespace {
+
+// Progress on long runs: one line every few seconds (or a line rewritten in place on a terminal).
+class Progress {
+ public:
+  explicit Progress(double duration_s) : duration_s_(duration_s), tty_(isatty(STDERR_FILENO)) {}
+  void update(double sim_s, double wall_s, bool force = false) {
+    const auto now = SteadyClock::now();
+    if (!force && now - last_ < std::chrono::seconds(tty_ ? 1 : 10)) return;
+    last_ = now;
+    const double factor = wall_s > 0 ? sim_s / wall_s : 0.0;
+    if (duration_s_ > 0) {
+      std::fprintf(stderr, "%suampc: sim %.1f / %.1f s (%3.0f%%), %.1fx real time%s", tty_ ? "\r" : "", sim_s,
+                   duration_s_, 100.0 * sim_s / duration_s_, factor, tty_ ? "   " : "\n");
+    } else {
+      std::fprintf(stderr, "%suampc: sim %.1f s, %.1fx real time%s", tty_ ? "\r" : "", sim_s, factor,
+                   tty_ ? "   " : "\n");
+    }
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (tty_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  double duration_s_;
+  bool tty_;
+  SteadyClock::time_point last_{};
+};
+
+}  // namespace
+
+ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
+                             const std::function<std::string()>& check_processes) {
+  ClockResult result;
+  DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock");
+  Wakeup listener;
+  DataWriter* clock_writer = dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
+                                              QosPreset::kControl);
+  DataReader* ack_reader = dds.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                                            &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl,
+                                            &listener);
+  const std::vector<std::string> processes = scene.processes();
+  const auto wall_start = SteadyClock::now();
+  const auto ack_timeout = std::chrono::duration_cast<SteadyClock::duration>(
+      std::chrono::duration<double>(scene.clock.ack_timeout_s));
+
+  // Waits until every process acknowledged `step`; false (with result.error) on failure.
+  std::set<std::string> acked;
+  auto waitFor = [&](std::int64_t step, const char* what) -> bool {
+    acked.clear();
+    auto deadline = SteadyClock::now() + ack_timeout;
+    uampc::msg::StepAck ack;
+    SampleInfo info;
+    while (acked.size() < processes.size()) {
+      while (ack_reader->take_next_sample(&ack, &info) == ReturnCode_t::RETCODE_OK) {
+        if (!info.valid_data || ack.step() != step) continue;
+        if (ack.failed()) {
+          result.error = "process '" + ack.process() + "': " + ack.message();
+          return false;
+        }
+        acked.insert(ack.process());
+      }
+      if (acked.size() == processes.size()) break;
+      if (stop) {
+        result.error = "stopped";
+        return false;
+      }
+      if (std::string problem = check_processes(); !problem.empty()) {
+        result.error = problem;
+        return false;
+      }
+      if (SteadyClock::now() > deadline) {
+        std::string late;
+        for (const auto& p : processes) {
+          if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
+        }
+        result.error = std::string("no ") + what + " from process(es) " + late + " within " +
+                       std::to_string(scene.clock.ack_timeout_s) + " s of wall time (clock.ack_timeout); " +
+                       "a component is hung or far too slow";
+        return false;
+      }
+      listener.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
+    }
+    return true;
+  };
+
+  if (!waitFor(-1, "ready message")) {
+    result.ok = false;
+    return result;
+  }
+  // The processes' clock readers are matched (they said ready); make sure this side sees them too.
+  for (;;) {
+    PublicationMatchedStatus s;
+    clock_writer->get_publication_matched_status(s);
+    if (s.current_count >= static_cast<int>(processes.size())) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+
+  Progress progress(scene.clock.duration_s);
+  const Time duration = Time::fromSeconds(scene.clock.duration_s);
+  for (std::int64_t step = 0;; ++step) {
+    const Time t{step * scene.clock.step.ns};
+    if (scene.clock.duration_s > 0 && t > duration) break;
+    if (stop) break;
+    if (scene.clock.real_time_factor > 0) {
+      std::this_thread::sleep_until(wall_start + std::chrono::duration<double>(t.seconds() /
+                                                                               scene.clock.real_time_factor));
+    }
+    rosgraph_msgs::msg::Clock tick;
+    tick.clock(toMsg(t));
+    clock_writer->write(&tick);
+    if (!waitFor(step, "acknowledgement of the step")) {
+      if (result.error == "stopped") break;
+      result.ok = false;
+      break;
+    }
+    result.sim_seconds = t.seconds();
+    result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
+    progress.update(result.sim_seconds, result.wall_seconds);
+  }
+  result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
+  progress.update(result.sim_seconds, result.wall_seconds, true);
+  progress.finish();
+  dds.deleteWriter(clock_writer);
+  dds.deleteReader(ack_reader);
+  return result;
+}
+
+}  // namespace uampc

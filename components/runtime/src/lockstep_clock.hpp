@@ -1,0 +1,25 @@
+// The lockstep clock (DESIGN.md section 3): publishes sim time on /clock and advances only when
+// every process of the scene has acknowledged the current step.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+
+#include "uampc/runtime/scene.hpp"
+
+namespace uampc {
+
+struct ClockResult {
+  bool ok = true;
+  std::string error;       // why the run stopped early
+  double sim_seconds = 0;  // sim time reached
+  double wall_seconds = 0;
+};
+
+// check_processes is called while waiting; a non-empty answer (e.g. "process 'sim' died") stops
+// the run with that error.
+ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
+                             const std::function<std::string()>& check_processes);
+
+}  // namespace uampc

@@ -1,0 +1,48 @@
+#include "uampc/runtime/parameter.hpp"
+
+#include <sstream>
+
+#include "uampc/runtime/qos.hpp"
+
+namespace uampc {
+
+const char* toString(ParameterType type) {
+  switch (type) {
+    case ParameterType::kBool: return "bool";
+    case ParameterType::kInt: return "int";
+    case ParameterType::kDouble: return "double";
+    case ParameterType::kString: return "string";
+    case ParameterType::kPath: return "path";
+    case ParameterType::kDoubleList: return "double list";
+  }
+  return "?";
+}
+
+std::string toString(const ParameterValue& value) {
+  std::ostringstream out;
+  out.precision(17);
+  std::visit(
+      [&](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, bool>) out << (v ? "true" : "false");
+        else if constexpr (std::is_same_v<T, std::string>) out << '"' << v << '"';
+        else if constexpr (std::is_same_v<T, std::vector<double>>) {
+          out << '[';
+          for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
+          out << ']';
+        } else out << v;
+      },
+      value);
+  return out.str();
+}
+
+const char* toString(QosPreset preset) {
+  switch (preset) {
+    case QosPreset::kSensor: return "sensor";
+    case QosPreset::kControl: return "control";
+    case QosPreset::kLatched: return "latched";
+  }
+  return "?";
+}
+
+}  // namespace uampc

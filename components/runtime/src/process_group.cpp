@@ -1,0 +1,449 @@
+#include "uampc/runtime/process_group.hpp"
+
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "dds_node.hpp"
+#include "wakeup.hpp"
+
+namespace uampc {
+
+using namespace eprosima::fastdds::dds;
+using SteadyClock = std::chrono::steady_clock;
+
+namespace {
+
+Time wallNow() {
+  return Time{std::chrono::duration_cast<std::chrono::nanoseconds>(
+                  std::chrono::system_clock::now().time_since_epoch())
+                  .count()};
+}
+
+// A sample taken from a reader, owned until it is delivered.
+struct Sample {
+  std::shared_ptr<void> data;
+  Time source_time;
+};
+
+struct ReaderPort {
+  std::string component;
+  std::string port;
+  std::string topic;
+  DataReader* reader = nullptr;
+  TypeSupport type;
+  std::function<void(const void*)> callback;
+  std::deque<Sample> deferred;  // lockstep: taken early, belongs to a later step
+
+  // Takes every sample the reader holds, in arrival order.
+  void takeAll(std::deque<Sample>& out) {
+    for (;;) {
+      std::shared_ptr<void> data(type->createData(), [t = type](void* p) { t->deleteData(p); });
+      SampleInfo info;
+      if (reader->take_next_sample(data.get(), &info) != ReturnCode_t::RETCODE_OK) return;
+      if (!info.valid_data) continue;
+      const auto& ts = info.source_timestamp;
+      out.push_back({std::move(data), Time{static_cast<std::int64_t>(ts.seconds()) * 1000000000 + ts.nanosec()}});
+    }
+  }
+};
+
+struct TimerEntry {
+  std::string component;
+  Time period;
+  Time next;
+  std::function<void()> callback;
+};
+
+// State shared by the contexts of one process: the clock and the list of ports and timers.
+struct ProcessState {
+  bool lockstep = false;
+  Time now;
+  Time step;
+  Wakeup wakeup;
+  std::vector<std::unique_ptr<ReaderPort>> readers;
+  std::vector<TimerEntry> timers;
+};
+
+class DdsWriter : public detail::Writer {
+ public:
+  DdsWriter(DataWriter* writer, std::string topic, const ProcessState& state)
+      : writer_(writer), topic_(std::move(topic)), state_(state) {}
+  void write(const void* sample) override {
+    auto* data = const_cast<void*>(sample);  // Fast DDS takes void* but does not modify it
+    ReturnCode_t rc;
+    if (state_.lockstep) {
+      // The source timestamp carries the step that produced the sample; readers defer samples
+      // of the current step to the next one, whichever process they come from (see deliverInputs).
+      eprosima::fastrtps::Time_t stamp(static_cast<std::int32_t>(state_.now.ns / 1000000000),
+                                       static_cast<std::uint32_t>(state_.now.ns % 1000000000));
+      rc = writer_->write_w_timestamp(data, HANDLE_NIL, stamp);
+    } else {
+      rc = writer_->write(data) ? ReturnCode_t::RETCODE_OK : ReturnCode_t::RETCODE_ERROR;
+    }
+    if (rc != ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error("publishing on " + topic_ + " failed (DDS return code " +
+                               std::to_string(rc()) + ")");
+    }
+    wrote_ = true;
+  }
+  DataWriter* dds() const { return writer_; }
+  const std::string& topic() const { return topic_; }
+  // True once if the writer published since the last call.
+  bool takeWroteFlag() { return std::exchange(wrote_, false); }
+
+ private:
+  DataWriter* writer_;
+  std::string topic_;
+  const ProcessState& state_;
+  bool wrote_ = false;
+};
+
+class ContextImpl : public Context {
+ public:
+  ContextImpl(const Scene& scene, const ComponentInstance& instance, const std::string& output_directory,
+              DdsNode& dds, ProcessState& state, std::vector<std::shared_ptr<DdsWriter>>& writers)
+      : scene_(scene),
+        instance_(instance),
+        output_directory_(output_directory),
+        dds_(dds),
+        state_(state),
+        writers_(writers),
+        logger_(instance.name, [&state] { return state.now.seconds(); }) {}
+
+  const std::string& name() const override { return instance_.name; }
+  const Logger& log() const override { return logger_; }
+  Time now() const override { return state_.now; }
+  std::uint64_t seed() const override { return scene_.seed; }
+  const std::string& outputDirectory() const override { return output_directory_; }
+  bool lockstep() const override { return state_.lockstep; }
+
+  void timer(double period_s, std::function<void()> callback) override {
+    if (!(period_s > 0)) throw std::invalid_argument(instance_.name + ": timer period must be positive");
+    Time period = Time::fromSeconds(period_s);
+    if (state_.lockstep && period < state_.step) {
+      logger_.warn("timer period ", period_s, " s is shorter than the lockstep step ", state_.step.seconds(),
+                   " s; it fires once per step");
+      period = state_.step;
+    }
+    state_.timers.push_back({instance_.name, period, Time{-1}, std::move(callback)});
+  }
+
+  bool paramBool(const std::string& n) const override { return std::get<bool>(param(n)); }
+  std::int64_t paramInt(const std::string& n) const override { return std::get<std::int64_t>(param(n)); }
+  double paramDouble(const std::string& n) const override {
+    const ParameterValue& v = param(n);
+    if (auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+    return std::get<double>(v);
+  }
+  std::string paramString(const std::string& n) const override { return std::get<std::string>(param(n)); }
+  std::vector<double> paramDoubleList(const std::string& n) const override {
+    return std::get<std::vector<double>>(param(n));
+  }
+  std::string topicOf(const std::string& port) const override {
+    auto it = instance_.topics.find(port);
+    if (it == instance_.topics.end()) {
+      throw std::logic_error(instance_.name + ": no port '" + port + "' (not declared in describe())");
+    }
+    return it->second;
+  }
+
+ protected:
+  std::shared_ptr<detail::Writer> makeWriter(const std::string& port, const char* type_name,
+                                             detail::TypeSupportFactory type_support) override {
+    const PortSpec& spec = checkPort(port, PortDirection::kOutput, type_name);
+    const std::string topic = topicOf(port);
+    auto writer = std::make_shared<DdsWriter>(dds_.createWriter(topic, type_name, type_support, spec.qos), topic,
+                                              state_);
+    writers_.push_back(writer);
+    return writer;
+  }
+
+  void addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory type_support,
+                 std::function<void(const void*)> callback) override {
+    const PortSpec& spec = checkPort(port, PortDirection::kInput, type_name);
+    auto r = std::make_unique<ReaderPort>();
+    r->component = instance_.name;
+    r->port = port;
+    r->topic = topicOf(port);
+    r->type = TypeSupport(type_support());
+    r->callback = std::move(callback);
+    r->reader = dds_.createReader(r->topic, type_name, type_support, spec.qos, &state_.wakeup);
+    state_.readers.push_back(std::move(r));
+  }
+
+ private:
+  const ParameterValue& param(const std::string& n) const {
+    auto it = instance_.params.find(n);
+    if (it == instance_.params.end()) {
+      throw std::logic_error(instance_.name + ": no parameter '" + n + "' (not declared in describe())");
+    }
+    return it->second;
+  }
+  const PortSpec& checkPort(const std::string& port, PortDirection direction, const char* type_name) const {
+    const PortSpec* spec = instance_.library->spec().findPort(port);
+    if (!spec) throw std::logic_error(instance_.name + ": no port '" + port + "' (not declared in describe())");
+    if (spec->direction != direction) {
+      throw std::logic_error(instance_.name + ": port '" + port + "' is declared as an " +
+                             (spec->direction == PortDirection::kInput ? "input" : "output"));
+    }
+    if (spec->type_name != type_name) {
+      throw std::logic_error(instance_.name + ": port '" + port + "' is declared with type " + spec->type_name +
+                             ", not " + type_name);
+    }
+    return *spec;
+  }
+
+  const Scene& scene_;
+  const ComponentInstance& instance_;
+  std::string output_directory_;
+  DdsNode& dds_;
+  ProcessState& state_;
+  std::vector<std::shared_ptr<DdsWriter>>& writers_;
+  Logger logger_;
+};
+
+// Drives the components of one process.
+class ProcessRunner {
+ public:
+  ProcessRunner(const Scene& scene, std::string process, std::string output_directory)
+      : scene_(scene),
+        process_(std::move(process)),
+        output_directory_(std::move(output_directory)),
+        dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_),
+        log_(process_, [this] { return state_.now.seconds(); }) {
+    state_.lockstep = scene.clock.mode == ClockMode::kLockstep;
+    state_.step = scene.clock.step;
+    state_.now = state_.lockstep ? Time{0} : wallNow();
+  }
+
+  ~ProcessRunner() {
+    components_.clear();
+    for (auto& r : state_.readers) dds_.deleteReader(r->reader);
+    for (auto& w : writers_) dds_.deleteWriter(w->dds());
+    if (clock_reader_) dds_.deleteReader(clock_reader_->reader);
+    if (ack_writer_) dds_.deleteWriter(ack_writer_->dds());
+  }
+
+  int run(const std::atomic<bool>& stop) {
+    if (!createComponents()) return 1;
+    const int code = state_.lockstep ? runLockstep(stop) : runRealtime(stop);
+    for (auto& [name, component] : components_) {
+      try {
+        component->shutdown();
+      } catch (const std::exception& e) {
+        log_.error("component '", name, "' failed while shutting down: ", e.what());
+        return 1;
+      }
+    }
+    return code;
+  }
+
+ private:
+  bool createComponents() {
+    for (const auto& instance : scene_.components) {
+      if (instance.process != process_) continue;
+      contexts_.push_back(
+          std::make_unique<ContextImpl>(scene_, instance, output_directory_, dds_, state_, writers_));
+      try {
+        components_.emplace_back(instance.name, instance.library->create(*contexts_.back()));
+      } catch (const std::exception& e) {
+        log_.error("component '", instance.name, "' (", instance.type, ") could not start: ", e.what());
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Calls `work` and turns an exception into a failure that names the component.
+  bool guarded(const std::string& component, const char* what, const std::function<void()>& work) {
+    try {
+      work();
+      return true;
+    } catch (const std::exception& e) {
+      failure_ = "component '" + component + "' failed in " + what + " at t=" + std::to_string(state_.now.seconds()) +
+                 " s: " + e.what();
+      log_.error(failure_);
+      return false;
+    }
+  }
+
+  // Delivers the samples that arrived, in a fixed order: readers in the order components created
+  // them, samples of one reader in arrival order. In lockstep, only samples published in earlier
+  // steps are delivered (source time < now); samples of the current step wait for the next one.
+  // Every hop between components therefore takes exactly one step, in one process or in several,
+  // which is what makes runs deterministic.
+  bool deliverInputs() {
+    for (auto& r : state_.readers) {
+      std::deque<Sample> samples;
+      samples.swap(r->deferred);
+      r->takeAll(samples);
+      for (auto& s : samples) {
+        if (state_.lockstep && s.source_time >= state_.now) {
+          r->deferred.push_back(std::move(s));
+          continue;
+        }
+        if (!guarded(r->component, ("input '" + r->port + "' (" + r->topic + ")").c_str(),
+                     [&] { r->callback(s.data.get()); })) {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  bool fireTimers() {
+    for (auto& t : state_.timers) {
+      if (t.next.ns < 0) t.next = state_.now;  // first firing at the start of the run
+      if (state_.now < t.next) continue;
+      if (!guarded(t.component, "a timer", t.callback)) return false;
+      // Keep the phase; skip periods that were missed entirely (real time under load).
+      do {
+        t.next = t.next + t.period;
+      } while (t.next <= state_.now);
+    }
+    return true;
+  }
+
+  // Lockstep: every writer's samples of this step must be in its readers' histories before the
+  // step is acknowledged, so that the next step finds them there.
+  bool waitForAcknowledgments() {
+    const auto timeout = eprosima::fastrtps::Duration_t(scene_.clock.ack_timeout_s);
+    for (auto& w : writers_) {
+      if (!w->takeWroteFlag()) continue;
+      if (w->dds()->wait_for_acknowledgments(timeout) != ReturnCode_t::RETCODE_OK) {
+        failure_ = "samples on " + w->topic() + " were not acknowledged by their readers within " +
+                   std::to_string(scene_.clock.ack_timeout_s) + " s";
+        log_.error(failure_);
+        return false;
+      }
+    }
+    return true;
+  }
+
+  bool waitForMatches(const std::atomic<bool>& stop) {
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.ack_timeout_s);
+    for (;;) {
+      std::string missing;
+      for (const auto& w : writers_) {
+        PublicationMatchedStatus s;
+        w->dds()->get_publication_matched_status(s);
+        const int want = scene_.readersOf(w->topic());
+        if (s.current_count < want) {
+          missing += "\n  writer on " + w->topic() + ": " + std::to_string(s.current_count) + " of " +
+                     std::to_string(want) + " readers";
+        }
+      }
+      for (const auto& r : state_.readers) {
+        SubscriptionMatchedStatus s;
+        r->reader->get_subscription_matched_status(s);
+        const int want = scene_.writersOf(r->topic);
+        if (s.current_count < want) {
+          missing += "\n  reader on " + r->topic + ": " + std::to_string(s.current_count) + " of " +
+                     std::to_string(want) + " writers";
+        }
+      }
+      SubscriptionMatchedStatus clock_status;
+      clock_reader_->reader->get_subscription_matched_status(clock_status);
+      if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
+      PublicationMatchedStatus ack_status;
+      ack_writer_->dds()->get_publication_matched_status(ack_status);
+      if (ack_status.current_count < 1) missing += "\n  the lockstep clock's acknowledgement reader";
+      if (missing.empty()) return true;
+      if (stop) return false;
+      if (SteadyClock::now() > deadline) {
+        log_.error("DDS discovery did not complete within ", scene_.clock.ack_timeout_s, " s; still missing:",
+                   missing);
+        return false;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+
+  void sendAck(std::int64_t step, Time stamp) {
+    uampc::msg::StepAck ack;
+    ack.process(process_);
+    ack.step(step);
+    ack.stamp(toMsg(stamp));
+    ack.failed(!failure_.empty());
+    ack.message(failure_);
+    ack_writer_->write(&ack);
+    ack_writer_->takeWroteFlag();
+  }
+
+  int runLockstep(const std::atomic<bool>& stop) {
+    // The clock's protocol topics are reliable and keep every sample, like the loop's own.
+    clock_reader_ = std::make_unique<ReaderPort>();
+    clock_reader_->topic = kClockTopic;
+    clock_reader_->type = TypeSupport(detail::makeTypeSupport<rosgraph_msgs::msg::Clock>());
+    clock_reader_->reader = dds_.createReader(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
+                                              QosPreset::kControl, &state_.wakeup);
+    ack_writer_ = std::make_unique<DdsWriter>(
+        dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
+        kStepAckTopic, state_);
+    if (!waitForMatches(stop)) return stop ? 0 : 1;
+    sendAck(-1, Time{0});  // ready
+
+    while (!stop) {
+      state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
+      std::deque<Sample> ticks;
+      clock_reader_->takeAll(ticks);
+      for (const auto& tick : ticks) {
+        const Time t = fromMsg(static_cast<const rosgraph_msgs::msg::Clock*>(tick.data.get())->clock());
+        state_.now = t;
+        const bool ok = deliverInputs() && fireTimers() && waitForAcknowledgments();
+        sendAck(t.ns / scene_.clock.step.ns, t);
+        if (!ok) return 1;
+      }
+      // Data may have arrived for later steps; the tick will come.
+    }
+    return 0;
+  }
+
+  int runRealtime(const std::atomic<bool>& stop) {
+    while (!stop) {
+      state_.now = wallNow();
+      Time next = Time{state_.now.ns + 100'000'000};  // wake at least every 100 ms to check `stop`
+      for (const auto& t : state_.timers) {
+        if (t.next.ns >= 0 && t.next < next) next = t.next;
+      }
+      if (next > state_.now) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::nanoseconds((next - state_.now).ns));
+      state_.now = wallNow();
+      if (!deliverInputs() || !fireTimers()) return 1;
+    }
+    return 0;
+  }
+
+  const Scene& scene_;
+  std::string process_;
+  std::string output_directory_;
+  DdsNode dds_;
+  ProcessState state_;
+  Logger log_;
+  std::vector<std::shared_ptr<DdsWriter>> writers_;
+  std::vector<std::unique_ptr<ContextImpl>> contexts_;
+  std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
+  std::unique_ptr<ReaderPort> clock_reader_;
+  std::unique_ptr<DdsWriter> ack_writer_;
+  std::string failure_;
+};
+
+}  // namespace
+
+int runProcessGroup(const Scene& scene, const std::string& process, const std::string& output_directory,
+                    const std::atomic<bool>& stop) {
+  try {
+    ProcessRunner runner(scene, process, output_directory);
+    return runner.run(stop);
+  } catch (const std::exception& e) {
+    Logger(process, {}).error(e.what());
+    return 1;
+  }
+}
+
+}  // namespace uampc

@@ -1,0 +1,574 @@
+#include "uampc/runtime/scene.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "edit_distance.hpp"
+
+namespace fs = std::filesystem;
+
+namespace uampc {
+
+std::string SourceLocation::str() const {
+  if (line <= 0) return file;
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+static std::string joinLines(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += (out.empty() ? "" : "\n") + l;
+  return out;
+}
+
+SceneError::SceneError(std::vector<std::string> messages)
+    : std::runtime_error(joinLines(messages)), messages_(std::move(messages)) {}
+
+std::vector<std::string> Scene::processes() const {
+  std::vector<std::string> out;
+  for (const auto& c : components) {
+    if (std::find(out.begin(), out.end(), c.process) == out.end()) out.push_back(c.process);
+  }
+  return out;
+}
+
+static int countPorts(const Scene& scene, const std::string& topic, PortDirection direction) {
+  int n = 0;
+  for (const auto& c : scene.components) {
+    for (const auto& port : c.library->spec().ports()) {
+      if (port.direction == direction && c.topics.at(port.name) == topic) ++n;
+    }
+  }
+  return n;
+}
+
+int Scene::readersOf(const std::string& topic) const { return countPorts(*this, topic, PortDirection::kInput); }
+int Scene::writersOf(const std::string& topic) const { return countPorts(*this, topic, PortDirection::kOutput); }
+
+const ComponentInstance* Scene::find(const std::string& name) const {
+  for (const auto& c : components) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+Override parseOverride(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw SceneError({"--set " + text + ": error: expected NAME=VALUE, e.g. motor.encoder_rate=100"});
+  }
+  Override o{text, {}, text.substr(eq + 1)};
+  std::stringstream keys(text.substr(0, eq));
+  for (std::string part; std::getline(keys, part, '.');) {
+    if (part.empty()) throw SceneError({"--set " + text + ": error: empty name between dots"});
+    o.path.push_back(part);
+  }
+  return o;
+}
+
+namespace {
+
+// A port mapped to another component's port ("component/port"), resolved once all are read.
+struct PendingReference {
+  std::size_t instance;  // index in Scene::components
+  std::string port;
+  std::string target;
+  YAML::Node node;
+};
+
+// Collects errors so that one run of the validator reports every problem in the file.
+class SceneValidator {
+ public:
+  SceneValidator(std::string file, ComponentCatalog& catalog) : file_(std::move(file)), catalog_(catalog) {}
+
+  Scene validate(YAML::Node root, const std::vector<Override>& overrides);
+
+ private:
+  SourceLocation at(const YAML::Node& node) const {
+    const YAML::Mark m = node.Mark();
+    if (m.is_null()) return {file_, 0, 0};
+    return {file_, m.line + 1, m.column + 1};
+  }
+  void error(const SourceLocation& where, const std::string& message) {
+    errors_.push_back(where.str() + ": error: " + message);
+  }
+  void error(const YAML::Node& node, const std::string& message) { error(locationOf(node), message); }
+  SourceLocation locationOf(const YAML::Node& node) const {
+    for (const auto& [override_node, text] : override_nodes_) {
+      if (override_node.is(node)) return {"--set " + text, 0, 0};
+    }
+    return at(node);
+  }
+
+  void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what);
+  void applyOverrides(YAML::Node& root, const std::vector<Override>& overrides);
+  void readTopLevel(const YAML::Node& root, Scene& scene);
+  void readClock(const YAML::Node& node, Scene& scene);
+  void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
+  void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
+                      const std::string& scene_directory);
+  std::optional<ParameterValue> readValue(const YAML::Node& node, const ParameterSpec& spec,
+                                          const std::string& owner, const std::string& scene_directory);
+  void readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
+                  std::vector<PendingReference>& references);
+  void resolvePortReferences(Scene& scene);
+  void checkConnections(const Scene& scene);
+  std::string resolvePath(const std::string& value, const std::string& directory) const;
+
+  template <typename T>
+  std::optional<T> scalar(const YAML::Node& node, const std::string& what) {
+    if (!node.IsScalar()) {
+      error(node, what + " must be a single value");
+      return std::nullopt;
+    }
+    try {
+      return node.as<T>();
+    } catch (const YAML::Exception&) {
+      error(node, what + ": cannot read '" + node.Scalar() + "' as " + typeWord<T>());
+      return std::nullopt;
+    }
+  }
+  template <typename T>
+  static const char* typeWord() {
+    if constexpr (std::is_same_v<T, bool>) return "true or false";
+    else if constexpr (std::is_integral_v<T>) return "an integer";
+    else if constexpr (std::is_floating_point_v<T>) return "a number";
+    else return "a string";
+  }
+
+  std::string file_;
+  ComponentCatalog& catalog_;
+  std::vector<std::string> errors_;
+  std::vector<std::pair<YAML::Node, std::string>> override_nodes_;  // value grafted by --set, its text
+  std::vector<PendingReference> pending_;
+  std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
+};
+
+void SceneValidator::checkKeys(const YAML::Node& map, const std::set<std::string>& allowed,
+                               const std::string& what) {
+  for (const auto& kv : map) {
+    const std::string key = kv.first.as<std::string>();
+    if (allowed.count(key)) continue;
+    const std::string guess = closestMatch(key, {allowed.begin(), allowed.end()});
+    error(kv.first, "unknown key '" + key + "' in " + what +
+                        (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+  }
+}
+
+void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override>& overrides) {
+  // Overrides are parsed as YAML and grafted into the tree; errors about their values name the
+  // command line, not the file.
+  for (const auto& o : overrides) {
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.value);
+    } catch (const YAML::Exception& e) {
+      errors_.push_back("--set " + o.text + ": error: " + e.msg);
+      continue;
+    }
+    if (value.IsNull()) value = YAML::Node(std::string());
+    override_nodes_.emplace_back(value, o.text);
+    // Top-level keys and clock.* apply directly; anything else is component.parameter.
+    static const std::set<std::string> top_level = {"name", "domain_id", "seed", "on_crash", "max_restarts",
+                                                    "dds_profile"};
+    if (o.path.size() == 1 && top_level.count(o.path[0])) {
+      root[o.path[0]] = value;
+    } else if (o.path.size() == 2 && o.path[0] == "clock") {
+      root["clock"][o.path[1]] = value;
+    } else if (o.path.size() == 2) {
+      YAML::Node components = root["components"];
+      if (!components || !components[o.path[0]]) {
+        errors_.push_back("--set " + o.text + ": error: the scene has no component '" + o.path[0] + "'");
+        continue;
+      }
+      components[o.path[0]]["params"][o.path[1]] = value;
+    } else {
+      errors_.push_back("--set " + o.text +
+                        ": error: expected component.parameter, clock.key or a top-level key");
+    }
+  }
+}
+
+std::string SceneValidator::resolvePath(const std::string& value, const std::string& directory) const {
+  fs::path p(value);
+  if (p.is_relative()) p = fs::path(directory) / p;
+  return p.lexically_normal().string();
+}
+
+Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& overrides) {
+  Scene scene;
+  scene.file = file_;
+  scene.directory = fs::path(file_).parent_path().string();
+  if (!root.IsMap()) {
+    error(root, "a scene is a YAML mapping with at least a 'components' key");
+    throw SceneError(errors_);
+  }
+  applyOverrides(root, overrides);
+  checkKeys(root, {"name", "domain_id", "dds_profile", "seed", "clock", "on_crash", "max_restarts", "components"},
+            "the scene");
+  readTopLevel(root, scene);
+  if (root["clock"]) readClock(root["clock"], scene);
+
+  const YAML::Node components = root["components"];
+  if (!components) {
+    error(SourceLocation{file_, 1, 1}, "the scene has no 'components'");
+  } else if (!components.IsMap()) {
+    error(components, "'components' must map instance names to components");
+  } else {
+    for (const auto& kv : components) readComponent(kv.first, kv.second, scene);
+    resolvePortReferences(scene);
+    checkConnections(scene);
+  }
+  if (scene.clock.mode == ClockMode::kLockstep && scene.on_crash == CrashPolicy::kRestart) {
+    error(root["on_crash"], "on_crash: restart needs clock.mode realtime: a restarted process cannot rejoin "
+                            "a deterministic lockstep run");
+  }
+  if (!errors_.empty()) throw SceneError(errors_);
+  return scene;
+}
+
+void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
+  scene.name = fs::path(file_).stem().string();
+  if (root["name"]) {
+    if (auto v = scalar<std::string>(root["name"], "name")) scene.name = *v;
+  }
+  if (root["domain_id"]) {
+    // Fast DDS maps domains to UDP ports; 232 is the highest that fits the default port mapping.
+    if (auto v = scalar<int>(root["domain_id"], "domain_id")) {
+      if (*v < 0 || *v > 232) error(root["domain_id"], "domain_id must be between 0 and 232");
+      else scene.domain_id = *v;
+    }
+  }
+  if (root["seed"]) {
+    if (auto v = scalar<std::uint64_t>(root["seed"], "seed")) scene.seed = *v;
+  }
+  if (root["max_restarts"]) {
+    if (auto v = scalar<int>(root["max_restarts"], "max_restarts")) {
+      if (*v < 0) error(root["max_restarts"], "max_restarts must be 0 or more");
+      else scene.max_restarts = *v;
+    }
+  }
+  if (root["on_crash"]) {
+    if (auto v = scalar<std::string>(root["on_crash"], "on_crash")) {
+      if (*v == "stop") scene.on_crash = CrashPolicy::kStop;
+      else if (*v == "restart") scene.on_crash = CrashPolicy::kRestart;
+      else error(root["on_crash"], "on_crash must be 'stop' or 'restart', not '" + *v + "'");
+    }
+  }
+  if (root["dds_profile"]) {
+    if (auto v = scalar<std::string>(root["dds_profile"], "dds_profile")) {
+      scene.dds_profile = resolvePath(*v, scene.directory);
+      if (!fs::is_regular_file(scene.dds_profile)) {
+        error(root["dds_profile"], "dds_profile: file not found: " + scene.dds_profile);
+      }
+    }
+  }
+}
+
+void SceneValidator::readClock(const YAML::Node& node, Scene& scene) {
+  if (!node.IsMap()) {
+    error(node, "'clock' must be a mapping (mode, step, duration, ack_timeout, real_time_factor)");
+    return;
+  }
+  checkKeys(node, {"mode", "step", "duration", "ack_timeout", "real_time_factor"}, "clock");
+  if (node["mode"]) {
+    if (auto v = scalar<std::string>(node["mode"], "clock.mode")) {
+      if (*v == "lockstep") scene.clock.mode = ClockMode::kLockstep;
+      else if (*v == "realtime") scene.clock.mode = ClockMode::kRealtime;
+      else error(node["mode"], "clock.mode must be 'lockstep' or 'realtime', not '" + *v + "'");
+    }
+  }
+  auto positive = [&](const char* key, double lo, double hi, auto assign) {
+    if (!node[key]) return;
+    if (auto v = scalar<double>(node[key], std::string("clock.") + key)) {
+      if (!std::isfinite(*v) || *v < lo || *v > hi) {
+        std::ostringstream msg;
+        msg << "clock." << key << " must be between " << lo << " and " << hi << ", not " << node[key].Scalar();
+        error(node[key], msg.str());
+      } else {
+        assign(*v);
+      }
+    }
+  };
+  positive("step", 1e-6, 1.0, [&](double v) { scene.clock.step = Time::fromSeconds(v); });
+  positive("duration", 0.0, 1e7, [&](double v) { scene.clock.duration_s = v; });
+  positive("ack_timeout", 0.1, 3600.0, [&](double v) { scene.clock.ack_timeout_s = v; });
+  positive("real_time_factor", 0.0, 1000.0, [&](double v) { scene.clock.real_time_factor = v; });
+}
+
+void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene) {
+  ComponentInstance instance;
+  instance.name = key.as<std::string>();
+  instance.location = at(key);
+  static const std::regex name_pattern("[A-Za-z][A-Za-z0-9_]*");
+  if (!std::regex_match(instance.name, name_pattern)) {
+    error(key, "component name '" + instance.name + "' must start with a letter and use only letters, digits, _");
+    return;
+  }
+  if (!node.IsMap()) {
+    error(node, "component '" + instance.name + "' must be a mapping with at least 'type'");
+    return;
+  }
+  checkKeys(node, {"type", "process", "params", "topics"}, "component '" + instance.name + "'");
+  if (!node["type"]) {
+    error(key, "component '" + instance.name + "' has no 'type'");
+    return;
+  }
+  auto type = scalar<std::string>(node["type"], "type");
+  if (!type) return;
+  instance.type = *type;
+  try {
+    instance.library = catalog_.find(instance.type);
+  } catch (const std::exception& e) {
+    error(node["type"], e.what());
+    return;
+  }
+  if (!instance.library) {
+    const std::string guess = closestMatch(instance.type, catalog_.typeNames());
+    std::string searched;
+    for (const auto& d : catalog_.directories()) searched += (searched.empty() ? "" : ", ") + d;
+    error(node["type"], "unknown component type '" + instance.type + "'" +
+                            (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+                            " (searched: " + searched + "; `uampc components` lists what is installed)");
+    return;
+  }
+  if (node["process"]) {
+    if (auto v = scalar<std::string>(node["process"], "process")) {
+      static const std::regex process_pattern("[a-z][a-z0-9_]*");
+      if (!std::regex_match(*v, process_pattern)) {
+        error(node["process"], "process name '" + *v + "' must use lower-case letters, digits and _");
+      } else {
+        instance.process = *v;
+      }
+    }
+  }
+  const ComponentSpec& spec = instance.library->spec();
+  readParameters(node["params"], instance, spec, scene.directory);
+  std::vector<PendingReference> references;
+  readTopics(node["topics"], instance, spec, references);
+  if (scene.find(instance.name)) {
+    error(key, "component '" + instance.name + "' is defined twice");
+    return;
+  }
+  for (auto& r : references) {
+    r.instance = scene.components.size();
+    pending_.push_back(std::move(r));
+  }
+  scene.components.push_back(std::move(instance));
+}
+
+void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& instance,
+                                    const ComponentSpec& spec, const std::string& scene_directory) {
+  const std::string owner = "component '" + instance.name + "' (" + instance.type + ")";
+  if (node && !node.IsMap() && !node.IsNull()) {
+    error(node, "'params' of " + owner + " must be a mapping");
+    return;
+  }
+  std::set<std::string> given;
+  if (node && node.IsMap()) {
+    for (const auto& kv : node) {
+      const std::string name = kv.first.as<std::string>();
+      given.insert(name);
+      const ParameterSpec* p = spec.findParameter(name);
+      if (!p) {
+        std::vector<std::string> names;
+        for (const auto& q : spec.parameters()) names.push_back(q.name);
+        const std::string guess = closestMatch(name, names);
+        error(kv.first, "unknown parameter '" + name + "' for " + owner +
+                            (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+        continue;
+      }
+      if (auto v = readValue(kv.second, *p, owner, scene_directory)) instance.params[name] = *v;
+    }
+  }
+  for (const auto& p : spec.parameters()) {
+    if (given.count(p.name)) continue;
+    if (p.required()) {
+      error(instance.location, "missing required parameter '" + p.name + "' (" + toString(p.type) + ": " + p.doc +
+                                   ") for " + owner);
+    } else {
+      instance.params[p.name] = *p.default_value;
+    }
+  }
+}
+
+std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, const ParameterSpec& spec,
+                                                        const std::string& owner,
+                                                        const std::string& scene_directory) {
+  const std::string what = "parameter '" + spec.name + "' of " + owner;
+  auto checkBounds = [&](double v) {
+    if (!std::isfinite(v)) {
+      error(node, what + " must be a finite number, not " + node.Scalar());
+      return false;
+    }
+    if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max)) {
+      std::ostringstream msg;
+      msg << what << " is " << node.Scalar() << ", out of bounds [" << (spec.min ? std::to_string(*spec.min) : "-inf")
+          << ", " << (spec.max ? std::to_string(*spec.max) : "inf") << "]";
+      error(node, msg.str());
+      return false;
+    }
+    return true;
+  };
+  switch (spec.type) {
+    case ParameterType::kBool:
+      if (auto v = scalar<bool>(node, what)) return ParameterValue(*v);
+      return std::nullopt;
+    case ParameterType::kInt:
+      if (auto v = scalar<std::int64_t>(node, what)) {
+        if (checkBounds(static_cast<double>(*v))) return ParameterValue(*v);
+      }
+      return std::nullopt;
+    case ParameterType::kDouble:
+      if (auto v = scalar<double>(node, what)) {
+        if (checkBounds(*v)) return ParameterValue(*v);
+      }
+      return std::nullopt;
+    case ParameterType::kString:
+      if (auto v = scalar<std::string>(node, what)) {
+        if (!spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *v) == spec.choices.end()) {
+          std::string allowed;
+          for (const auto& c : spec.choices) allowed += (allowed.empty() ? "" : ", ") + c;
+          error(node, what + " is '" + *v + "'; allowed: " + allowed);
+          return std::nullopt;
+        }
+        return ParameterValue(*v);
+      }
+      return std::nullopt;
+    case ParameterType::kPath:
+      if (auto v = scalar<std::string>(node, what)) {
+        if (v->empty()) return ParameterValue(*v);
+        const std::string path = resolvePath(*v, scene_directory);
+        if (!fs::exists(path)) {
+          error(node, what + ": file not found: " + path);
+          return std::nullopt;
+        }
+        return ParameterValue(path);
+      }
+      return std::nullopt;
+    case ParameterType::kDoubleList: {
+      if (!node.IsSequence()) {
+        error(node, what + " must be a list of numbers, e.g. [1.0, 2.0]");
+        return std::nullopt;
+      }
+      std::vector<double> values;
+      for (const auto& item : node) {
+        auto v = scalar<double>(item, what);
+        if (!v) return std::nullopt;
+        if (!checkBounds(*v)) return std::nullopt;
+        values.push_back(*v);
+      }
+      return ParameterValue(values);
+    }
+  }
+  return std::nullopt;
+}
+
+void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
+                                std::vector<PendingReference>& references) {
+  for (const auto& port : spec.ports()) instance.topics[port.name] = port.default_topic;
+  if (!node || node.IsNull()) return;
+  if (!node.IsMap()) {
+    error(node, "'topics' of component '" + instance.name + "' must map port names to topics");
+    return;
+  }
+  static const std::regex topic_pattern("(/[A-Za-z_][A-Za-z0-9_]*)+");
+  static const std::regex reference_pattern("[A-Za-z][A-Za-z0-9_]*/[A-Za-z_][A-Za-z0-9_]*");
+  for (const auto& kv : node) {
+    const std::string port = kv.first.as<std::string>();
+    const PortSpec* p = spec.findPort(port);
+    if (!p) {
+      std::vector<std::string> names;
+      for (const auto& q : spec.ports()) names.push_back(q.name);
+      const std::string guess = closestMatch(port, names);
+      error(kv.first, "component '" + instance.name + "' (" + instance.type + ") has no port '" + port + "'" +
+                          (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+      continue;
+    }
+    auto target = scalar<std::string>(kv.second, "topic of port '" + port + "'");
+    if (!target) continue;
+    topic_locations_[instance.name + "." + port] = at(kv.second);
+    if (std::regex_match(*target, topic_pattern)) {
+      instance.topics[port] = *target;
+    } else if (std::regex_match(*target, reference_pattern)) {
+      references.push_back({0, port, *target, kv.second});
+    } else {
+      error(kv.second, "'" + *target + "' is neither a topic (/name/space) nor a port reference (component/port)");
+    }
+  }
+}
+
+void SceneValidator::resolvePortReferences(Scene& scene) {
+  for (auto& p : pending_) {
+    const auto slash = p.target.find('/');
+    const std::string other = p.target.substr(0, slash);
+    const std::string other_port = p.target.substr(slash + 1);
+    const ComponentInstance* target = scene.find(other);
+    if (!target) {
+      error(p.node, "port reference '" + p.target + "': the scene has no component '" + other + "'");
+      continue;
+    }
+    if (!target->library->spec().findPort(other_port)) {
+      error(p.node, "port reference '" + p.target + "': component '" + other + "' (" + target->type +
+                        ") has no port '" + other_port + "'");
+      continue;
+    }
+    scene.components[p.instance].topics[p.port] = target->topics.at(other_port);
+  }
+  // A reference to a port that is itself a reference resolves in file order; one more pass covers
+  // chains written bottom-up.
+  for (auto& p : pending_) {
+    const auto slash = p.target.find('/');
+    const ComponentInstance* target = scene.find(p.target.substr(0, slash));
+    if (target && target->topics.count(p.target.substr(slash + 1))) {
+      scene.components[p.instance].topics[p.port] = target->topics.at(p.target.substr(slash + 1));
+    }
+  }
+}
+
+void SceneValidator::checkConnections(const Scene& scene) {
+  struct Binding {
+    const ComponentInstance* instance;
+    const PortSpec* port;
+  };
+  std::map<std::string, std::vector<Binding>> by_topic;
+  for (const auto& c : scene.components) {
+    for (const auto& port : c.library->spec().ports()) by_topic[c.topics.at(port.name)].push_back({&c, &port});
+  }
+  for (const auto& [topic, bindings] : by_topic) {
+    const Binding& first = bindings.front();
+    for (const auto& b : bindings) {
+      if (b.port->type_name == first.port->type_name) continue;
+      auto where = topic_locations_.find(b.instance->name + "." + b.port->name);
+      const SourceLocation loc = where != topic_locations_.end() ? where->second : b.instance->location;
+      error(loc, "topic " + topic + " connects ports of different types: " + first.instance->name + "." +
+                     first.port->name + " (" + first.port->type_name + ") and " + b.instance->name + "." +
+                     b.port->name + " (" + b.port->type_name + ")");
+    }
+  }
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog) {
+  const std::string file = fs::absolute(path).lexically_normal().string();
+  if (!fs::is_regular_file(file)) throw SceneError({path + ": error: scene file not found"});
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::ParserException& e) {
+    throw SceneError({file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                      ": error: YAML syntax: " + e.msg});
+  } catch (const YAML::Exception& e) {
+    throw SceneError({file + ": error: " + e.what()});
+  }
+  return SceneValidator(file, catalog).validate(root, overrides);
+}
+
+}  // namespace uampc
