@@ -57,8 +57,8 @@ void printJson(const std::vector<const ComponentLibrary*>& libraries) {
       std::cout << (p ? ",\n     " : "\n     ") << "{\"name\": " << jsonString(param.name) << ", \"type\": \""
                 << toString(param.type) << "\", \"required\": " << (param.required() ? "true" : "false");
       if (param.default_value) std::cout << ", \"default\": " << jsonValue(*param.default_value);
-      if (param.min) std::cout << ", \"min\": " << *param.min;
-      if (param.max) std::cout << ", \"max\": " << *param.max;
+      if (param.min) std::cout << ", \"min\": " << formatNumber(*param.min);
+      if (param.max) std::cout << ", \"max\": " << formatNumber(*param.max);
       if (!param.choices.empty()) {
         std::cout << ", \"choices\": [";
         for (std::size_t c = 0; c < param.choices.size(); ++c) std::cout << (c ? ", " : "") << jsonString(param.choices[c]);
@@ -84,8 +84,8 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
       std::cout << "  param  " << std::left << std::setw(20) << param.name << std::setw(8) << toString(param.type)
                 << (param.required() ? "required" : "= " + toString(*param.default_value));
       if (param.min || param.max) {
-        std::cout << " in [" << (param.min ? std::to_string(*param.min) : "-inf") << ", "
-                  << (param.max ? std::to_string(*param.max) : "inf") << "]";
+        std::cout << " in [" << (param.min ? formatNumber(*param.min) : "-inf") << ", "
+                  << (param.max ? formatNumber(*param.max) : "inf") << "]";
       }
       if (!param.choices.empty()) {
         std::cout << " one of";

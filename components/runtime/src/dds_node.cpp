@@ -97,6 +97,11 @@ DataWriter* DdsNode::createWriter(const std::string& ros_topic, const std::strin
   // Large samples (point clouds of 1 MB) are sent from the writing thread; asynchronous mode
   // would need a flow controller to fragment them.
   qos.publish_mode().kind = SYNCHRONOUS_PUBLISH_MODE;
+  if (lockstep_) {
+    // Lockstep never waits for acknowledgements (readers count samples instead), so heartbeats
+    // only serve to free acknowledged samples from the keep-all history; 100 ms keeps it short.
+    qos.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100000000);
+  }
   DataWriter* writer = publisher_->create_datawriter(t, qos);
   if (!writer) throw std::runtime_error("cannot create a DDS writer on " + ros_topic);
   return writer;

@@ -113,7 +113,7 @@ class ProcessSupervisor {
   // Asks every process to stop, waits, and kills those that do not.
   void stopAll() {
     for (const auto& [pid, name] : running_) kill(pid, SIGTERM);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
     while (!running_.empty()) {
       int status = 0;
       const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -130,7 +130,7 @@ class ProcessSupervisor {
       }
       if (std::chrono::steady_clock::now() > deadline) {
         for (const auto& [p, name] : running_) {
-          std::cerr << "uampc: process '" << name << "' did not stop within 10 s; killing it\n";
+          std::cerr << "uampc: process '" << name << "' did not stop within 5 s; killing it\n";
           kill(p, SIGKILL);
         }
         failed_ = true;

@@ -1,5 +1,7 @@
 #include "uampc/runtime/parameter.hpp"
 
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "uampc/runtime/qos.hpp"
@@ -18,9 +20,17 @@ const char* toString(ParameterType type) {
   return "?";
 }
 
+std::string formatNumber(double value) {
+  char text[32];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(text, sizeof text, "%.*g", precision, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
 std::string toString(const ParameterValue& value) {
   std::ostringstream out;
-  out.precision(17);
   std::visit(
       [&](const auto& v) {
         using T = std::decay_t<decltype(v)>;
@@ -28,9 +38,10 @@ std::string toString(const ParameterValue& value) {
         else if constexpr (std::is_same_v<T, std::string>) out << '"' << v << '"';
         else if constexpr (std::is_same_v<T, std::vector<double>>) {
           out << '[';
-          for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
+          for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << formatNumber(v[i]);
           out << ']';
-        } else out << v;
+        } else if constexpr (std::is_same_v<T, double>) out << formatNumber(v);
+        else out << v;
       },
       value);
   return out.str();

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -37,6 +38,7 @@ struct ReaderPort {
   TypeSupport type;
   std::function<void(const void*)> callback;
   std::deque<Sample> deferred;  // lockstep: taken early, belongs to a later step
+  std::uint64_t delivered = 0;  // samples handed to the callback so far
 
   // Takes every sample the reader holds, in arrival order.
   void takeAll(std::deque<Sample>& out) {
@@ -61,6 +63,7 @@ struct TimerEntry {
 // State shared by the contexts of one process: the clock and the list of ports and timers.
 struct ProcessState {
   bool lockstep = false;
+  bool started = false;  // false while components are being constructed
   Time now;
   Time step;
   Wakeup wakeup;
@@ -70,9 +73,15 @@ struct ProcessState {
 
 class DdsWriter : public detail::Writer {
  public:
-  DdsWriter(DataWriter* writer, std::string topic, const ProcessState& state)
-      : writer_(writer), topic_(std::move(topic)), state_(state) {}
+  DdsWriter(DataWriter* writer, std::string topic, QosPreset qos, const ProcessState& state)
+      : writer_(writer), topic_(std::move(topic)), qos_(qos), state_(state) {}
   void write(const void* sample) override {
+    if (state_.lockstep && !state_.started && qos_ != QosPreset::kLatched) {
+      // Before the run starts, readers in other processes may not be matched yet and the sample
+      // would be lost. Latched samples are kept for them, so those may be written.
+      throw std::logic_error("publishing on " + topic_ + " before the run started; publish from a timer or a "
+                             "callback, or declare the port latched");
+    }
     auto* data = const_cast<void*>(sample);  // Fast DDS takes void* but does not modify it
     ReturnCode_t rc;
     if (state_.lockstep) {
@@ -88,18 +97,18 @@ class DdsWriter : public detail::Writer {
       throw std::runtime_error("publishing on " + topic_ + " failed (DDS return code " +
                                std::to_string(rc()) + ")");
     }
-    wrote_ = true;
+    ++written_;
   }
   DataWriter* dds() const { return writer_; }
   const std::string& topic() const { return topic_; }
-  // True once if the writer published since the last call.
-  bool takeWroteFlag() { return std::exchange(wrote_, false); }
+  std::uint64_t written() const { return written_; }
 
  private:
   DataWriter* writer_;
   std::string topic_;
+  QosPreset qos_;
   const ProcessState& state_;
-  bool wrote_ = false;
+  std::uint64_t written_ = 0;
 };
 
 class ContextImpl : public Context {
@@ -157,7 +166,7 @@ class ContextImpl : public Context {
     const PortSpec& spec = checkPort(port, PortDirection::kOutput, type_name);
     const std::string topic = topicOf(port);
     auto writer = std::make_shared<DdsWriter>(dds_.createWriter(topic, type_name, type_support, spec.qos), topic,
-                                              state_);
+                                              spec.qos, state_);
     writers_.push_back(writer);
     return writer;
   }
@@ -218,6 +227,7 @@ class ProcessRunner {
     state_.lockstep = scene.clock.mode == ClockMode::kLockstep;
     state_.step = scene.clock.step;
     state_.now = state_.lockstep ? Time{0} : wallNow();
+    state_.started = !state_.lockstep;
   }
 
   ~ProcessRunner() {
@@ -226,6 +236,7 @@ class ProcessRunner {
     for (auto& w : writers_) dds_.deleteWriter(w->dds());
     if (clock_reader_) dds_.deleteReader(clock_reader_->reader);
     if (ack_writer_) dds_.deleteWriter(ack_writer_->dds());
+    if (ack_reader_) dds_.deleteReader(ack_reader_->reader);
   }
 
   int run(const std::atomic<bool>& stop) {
@@ -272,20 +283,24 @@ class ProcessRunner {
   }
 
   // Delivers the samples that arrived, in a fixed order: readers in the order components created
-  // them, samples of one reader in arrival order. In lockstep, only samples published in earlier
-  // steps are delivered (source time < now); samples of the current step wait for the next one.
-  // Every hop between components therefore takes exactly one step, in one process or in several,
-  // which is what makes runs deterministic.
-  bool deliverInputs() {
+  // them, samples of one reader in arrival order. In lockstep, exactly the samples published in
+  // earlier steps are delivered: the reader first waits until it holds as many samples stamped
+  // before now as the processes' acknowledgements say were written on its topic (expected), and
+  // samples of the current step (source time >= now) wait for the next one. Every hop between
+  // components therefore takes exactly one step, in one process or in several, which is what
+  // makes runs deterministic.
+  bool deliverInputs(const std::map<std::string, std::uint64_t>* expected) {
     for (auto& r : state_.readers) {
       std::deque<Sample> samples;
       samples.swap(r->deferred);
       r->takeAll(samples);
+      if (expected && !awaitSamples(*r, samples, *expected)) return false;
       for (auto& s : samples) {
         if (state_.lockstep && s.source_time >= state_.now) {
           r->deferred.push_back(std::move(s));
           continue;
         }
+        ++r->delivered;
         if (!guarded(r->component, ("input '" + r->port + "' (" + r->topic + ")").c_str(),
                      [&] { r->callback(s.data.get()); })) {
           return false;
@@ -293,6 +308,27 @@ class ProcessRunner {
       }
     }
     return true;
+  }
+
+  // Lockstep: takes samples until the reader holds every sample written before now on its topic.
+  bool awaitSamples(ReaderPort& r, std::deque<Sample>& samples, const std::map<std::string, std::uint64_t>& expected) {
+    auto it = expected.find(r.topic);
+    const std::uint64_t want = it == expected.end() ? 0 : it->second;
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.ack_timeout_s);
+    for (;;) {
+      std::uint64_t have = r.delivered;
+      for (const auto& s : samples) have += s.source_time < state_.now ? 1 : 0;
+      if (have >= want) return true;
+      if (SteadyClock::now() > deadline) {
+        failure_ = "input '" + r.port + "' of component '" + r.component + "' (" + r.topic + ") expected " +
+                   std::to_string(want) + " samples by t=" + std::to_string(state_.now.seconds()) + " s but got " +
+                   std::to_string(have) + " within " + std::to_string(scene_.clock.ack_timeout_s) + " s";
+        log_.error(failure_);
+        return false;
+      }
+      state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(10));
+      r.takeAll(samples);
+    }
   }
 
   bool fireTimers() {
@@ -304,22 +340,6 @@ class ProcessRunner {
       do {
         t.next = t.next + t.period;
       } while (t.next <= state_.now);
-    }
-    return true;
-  }
-
-  // Lockstep: every writer's samples of this step must be in its readers' histories before the
-  // step is acknowledged, so that the next step finds them there.
-  bool waitForAcknowledgments() {
-    const auto timeout = eprosima::fastrtps::Duration_t(scene_.clock.ack_timeout_s);
-    for (auto& w : writers_) {
-      if (!w->takeWroteFlag()) continue;
-      if (w->dds()->wait_for_acknowledgments(timeout) != ReturnCode_t::RETCODE_OK) {
-        failure_ = "samples on " + w->topic() + " were not acknowledged by their readers within " +
-                   std::to_string(scene_.clock.ack_timeout_s) + " s";
-        log_.error(failure_);
-        return false;
-      }
     }
     return true;
   }
@@ -349,9 +369,13 @@ class ProcessRunner {
       SubscriptionMatchedStatus clock_status;
       clock_reader_->reader->get_subscription_matched_status(clock_status);
       if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
+      const int processes = static_cast<int>(scene_.processes().size());
       PublicationMatchedStatus ack_status;
       ack_writer_->dds()->get_publication_matched_status(ack_status);
-      if (ack_status.current_count < 1) missing += "\n  the lockstep clock's acknowledgement reader";
+      if (ack_status.current_count < 1 + processes) missing += "\n  the acknowledgement readers";
+      SubscriptionMatchedStatus ack_reader_status;
+      ack_reader_->reader->get_subscription_matched_status(ack_reader_status);
+      if (ack_reader_status.current_count < processes) missing += "\n  the other processes' acknowledgements";
       if (missing.empty()) return true;
       if (stop) return false;
       if (SteadyClock::now() > deadline) {
@@ -368,10 +392,53 @@ class ProcessRunner {
     ack.process(process_);
     ack.step(step);
     ack.stamp(toMsg(stamp));
+    std::map<std::string, std::uint64_t> written;
+    for (const auto& w : writers_) written[w->topic()] += w->written();
+    for (const auto& [topic, count] : written) {
+      uampc::msg::TopicCount c;
+      c.topic(topic);
+      c.count(count);
+      ack.written().push_back(c);
+    }
     ack.failed(!failure_.empty());
     ack.message(failure_);
     ack_writer_->write(&ack);
-    ack_writer_->takeWroteFlag();
+  }
+
+  // Lockstep: the acknowledgements of step `step` from every process, summed into the number of
+  // samples written on each topic; false on timeout or stop.
+  bool awaitAcks(std::int64_t step, std::map<std::string, std::uint64_t>& expected, const std::atomic<bool>& stop) {
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.ack_timeout_s);
+    for (;;) {
+      std::deque<Sample> acks;
+      ack_reader_->takeAll(acks);
+      for (const auto& a : acks) {
+        const auto* ack = static_cast<const uampc::msg::StepAck*>(a.data.get());
+        acks_[ack->process()][ack->step()] = ack->written();
+      }
+      // A faster process may already have acknowledged later steps; the counts must be those of
+      // exactly this step.
+      bool complete = true;
+      for (const auto& p : scene_.processes()) {
+        auto it = acks_.find(p);
+        complete = complete && it != acks_.end() && it->second.count(step);
+      }
+      if (complete) break;
+      if (stop) return false;
+      if (SteadyClock::now() > deadline) {
+        failure_ = "acknowledgements of step " + std::to_string(step) + " did not arrive within " +
+                   std::to_string(scene_.clock.ack_timeout_s) + " s";
+        log_.error(failure_);
+        return false;
+      }
+      state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(10));
+    }
+    expected.clear();
+    for (auto& [process, by_step] : acks_) {
+      for (const auto& c : by_step.at(step)) expected[c.topic()] += c.count();
+      by_step.erase(by_step.begin(), by_step.find(step));  // older steps are not needed again
+    }
+    return true;
   }
 
   int runLockstep(const std::atomic<bool>& stop) {
@@ -385,8 +452,16 @@ class ProcessRunner {
     ack_writer_ = std::make_unique<DdsWriter>(
         dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                           &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
-        kStepAckTopic, state_);
+        kStepAckTopic, QosPreset::kControl, state_);
+    // Every process reads every acknowledgement: they say how many samples to wait for.
+    ack_reader_ = std::make_unique<ReaderPort>();
+    ack_reader_->topic = kStepAckTopic;
+    ack_reader_->type = TypeSupport(detail::makeTypeSupport<uampc::msg::StepAck>());
+    ack_reader_->reader = dds_.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                                            &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl,
+                                            &state_.wakeup);
     if (!waitForMatches(stop)) return stop ? 0 : 1;
+    state_.started = true;
     sendAck(-1, Time{0});  // ready
 
     while (!stop) {
@@ -395,9 +470,12 @@ class ProcessRunner {
       clock_reader_->takeAll(ticks);
       for (const auto& tick : ticks) {
         const Time t = fromMsg(static_cast<const rosgraph_msgs::msg::Clock*>(tick.data.get())->clock());
+        const std::int64_t step = t.ns / scene_.clock.step.ns;
         state_.now = t;
-        const bool ok = deliverInputs() && fireTimers() && waitForAcknowledgments();
-        sendAck(t.ns / scene_.clock.step.ns, t);
+        std::map<std::string, std::uint64_t> expected;
+        if (!awaitAcks(step - 1, expected, stop)) return stop ? 0 : 1;
+        const bool ok = deliverInputs(&expected) && fireTimers();
+        sendAck(step, t);
         if (!ok) return 1;
       }
       // Data may have arrived for later steps; the tick will come.
@@ -414,7 +492,7 @@ class ProcessRunner {
       }
       if (next > state_.now) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::nanoseconds((next - state_.now).ns));
       state_.now = wallNow();
-      if (!deliverInputs() || !fireTimers()) return 1;
+      if (!deliverInputs(nullptr) || !fireTimers()) return 1;
     }
     return 0;
   }
@@ -430,6 +508,9 @@ class ProcessRunner {
   std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
   std::unique_ptr<ReaderPort> clock_reader_;
   std::unique_ptr<DdsWriter> ack_writer_;
+  std::unique_ptr<ReaderPort> ack_reader_;
+  // Acknowledged sample counts: process -> step -> counts per topic.
+  std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;
   std::string failure_;
 };
 

@@ -409,8 +409,8 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
     }
     if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max)) {
       std::ostringstream msg;
-      msg << what << " is " << node.Scalar() << ", out of bounds [" << (spec.min ? std::to_string(*spec.min) : "-inf")
-          << ", " << (spec.max ? std::to_string(*spec.max) : "inf") << "]";
+      msg << what << " is " << node.Scalar() << ", out of bounds [" << (spec.min ? formatNumber(*spec.min) : "-inf")
+          << ", " << (spec.max ? formatNumber(*spec.max) : "inf") << "]";
       error(node, msg.str());
       return false;
     }

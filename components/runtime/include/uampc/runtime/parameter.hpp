@@ -22,8 +22,10 @@ const char* toString(ParameterType type);
 
 using ParameterValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
 
-// Human-readable value, as it would be written in YAML.
+// Human-readable value, as it would be written in YAML (and valid JSON for numbers and lists).
 std::string toString(const ParameterValue& value);
+// The shortest decimal text that reads back as the same double: 3.6, not 3.6000000000000001.
+std::string formatNumber(double value);
 
 struct ParameterSpec {
   std::string name;

@@ -1,0 +1,79 @@
+// What the launcher does when a component or process misbehaves, and on Ctrl-C.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
+
+#include "command_runner.hpp"
+
+namespace uampc::test {
+namespace {
+
+CommandResult runFault(const std::string& mode, int domain) {
+  return runUampc("launch " + sourcePath("tests/scenes/fault.yaml") + " --set fault.mode=" + mode +
+                  " --set domain_id=" + std::to_string(domain));
+}
+
+TEST(Supervision, AThrowingComponentStopsTheRunWithItsNameAndTime) {
+  const CommandResult r = runFault("throw", 21);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("component 'fault' failed in a timer at t=0.1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("injected failure"), std::string::npos) << r.output;
+}
+
+TEST(Supervision, ACrashedProcessIsReportedWithNameAndSignal) {
+  const CommandResult r = runFault("abort", 22);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("process 'faulty'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("killed by signal 6 (Aborted)"), std::string::npos) << r.output;
+}
+
+TEST(Supervision, AHungComponentTimesOutInsteadOfHangingTheRun) {
+  const auto start = std::chrono::steady_clock::now();
+  const CommandResult r = runFault("hang", 23);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("no acknowledgement of the step from process(es) faulty"), std::string::npos) << r.output;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+}
+
+TEST(Supervision, RealTimeRestartPolicyRestartsThenGivesUp) {
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/fault_restart.yaml") + " --set domain_id=24");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("exited with status 3; restarting it (1 of 2)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("restarting it (2 of 2)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run failed: process 'faulty'"), std::string::npos) << r.output;
+}
+
+TEST(Supervision, CtrlCStopsEveryProcessCleanly) {
+  const std::string log = freshDirectory("ctrl_c") + "/launch.log";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string cmd = "exec env UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
+                            binaryPath("bin/uampc") + " launch " + sourcePath("tests/scenes/realtime_idle.yaml") +
+                            " --set domain_id=25 > " + log + " 2>&1";
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  kill(pid, SIGINT);  // what Ctrl-C sends to the launcher
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(15)) << "launcher did not stop";
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string output = readFile(log);
+  EXPECT_NE(output.find("stopped by Ctrl-C"), std::string::npos) << output;
+  EXPECT_EQ(output.find("while stopping"), std::string::npos) << output;  // children exited cleanly
+  // No process of the scene is left behind.
+  EXPECT_NE(runShell("pgrep -f 'realtime_idle[.]yaml --process'").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace uampc::test
