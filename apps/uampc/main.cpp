@@ -3,6 +3,7 @@
 //   uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]
 //   uampc components [--json]
 //   uampc validate SCENE.yaml [--set NAME=VALUE ...]
+//   uampc run-process SCENE.yaml --process NAME ...;  uampc clock SCENE.yaml ...
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -21,6 +22,11 @@ const char* const kUsage = R"(usage:
       Only validate the scene; print every problem with file:line:column.
   uampc components [--json]
       List installed component types with their ports and parameters.
+  uampc run-process SCENE.yaml --process NAME [--set NAME=VALUE ...] [--out DIR]
+      Run one process group of a scene (launch does this for every group; use it to spread a
+      scene over containers or hosts).
+  uampc clock SCENE.yaml [--set NAME=VALUE ...]
+      Run only the lockstep clock of a scene whose process groups were started with run-process.
 
 Component libraries are searched in $UAMPC_COMPONENT_PATH (colon-separated), then next to this binary
 in ../lib/uampc/components. Log level: UAMPC_LOG_LEVEL=debug|info|warn|error.
@@ -97,7 +103,11 @@ int main(int argc, char** argv) {
     if (!parseLaunchArguments(args, options, nullptr, error)) return usageError(error);
     return uampc::app::validateCommand(options);
   }
-  if (command == "run-process") {  // started by `launch`, not by users
+  if (command == "clock") {
+    if (!parseLaunchArguments(args, options, nullptr, error)) return usageError(error);
+    return uampc::runClockCommand(options);
+  }
+  if (command == "run-process") {
     std::string process;
     if (!parseLaunchArguments(args, options, &process, error) || process.empty()) {
       return usageError(error.empty() ? "run-process needs --process" : error);

@@ -202,6 +202,21 @@ int launch(const LaunchOptions& options) {
   return 0;
 }
 
+int runClockCommand(const LaunchOptions& options) {
+  installSignalHandlers();
+  ComponentCatalog catalog;
+  bool ok = false;
+  const Scene scene = loadOrReport(options, catalog, ok);
+  if (!ok) return 2;
+  if (scene.clock.mode != ClockMode::kLockstep) {
+    std::cerr << "uampc: scene " << options.scene_path << " runs in real time; it has no clock to run\n";
+    return 2;
+  }
+  const ClockResult result = runLockstepClock(scene, g_stop, [] { return std::string(); });
+  if (!result.ok) std::cerr << "uampc: run failed: " << result.error << "\n";
+  return result.ok ? 0 : 1;
+}
+
 int runProcessCommand(const LaunchOptions& options, const std::string& process) {
   installSignalHandlers();
   ComponentCatalog catalog;

@@ -18,7 +18,11 @@ struct LaunchOptions {
 // Exit codes: 0 success, 1 a process or component failed, 2 the scene is invalid, 130 Ctrl-C.
 int launch(const LaunchOptions& options);
 
-// The hidden `uampc run-process` command a launcher starts for each process group.
+// `uampc run-process`: one process group of a scene. The launcher starts one per group; for runs
+// spread over containers or hosts, start them by hand (see docker/compose.yaml).
 int runProcessCommand(const LaunchOptions& options, const std::string& process);
+
+// `uampc clock`: only the lockstep clock of a scene whose process groups run elsewhere.
+int runClockCommand(const LaunchOptions& options);
 
 }  // namespace uampc
