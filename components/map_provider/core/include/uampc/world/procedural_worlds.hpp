@@ -1,0 +1,81 @@
+// Procedural worlds, generated from a seed: the same config and seed give the same mesh on every
+// machine (SeededRandom, no std distributions). Every world is a TriangleMesh with z up and the
+// ground at z = 0 (around-trajectory: the ground follows the trajectory's height).
+//
+//   campus:            a grid of blocks separated by streets; rich blocks hold buildings with
+//   facade
+//                      detail, trees, poles and low walls, poor blocks (a row of them) only plain
+//                      walls or lawn, so a loop along the streets passes rich and poor stretches.
+//   corridor:          a long plain corridor (300 m by default), the classic degenerate case.
+//   multilevel:        a building of several storeys joined by a stairwell.
+//   around-trajectory: buildings, trees and walls scattered around a given path, kept off it by a
+//                      clearance, on a ground that follows the path's height.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "uampc/world/triangle_mesh.hpp"
+
+namespace uampc::world {
+
+struct CampusConfig {
+  int blocks = 3;              // blocks along x and along y
+  double block_size = 60.0;    // m, side of a square block
+  double street_width = 14.0;  // m
+  int poor_rows = 1;           // the northmost rows of blocks hold poor geometry only
+  double tree_spacing = 12.0;  // m, street trees along rich blocks
+  double pole_spacing = 20.0;  // m, street-light poles along every block
+  double margin = 40.0;        // m of ground beyond the outermost street
+  int segments = 10;           // facets of cylinders and cones
+};
+
+struct CorridorConfig {
+  double length = 300.0;  // m, along x from x = 0
+  double width = 3.0;     // m, centred on y = 0
+  double height = 3.0;    // m
+  // Door recesses every door_spacing metres on alternating sides; 0 keeps the walls plain.
+  double door_spacing = 0.0;
+};
+
+struct MultilevelConfig {
+  int floors = 3;
+  double floor_height = 3.5;      // m
+  double length = 40.0;           // m, along x from x = 0
+  double width = 20.0;            // m, along y from y = 0
+  double slab_thickness = 0.3;    // m
+  double stairwell_length = 7.0;  // m, at the +x end of the building, along the -y wall
+  double stairwell_width = 3.0;   // m
+  double column_spacing = 8.0;    // m; interior columns give the LO something to hold on to
+  double ground_margin = 20.0;    // m of ground around the building
+};
+
+struct AroundTrajectoryConfig {
+  double clearance = 4.0;    // m, nothing closer than this to the path (horizontally)
+  double margin = 40.0;      // m of world beyond the path's bounding box
+  double base_height = 1.0;  // m, height of the path above the ground
+  double buildings_per_hectare = 3.0;
+  double trees_per_hectare = 12.0;
+  double walls_per_hectare = 2.0;
+  double ground_cell = 5.0;  // m, grid of the ground height field
+  int segments = 8;
+};
+
+TriangleMesh makeCampus(const CampusConfig& config, std::uint64_t seed);
+TriangleMesh makeCorridor(const CorridorConfig& config);
+TriangleMesh makeMultilevel(const MultilevelConfig& config);
+TriangleMesh makeAroundTrajectory(const std::vector<Eigen::Vector3d>& path,
+                                  const AroundTrajectoryConfig& config, std::uint64_t seed);
+
+// Street centre lines of the campus: the ring around the centre block, counter-clockwise,
+// at height base_height, as closed waypoints (last != first). Use with pathThroughWaypoints.
+std::vector<Eigen::Vector3d> campusLoopWaypoints(const CampusConfig& config, double base_height);
+
+// Along the corridor's axis, from 2 m after its start to 2 m before its end.
+std::vector<Eigen::Vector3d> corridorWaypoints(const CorridorConfig& config, double base_height);
+
+// Through every floor: a tour around each storey, then up the switch-back stairs to the next.
+std::vector<Eigen::Vector3d> multilevelWaypoints(const MultilevelConfig& config,
+                                                 double base_height);
+
+}  // namespace uampc::world

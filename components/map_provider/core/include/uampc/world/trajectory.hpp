@@ -1,0 +1,62 @@
+// A ground-truth trajectory: timed base poses T_WB, interpolated exactly at any time inside it.
+//
+// Position is interpolated linearly and attitude by slerp between the two samples around t, so a
+// point of a scan gets the pose at its own time, never the pose of the nearest sample.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace uampc::world {
+
+struct TimedPose {
+  double time = 0.0;  // s
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // R_WB, unit
+};
+
+// What to do with a file's attitude.
+enum class AttitudeMode {
+  kFromFile,  // the file's attitude, times a fixed frame correction
+  kYawOnly,   // only the heading (yaw about world z) of the corrected attitude is kept
+  kIdentity,  // attitude dropped, as the reference simulation did
+};
+
+// "from_file", "yaw_only" or "identity" (as in scene files); throws std::invalid_argument naming
+// the valid values otherwise.
+AttitudeMode attitudeModeFromName(const std::string& name);
+
+class Trajectory {
+ public:
+  Trajectory() = default;
+  // Poses must have strictly increasing times and at least one sample; throws
+  // std::invalid_argument otherwise. Orientations are normalised.
+  explicit Trajectory(std::vector<TimedPose> poses);
+
+  // T_WB at time t; throws std::out_of_range when t lies outside [startTime(), endTime()].
+  Eigen::Isometry3d poseAt(double t) const;
+  bool contains(double t) const;
+
+  double startTime() const { return poses_.front().time; }
+  double endTime() const { return poses_.back().time; }
+  double duration() const { return endTime() - startTime(); }
+  bool empty() const { return poses_.empty(); }
+  const std::vector<TimedPose>& poses() const { return poses_; }
+
+  // The same trajectory with every time shifted by offset (s).
+  Trajectory shiftedInTime(double offset) const;
+
+ private:
+  std::vector<TimedPose> poses_;
+};
+
+// Replaces each orientation according to the mode; correction is applied on the right (in the
+// body frame): R_WB = R_file * correction. MCD's z-down body frame needs a rotation of pi about x.
+void applyAttitudeMode(std::vector<TimedPose>& poses, AttitudeMode mode,
+                       const Eigen::Quaterniond& correction);
+
+// Heading-only rotation of a rotation: yaw about world z of its x axis.
+Eigen::Quaterniond yawOnly(const Eigen::Quaterniond& q);
+
+}  // namespace uampc::world

@@ -1,0 +1,315 @@
+// Map files. The one file that includes PCL (slow to compile, so nothing else should): PCD is
+// decoded by PCL after checking the file here; PLY is read by our own reader (ply_reader.cpp).
+#include "uampc/world/map_io.hpp"
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/conversions.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "ply_reader.hpp"
+#include "uampc/world/point_sampling.hpp"
+
+namespace uampc::world {
+namespace {
+
+std::string extensionOf(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool hasXyz(const pcl::PCLPointCloud2& cloud) {
+  auto has = [&](const char* name) {
+    return std::any_of(cloud.fields.begin(), cloud.fields.end(),
+                       [&](const pcl::PCLPointField& f) { return f.name == name; });
+  };
+  return has("x") && has("y") && has("z");
+}
+
+// Points of a PCLPointCloud2; non-finite ones are replaced by NaN so indices stay valid.
+std::vector<Eigen::Vector3f> toPoints(const pcl::PCLPointCloud2& cloud, const std::string& path) {
+  if (!hasXyz(cloud)) throw std::runtime_error(path + ": has no x, y, z fields");
+  const std::size_t declared = static_cast<std::size_t>(cloud.width) * cloud.height;
+  if (declared * cloud.point_step > cloud.data.size()) {
+    throw std::runtime_error(path + ": declares " + std::to_string(declared) +
+                             " points but holds data for fewer");
+  }
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  pcl::fromPCLPointCloud2(cloud, xyz);
+  std::vector<Eigen::Vector3f> points;
+  points.reserve(xyz.size());
+  for (const auto& p : xyz.points) points.emplace_back(p.x, p.y, p.z);
+  return points;
+}
+
+void keepFinitePoints(std::vector<Eigen::Vector3f>& points, LoadedMap& map) {
+  const auto end = std::remove_if(points.begin(), points.end(),
+                                  [](const Eigen::Vector3f& p) { return !p.allFinite(); });
+  const auto skipped = static_cast<std::size_t>(points.end() - end);
+  points.erase(end, points.end());
+  if (skipped > 0) {
+    map.skipped_points += skipped;
+    map.warnings.push_back(std::to_string(skipped) + " non-finite points skipped");
+  }
+}
+
+// PCL's PCD reader trusts the file (pcl 1.13 crashes on some corrupt headers and data), so the
+// whole file is checked here before PCL decodes it.
+struct PcdLayout {
+  std::size_t point_step = 0;  // bytes per point
+  std::size_t values = 0;      // values per point (sum of COUNT)
+  std::size_t points = 0;
+  std::string data;  // ascii, binary, binary_compressed
+  std::size_t header_bytes = 0;
+};
+
+bool parseCount(const std::string& word, std::size_t& value) {
+  if (word.empty() || word.size() > 12 ||
+      word.find_first_not_of("0123456789") != std::string::npos) {
+    return false;
+  }
+  value = std::stoull(word);
+  return true;
+}
+
+PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
+  auto bad = [&](const std::string& what) {
+    return std::runtime_error(path + ": not a valid PCD file: " + what);
+  };
+  PcdLayout layout;
+  std::vector<std::string> sizes, types, counts;
+  std::size_t fields = 0, width = 0, height = 0;
+  bool have_width = false, have_height = false, have_points = false;
+  std::size_t pos = 0;
+  while (layout.data.empty()) {
+    const std::size_t eol = bytes.find('\n', pos);
+    if (eol == std::string::npos || eol - pos > 4096) throw bad("header has no DATA line");
+    std::string line = bytes.substr(pos, eol - pos);
+    pos = eol + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream in(line);
+    std::string key;
+    in >> key;
+    std::vector<std::string> w;
+    for (std::string x; in >> x;) w.push_back(x);
+    if (key.empty() || key[0] == '#') continue;
+    if (key == "VERSION") continue;
+    if (key == "FIELDS")
+      fields = w.size();
+    else if (key == "SIZE")
+      sizes = w;
+    else if (key == "TYPE")
+      types = w;
+    else if (key == "COUNT")
+      counts = w;
+    else if (key == "WIDTH")
+      have_width = w.size() == 1 && parseCount(w[0], width);
+    else if (key == "HEIGHT")
+      have_height = w.size() == 1 && parseCount(w[0], height);
+    else if (key == "POINTS")
+      have_points = w.size() == 1 && parseCount(w[0], layout.points);
+    else if (key == "VIEWPOINT") {
+      if (w.size() != 7) throw bad("VIEWPOINT needs 7 numbers");
+    } else if (key == "DATA") {
+      if (w.size() != 1 || (w[0] != "ascii" && w[0] != "binary" && w[0] != "binary_compressed")) {
+        throw bad("unknown DATA kind");
+      }
+      layout.data = w[0];
+    } else {
+      throw bad("unknown header line '" + line.substr(0, 40) + "'");
+    }
+  }
+  layout.header_bytes = pos;
+  if (fields == 0 || sizes.size() != fields || types.size() != fields ||
+      (!counts.empty() && counts.size() != fields)) {
+    throw bad("FIELDS, SIZE, TYPE and COUNT disagree");
+  }
+  if (!have_width || !have_height || !have_points || height == 0 ||
+      width * height != layout.points) {
+    throw bad("WIDTH, HEIGHT and POINTS missing or inconsistent");
+  }
+  for (std::size_t i = 0; i < fields; ++i) {
+    std::size_t size = 0, count = 1;
+    if (!parseCount(sizes[i], size) || (size != 1 && size != 2 && size != 4 && size != 8)) {
+      throw bad("bad SIZE");
+    }
+    if (types[i] != "I" && types[i] != "U" && (types[i] != "F" || size < 4)) throw bad("bad TYPE");
+    if (!counts.empty() && (!parseCount(counts[i], count) || count == 0 || count > 4096)) {
+      throw bad("bad COUNT");
+    }
+    layout.point_step += size * count;
+    layout.values += count;
+  }
+  if (layout.points > (std::size_t{1} << 32)) throw bad("too many points");
+  const std::size_t payload = bytes.size() - layout.header_bytes;
+  const std::size_t expected = layout.points * layout.point_step;
+  if (layout.data == "binary" && payload < expected) throw bad("file shorter than its points");
+  if (layout.data == "binary_compressed") {
+    std::uint32_t sizes_word[2] = {0, 0};
+    if (payload < 8) throw bad("compressed data missing");
+    std::memcpy(sizes_word, bytes.data() + layout.header_bytes, 8);
+    if (sizes_word[1] != expected || sizes_word[0] > payload - 8) {
+      throw bad("compressed data sizes inconsistent");
+    }
+  }
+  if (layout.data == "ascii") {
+    std::istringstream in(bytes.substr(layout.header_bytes));
+    std::string line;
+    std::size_t rows = 0;
+    while (rows < layout.points && std::getline(in, line)) {
+      std::istringstream row(line);
+      std::size_t n = 0;
+      for (std::string token; row >> token; ++n) {
+        char* end = nullptr;
+        std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size()) {
+          throw bad("data row " + std::to_string(rows + 1) + ": '" + token + "' is not a number");
+        }
+      }
+      if (n == 0) continue;
+      if (n != layout.values) {
+        throw bad("data row " + std::to_string(rows + 1) + " has " + std::to_string(n) +
+                  " values, expected " + std::to_string(layout.values));
+      }
+      ++rows;
+    }
+    if (rows < layout.points) throw bad("fewer data rows than POINTS");
+  }
+  return layout;
+}
+
+void loadPcd(const std::string& path, LoadedMap& map) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  checkPcd(path, bytes);
+  pcl::PCLPointCloud2 cloud;
+  if (pcl::io::loadPCDFile(path, cloud) < 0) {
+    throw std::runtime_error(path + ": not a readable PCD file");
+  }
+  map.points = toPoints(cloud, path);
+  keepFinitePoints(map.points, map);
+}
+
+void loadPly(const std::string& path, LoadedMap& map) {
+  PlyContents ply = readPly(path);
+  if (ply.faces.empty()) {
+    map.points = std::move(ply.vertices);
+    keepFinitePoints(map.points, map);
+    return;
+  }
+  // A mesh: vertices stay in place (indices!), bad ones only disqualify their triangles.
+  std::vector<Eigen::Vector3f>& vertices = ply.vertices;
+  std::size_t bad_vertices = 0;
+  for (const auto& v : vertices) bad_vertices += v.allFinite() ? 0 : 1;
+  std::size_t bad_triangles = 0;
+  const auto n = static_cast<std::uint32_t>(vertices.size());
+  for (const auto& idx : ply.faces) {
+    if (idx.size() < 3) {
+      ++bad_triangles;
+      continue;
+    }
+    for (std::size_t k = 1; k + 1 < idx.size(); ++k) {  // fan
+      const std::uint32_t a = idx[0], b = idx[k], c = idx[k + 1];
+      if (a >= n || b >= n || c >= n || !vertices[a].allFinite() || !vertices[b].allFinite() ||
+          !vertices[c].allFinite()) {
+        ++bad_triangles;
+        continue;
+      }
+      map.mesh.triangles.emplace_back(a, b, c);
+    }
+  }
+  for (auto& v : vertices) {
+    if (!v.allFinite()) v.setZero();  // used by no kept triangle
+  }
+  map.mesh.vertices = std::move(vertices);
+  if (bad_vertices > 0) {
+    map.skipped_points = bad_vertices;
+    map.warnings.push_back(std::to_string(bad_vertices) + " non-finite vertices");
+  }
+  if (bad_triangles > 0) {
+    map.skipped_triangles = bad_triangles;
+    map.warnings.push_back(std::to_string(bad_triangles) +
+                           " faces dropped (bad vertex, index out of range, or fewer than 3)");
+  }
+}
+
+}  // namespace
+
+LoadedMap loadMap(const std::string& path, const MapLoadOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw std::runtime_error(path + ": no such map file");
+  }
+  if (std::filesystem::file_size(path, ec) == 0) throw std::runtime_error(path + ": empty file");
+  LoadedMap map;
+  const std::string ext = extensionOf(path);
+  try {
+    if (ext == ".pcd") {
+      loadPcd(path, map);
+    } else if (ext == ".ply") {
+      loadPly(path, map);
+    } else {
+      throw std::runtime_error(path + ": unknown map format '" + ext + "' (expected .pcd or .ply)");
+    }
+  } catch (const std::runtime_error&) {
+    throw;
+  } catch (const std::exception& e) {  // PCL's own exceptions, bad_alloc on absurd headers, ...
+    throw std::runtime_error(path + ": cannot read map: " + e.what());
+  }
+  if (map.mesh.empty() && map.points.empty()) {
+    throw std::runtime_error(path + ": map holds no usable points or triangles");
+  }
+  map.points = voxelDownsample(map.points, options.voxel_size);
+  for (auto& p : map.points) p += options.offset;
+  for (auto& v : map.mesh.vertices) v += options.offset;
+  return map;
+}
+
+void savePointsPcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
+                   PcdEncoding encoding) {
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  cloud.reserve(points.size());
+  for (const auto& p : points) cloud.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  int result = -1;
+  if (!cloud.empty()) {
+    switch (encoding) {
+      case PcdEncoding::kAscii:
+        result = pcl::io::savePCDFileASCII(path, cloud);
+        break;
+      case PcdEncoding::kBinary:
+        result = pcl::io::savePCDFileBinary(path, cloud);
+        break;
+      case PcdEncoding::kBinaryCompressed:
+        result = pcl::io::savePCDFileBinaryCompressed(path, cloud);
+        break;
+    }
+  }
+  if (result < 0) {
+    throw std::runtime_error(path + ": cannot write PCD file");
+  }
+}
+
+void saveMeshPly(const std::string& path, const TriangleMesh& mesh) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write PLY file");
+  out << "ply\nformat ascii 1.0\nelement vertex " << mesh.vertices.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
+      << mesh.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  out.precision(9);
+  for (const auto& v : mesh.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+  for (const auto& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+  if (!out) throw std::runtime_error(path + ": error while writing PLY file");
+}
+
+}  // namespace uampc::world

@@ -1,0 +1,203 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "uampc/world/generated_paths.hpp"
+#include "uampc/world/point_sampling.hpp"
+#include "uampc/world/procedural_worlds.hpp"
+#include "uampc/world/seeded_random.hpp"
+#include "uampc/world/trajectory_io.hpp"
+
+namespace uampc::world {
+namespace {
+
+bool sameMesh(const TriangleMesh& a, const TriangleMesh& b) {
+  return a.vertices == b.vertices && a.triangles == b.triangles;
+}
+
+// Horizontal distance from p to the polyline through path (closed if asked).
+double distanceToPath(const Eigen::Vector3f& p, const std::vector<Eigen::Vector3d>& path,
+                      bool closed) {
+  double best = 1e30;
+  const std::size_t n = path.size();
+  for (std::size_t i = 0; i + (closed ? 0 : 1) < n; ++i) {
+    const Eigen::Vector2d a = path[i].head<2>(), b = path[(i + 1) % n].head<2>();
+    const Eigen::Vector2d q = p.head<2>().cast<double>();
+    const double u = std::clamp((q - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (a + u * (b - a) - q).norm());
+  }
+  return best;
+}
+
+TEST(SeededRandom, SameSeedSameNumbersAndInRange) {
+  SeededRandom a(42), b(42), c(43);
+  bool differs = false;
+  for (int i = 0; i < 1000; ++i) {
+    const double x = a.uniform();
+    EXPECT_EQ(x, b.uniform());
+    differs |= x != c.uniform();
+    EXPECT_GE(x, 0.0);
+    EXPECT_LT(x, 1.0);
+  }
+  EXPECT_TRUE(differs);
+  // The first raw word of mt19937_64 with its default seed 5489 is fixed by the standard's
+  // algorithm.
+  SeededRandom d(5489u);
+  EXPECT_EQ(d.raw(), 14514284786278117030ull);
+}
+
+TEST(Campus, DeterministicFromSeedAndRichInGeometry) {
+  CampusConfig config;
+  const TriangleMesh a = makeCampus(config, 7), b = makeCampus(config, 7),
+                     c = makeCampus(config, 8);
+  EXPECT_TRUE(sameMesh(a, b));
+  EXPECT_FALSE(sameMesh(a, c));
+  EXPECT_GT(a.size(), 5000u);
+  const auto box = a.bounds();
+  EXPECT_LT(box.min().z(), 0.01f);
+  EXPECT_GT(box.max().z(), 6.0f);
+  for (const auto& t : a.triangles) {
+    ASSERT_GE(t.minCoeff(), 0);
+    ASSERT_LT(t.maxCoeff(), static_cast<int>(a.vertices.size()));
+  }
+}
+
+// Smallest horizontal distance from the trajectory to any point above the ground (z > 1 mm), via
+// a grid of the points.
+double clearanceOf(const Trajectory& t, const std::vector<Eigen::Vector3f>& points, double ground_z,
+                   double reach) {
+  std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>> grid;
+  for (const auto& p : points) {
+    if (std::abs(p.z() - ground_z) < 1e-3) continue;
+    grid[{static_cast<int>(std::floor(p.x())), static_cast<int>(std::floor(p.y()))}].push_back(
+        p.head<2>().cast<double>());
+  }
+  double best = reach;
+  const int r = static_cast<int>(std::ceil(reach));
+  for (const auto& pose : t.poses()) {
+    const int cx = static_cast<int>(std::floor(pose.position.x()));
+    const int cy = static_cast<int>(std::floor(pose.position.y()));
+    for (int i = cx - r; i <= cx + r; ++i) {
+      for (int j = cy - r; j <= cy + r; ++j) {
+        auto it = grid.find({i, j});
+        if (it == grid.end()) continue;
+        for (const auto& q : it->second)
+          best = std::min(best, (q - pose.position.head<2>()).norm());
+      }
+    }
+  }
+  return best;
+}
+
+TEST(Campus, TheLoopStaysOnFreeStreets) {
+  CampusConfig config;
+  const TriangleMesh mesh = makeCampus(config, 3);
+  GeneratedPathConfig path_config;
+  path_config.closed = true;
+  const Trajectory loop = pathThroughWaypoints(campusLoopWaypoints(config, 1.0), path_config);
+  EXPECT_GT(loop.duration(), 250.0);
+  EXPECT_GT(clearanceOf(loop, sampleSurface(mesh, 4.0, 1), 0.0, 6.0), 3.0);
+}
+
+TEST(Corridor, LongPlainBox) {
+  CorridorConfig config;
+  const TriangleMesh mesh = makeCorridor(config);
+  const auto box = mesh.bounds();
+  EXPECT_NEAR(box.sizes().x(), 300.4f, 1e-3f);
+  for (const auto& p : sampleSurface(mesh, 0.5, 2)) {
+    ASSERT_TRUE(box.contains(p));
+  }
+  const auto path = corridorWaypoints(config, 1.0);
+  EXPECT_NEAR((path.back() - path.front()).norm(), 296.0, 1e-9);
+  config.door_spacing = 20.0;
+  EXPECT_GT(makeCorridor(config).size(), mesh.size());
+}
+
+TEST(Multilevel, StoreysAndAPathThroughThem) {
+  MultilevelConfig config;
+  const TriangleMesh mesh = makeMultilevel(config);
+  EXPECT_NEAR(mesh.bounds().max().z(), config.floors * config.floor_height + config.slab_thickness,
+              1e-3);
+  const auto waypoints = multilevelWaypoints(config, 1.0);
+  EXPECT_NEAR(waypoints.back().z(), (config.floors - 1) * config.floor_height + 1.0, 1e-9);
+  const Trajectory path = pathThroughWaypoints(waypoints, GeneratedPathConfig{});
+  EXPECT_GT(path.duration(), 60.0);
+}
+
+TEST(AroundTrajectory, KeepsClearOfThePath) {
+  std::vector<Eigen::Vector3d> path;
+  for (int i = 0; i <= 200; ++i) path.emplace_back(i, 20.0 * std::sin(i / 30.0), 5.0);
+  AroundTrajectoryConfig config;
+  const TriangleMesh a = makeAroundTrajectory(path, config, 11);
+  EXPECT_TRUE(sameMesh(a, makeAroundTrajectory(path, config, 11)));
+  std::size_t objects = 0;
+  for (const auto& p : sampleSurface(a, 1.0, 3)) {
+    if (std::abs(p.z() - 4.0f) < 1e-3f) continue;  // ground: 1 m below the path
+    ++objects;
+    ASSERT_GT(distanceToPath(p, path, false), config.clearance - 0.05) << p.transpose();
+  }
+  EXPECT_GT(objects, 1000u);
+}
+
+TEST(AroundTrajectory, AroundARealMcdTrajectory) {
+  const char* data = std::getenv("UAMPC_SHARED_DATA");
+  const std::string file = std::string(data ? data : "") + "/mcd_trajectories/ntu_day01.csv";
+  if (!data || !std::filesystem::exists(file)) GTEST_SKIP() << "no MCD trajectories";
+  const Trajectory t = readMcdCsv(file, TrajectoryReadOptions::forMcd());
+  std::vector<Eigen::Vector3d> path;
+  for (const auto& p : t.poses()) path.push_back(p.position);
+  AroundTrajectoryConfig config;
+  const TriangleMesh mesh = makeAroundTrajectory(path, config, 1);
+  EXPECT_GT(mesh.size(), 10000u);
+  // Objects keep their clearance (the ground is not flat here, so test with the object layer:
+  // everything sampled more than 0.5 m above the ground under the path's nearest pose).
+  std::vector<Eigen::Vector3d> thinned;
+  for (const auto& p : path) {
+    if (thinned.empty() || (p - thinned.back()).norm() > 1.0) thinned.push_back(p);
+  }
+  std::vector<Eigen::Vector3f> high;
+  for (const auto& p : sampleSurface(mesh, 0.5, 2)) {
+    double best = 1e30, z = 0;
+    for (const auto& q : thinned) {
+      const double d = (q.head<2>() - p.head<2>().cast<double>()).squaredNorm();
+      if (d < best) {
+        best = d;
+        z = q.z();
+      }
+    }
+    if (best < 100.0 && p.z() > z - config.base_height + 0.5) high.push_back(p);
+  }
+  EXPECT_GT(clearanceOf(t, high, -1e9, 6.0), config.clearance - 0.05);
+}
+
+TEST(SurfaceSampling, DensityDeterminismAndPointsOnTheSurface) {
+  TriangleMesh box;
+  box.addBox({0, 0, 0}, {10, 20, 5});
+  EXPECT_NEAR(box.area(), 2 * (200 + 50 + 100), 1e-3);
+  const auto a = sampleSurface(box, 50.0, 9);
+  EXPECT_EQ(a, sampleSurface(box, 50.0, 9));
+  EXPECT_NEAR(static_cast<double>(a.size()), 700 * 50.0, 700 * 50.0 * 0.02);
+  for (const auto& p : a) {
+    const Eigen::Vector3f lo = p, hi = Eigen::Vector3f(10, 20, 5) - p;
+    ASSERT_LT(std::min(lo.minCoeff(), hi.minCoeff()), 1e-4f);
+    ASSERT_GT(std::min(lo.minCoeff(), hi.minCoeff()), -1e-4f);
+  }
+}
+
+TEST(VoxelDownsample, CentroidPerVoxelInFirstSeenOrder) {
+  const std::vector<Eigen::Vector3f> points = {
+      {0.1f, 0.1f, 0.1f}, {5.1f, 0, 0}, {0.3f, 0.3f, 0.3f}, {-0.1f, 0, 0}};
+  const auto out = voxelDownsample(points, 1.0);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_TRUE(out[0].isApprox(Eigen::Vector3f(0.2f, 0.2f, 0.2f)));
+  EXPECT_TRUE(out[1].isApprox(Eigen::Vector3f(5.1f, 0, 0)));
+  EXPECT_TRUE(out[2].isApprox(Eigen::Vector3f(-0.1f, 0, 0)));
+  EXPECT_EQ(voxelDownsample(points, 0.0).size(), 4u);
+}
+
+}  // namespace
+}  // namespace uampc::world

@@ -1,0 +1,90 @@
+// Panoramic depth map of the local map around the base origin (paper, Eq. 5).
+//
+// The local map (world frame) is moved into the base frame, p_B = R_WB^T (p_W - r_WB), and every
+// point is binned by its direction:
+//
+//   u = atan2(y, x) / (2 pi) * W,   v = asin(z / r) / pi * H                            (Eq. 5)
+//
+// with the offsets that make indices non-negative and the image upright:
+//   column u = floor((atan2(y, x) + pi) / (2 pi) * W)   column 0 looks along azimuth -pi,
+//   row    v = floor((pi/2 - asin(z / r)) / pi * H)      row 0 looks straight up (zenith).
+// Each pixel keeps the nearest point (smallest range) that falls in it, with that point's index in
+// the input cloud and its base-frame coordinates.
+//
+// Splatting: an LO local map is voxel-downsampled (0.3 m), so near surfaces are sparse in a
+// 1-degree panorama (at 2 m, 0.3 m is 8.6 degrees) and rays would slip through the gaps. Each
+// point therefore covers the pixels of its footprint, half-width 0.5 * point_spacing / range
+// (radians, widened by 1 / cos(elevation) in azimuth, rounded down to whole pixels: one-pixel gaps
+// are bridged by lookup()), capped at max_splat_radius_px; nearest still wins in every pixel. A splatted pixel stores the point itself (not a ray-surface intersection).
+// point_spacing = 0 renders every point into exactly one pixel. The axes are the base axes, so a LiDAR ray
+// R_BM(theta) R_ML d_L can be looked up directly; ray origins are taken at the base origin (the
+// LiDAR offset r_ML is centimetres against ranges of metres).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace uampc::mpc {
+
+class PanoramicDepthMap {
+ public:
+  struct Config {
+    int width = 360;          // columns over 2 pi of azimuth (1 degree per pixel)
+    int height = 180;         // rows over pi of elevation (1 degree per pixel)
+    double min_range = 0.5;   // m, closer points are ignored (robot body, degenerate directions)
+    double max_range = 40.0;  // m, farther points are ignored (the LiDAR would not see them)
+    double point_spacing = 0.3;   // m, typical distance between local-map points (splat size)
+    int max_splat_radius_px = 2;  // cap of the splat half-width, pixels
+  };
+
+  PanoramicDepthMap();  // default Config
+  // Throws std::invalid_argument on a non-positive size or an empty range window.
+  explicit PanoramicDepthMap(const Config& config);
+
+  // Renders the panorama around the base origin; replaces the previous content.
+  // Points that are not finite or lie outside [min_range, max_range] are skipped.
+  void render(const std::vector<Eigen::Vector3d>& points_W, const Eigen::Isometry3d& T_WB);
+
+  int width() const { return config_.width; }
+  int height() const { return config_.height; }
+  const Config& config() const { return config_; }
+
+  // Pixel geometry (Eq. 5). column() accepts any azimuth (multi-turn) and wraps it.
+  int column(double azimuth) const;
+  int row(double elevation) const;
+  int pixelIndex(int u, int v) const { return v * config_.width + u; }
+  // Pixel that a base-frame direction falls in (the direction need not be unit length).
+  int pixelOf(const Eigen::Vector3d& direction_B) const;
+
+  bool occupied(int pixel) const { return winner_[pixel] >= 0; }
+  float range(int pixel) const { return depth_[pixel]; }         // m, 0 when empty
+  std::int32_t pointIndex(int pixel) const { return winner_[pixel]; }  // -1 when empty
+  // Winning point in the base frame (base axes, relative to the base origin); valid if occupied.
+  const Eigen::Vector3f& point(int pixel) const { return points_B_[pixel]; }
+  std::size_t occupiedCount() const { return occupied_count_; }
+  // Size of the cloud given to the last render(): point indices are below it.
+  std::size_t sourceSize() const { return source_size_; }
+
+  // The occupied pixel a ray through (u, v) hits: (u, v) itself if occupied, otherwise the nearest
+  // (smallest range) occupied pixel within search_radius pixels (columns wrap, rows clamp), so a
+  // ray through a small hole of a sparse map still finds its surface. -1 when there is none.
+  int lookup(int u, int v, int search_radius) const;
+
+  // The depth image: height() rows of width() floats, row-major, range in metres, 0 for an empty
+  // pixel (the usual "no return" value of 32FC1 depth images). Row 0 is the zenith.
+  const std::vector<float>& depthImage() const { return depth_; }
+
+ private:
+  Config config_;
+  std::vector<std::uint64_t> zbuffer_;  // packed (range, index) per pixel while rendering
+  std::vector<float> depth_;
+  std::vector<std::int32_t> winner_;
+  std::vector<Eigen::Vector3f> points_B_;
+  std::size_t occupied_count_ = 0;
+  std::size_t source_size_ = 0;
+};
+
+}  // namespace uampc::mpc

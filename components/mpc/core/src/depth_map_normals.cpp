@@ -1,0 +1,94 @@
+#include "uampc/mpc/depth_map_normals.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace uampc::mpc {
+
+DepthMapNormals::DepthMapNormals() : DepthMapNormals(Config{}) {}
+
+DepthMapNormals::DepthMapNormals(const Config& config) : config_(config) {}
+
+void DepthMapNormals::reset(const PanoramicDepthMap& map) {
+  map_ = &map;
+  state_.assign(map.sourceSize(), kUnknown);
+  normals_.resize(map.sourceSize());
+  computed_count_ = 0;
+}
+
+const Eigen::Vector3f* DepthMapNormals::normal(int pixel) {
+  if (map_ == nullptr) throw std::logic_error("DepthMapNormals::normal called before reset");
+  const std::int32_t index = map_->pointIndex(pixel);
+  if (index < 0) return nullptr;
+  // Cached per local-map point, not per pixel: a splatted point covers many pixels.
+  std::uint8_t& state = state_[index];
+  if (state == kUnknown) {
+    ++computed_count_;
+    state = estimate(*map_, pixel, &normals_[index]) ? kValid : kInvalid;
+  }
+  return state == kValid ? &normals_[index] : nullptr;
+}
+
+bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
+                               Eigen::Vector3f* normal_B) const {
+  if (!map.occupied(pixel)) return false;
+  const int width = map.width();
+  const int height = map.height();
+  const int u = pixel % width;
+  const int v = pixel / width;
+  const Eigen::Vector3f& centre = map.point(pixel);
+  const float range = map.range(pixel);
+  const std::int32_t centre_index = map.pointIndex(pixel);
+  const float max_jump = static_cast<float>(config_.max_range_jump_ratio) * range;
+
+  // The 8 ring directions in angular order around the pixel.
+  static constexpr int kDu[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+  static constexpr int kDv[8] = {0, -1, -1, -1, 0, 1, 1, 1};
+  Eigen::Vector3f offsets[8];
+  int ring_position[8];
+  int found = 0;
+  for (int k = 0; k < 8; ++k) {
+    for (int step = 1; step <= config_.neighbour_reach_px; ++step) {
+      const int vv = v + kDv[k] * step;
+      if (vv < 0 || vv >= height) break;
+      int uu = (u + kDu[k] * step) % width;
+      if (uu < 0) uu += width;
+      const int q = map.pixelIndex(uu, vv);
+      // A hole, or the centre point's own splat: look one pixel further.
+      if (!map.occupied(q) || map.pointIndex(q) == centre_index) continue;
+      if (std::abs(map.range(q) - range) > max_jump) break;  // another surface
+      offsets[found] = map.point(q) - centre;
+      ring_position[found] = k;
+      ++found;
+      break;
+    }
+  }
+  if (found < 2) return false;
+
+  // Fan of triangles between consecutive neighbours that are less than 180 degrees apart.
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  int triangles = 0;
+  for (int i = 0; i < found; ++i) {
+    const int j = (i + 1) % found;
+    if (j == i) break;
+    const int gap = (ring_position[j] - ring_position[i] + 8) % 8;
+    if (gap == 0 || gap > 3) continue;
+    sum += offsets[i].cross(offsets[j]);
+    ++triangles;
+    if (found == 2) break;  // i = 1 -> j = 0 would add the same triangle reversed
+  }
+  const float norm = sum.norm();
+  if (triangles < config_.min_triangles || !(norm > 1e-12F)) return false;
+  Eigen::Vector3f n = sum / norm;
+
+  const float off_plane = static_cast<float>(config_.max_off_plane_ratio);
+  for (int i = 0; i < found; ++i) {
+    if (std::abs(n.dot(offsets[i])) > off_plane * offsets[i].norm()) return false;
+  }
+  if (n.dot(centre) > 0.0F) n = -n;  // face the base origin
+  *normal_B = n;
+  return true;
+}
+
+}  // namespace uampc::mpc

@@ -1,0 +1,93 @@
+#include "uampc/mpc/ua_mpc_controller.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "uampc/mpc/uncertainty_surrogate.hpp"
+
+namespace uampc::mpc {
+
+namespace {
+using Clock = std::chrono::steady_clock;  // measures compute time only; never the sim clock
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+}  // namespace
+
+const char* modeName(Mode mode) {
+  switch (mode) {
+    case Mode::kUaMpc: return "ua_mpc";
+    case Mode::kConstant: return "constant";
+    case Mode::kZero: return "zero";
+  }
+  return "unknown";
+}
+
+Mode parseMode(const std::string& name) {
+  for (Mode mode : {Mode::kUaMpc, Mode::kConstant, Mode::kZero}) {
+    if (name == modeName(mode)) return mode;
+  }
+  throw std::invalid_argument("unknown mpc mode '" + name +
+                              "'; expected one of: ua_mpc, constant, zero");
+}
+
+UaMpcController::UaMpcController() : UaMpcController(Config{}) {}
+
+UaMpcController::UaMpcController(const Config& config)
+    : config_(config),
+      sample_count_(UncertaintySurrogate::samplesPerTurn(config.sample_step)),
+      depth_map_(config.depth_map),
+      normals_(config.normals),
+      uncertainty_(config.uncertainty),
+      mpc_(config.mpc) {}
+
+UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
+                                                 const std::vector<Eigen::Vector3d>& local_map_W,
+                                                 double theta_now) {
+  const Clock::time_point start = Clock::now();
+  Decision decision;
+  decision.mode = config_.mode;
+  decision.sample_start = theta_now;
+  decision.sample_step = UncertaintySurrogate::turnStep(sample_count_);
+
+  switch (config_.mode) {
+    case Mode::kUaMpc:
+      decision.omega = std::clamp(config_.mpc.omega_pre, config_.mpc.omega_min,
+                                  config_.mpc.omega_max);  // fallback if nothing is seen
+      break;
+    case Mode::kConstant: decision.omega = config_.constant_speed; break;
+    case Mode::kZero: decision.omega = 0.0; break;
+  }
+  const bool want_samples = config_.mode == Mode::kUaMpc || config_.profile_in_baselines;
+
+  if (want_samples) {
+    Clock::time_point t = Clock::now();
+    depth_map_.render(local_map_W, T_WB);
+    decision.timings.depth_map_ms = millisecondsSince(t);
+    decision.local_map_empty = depth_map_.occupiedCount() == 0;
+
+    if (!decision.local_map_empty) {
+      t = Clock::now();
+      normals_.reset(depth_map_);
+      decision.samples = uncertainty_.sample(depth_map_, normals_, theta_now,
+                                             decision.sample_step, sample_count_);
+      decision.timings.uncertainty_ms = millisecondsSince(t);
+
+      if (config_.mode == Mode::kUaMpc) {
+        t = Clock::now();
+        const UncertaintySurrogate surrogate(theta_now, decision.sample_step, decision.samples);
+        decision.plan = mpc_.solve(surrogate, theta_now);
+        decision.omega = decision.plan.speeds.front();
+        decision.timings.solve_ms = millisecondsSince(t);
+      }
+    }
+  } else {
+    decision.local_map_empty = local_map_W.empty();
+  }
+  decision.timings.total_ms = millisecondsSince(start);
+  return decision;
+}
+
+}  // namespace uampc::mpc

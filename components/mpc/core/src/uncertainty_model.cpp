@@ -1,0 +1,155 @@
+#include "uampc/mpc/uncertainty_model.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace uampc::mpc {
+
+namespace {
+constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+
+// Grid values from lo to hi (inclusive within a small tolerance) every step; for a full circle
+// the end point is the start point again and is left out.
+std::vector<double> gridValues(double lo, double hi, double step, bool periodic) {
+  std::vector<double> values;
+  const double span = hi - lo;
+  const bool full_circle = periodic && span >= kTwoPi - 1e-9;
+  const int count = full_circle ? static_cast<int>(std::round(kTwoPi / step))
+                                : static_cast<int>(std::floor(span / step + 1e-9)) + 1;
+  for (int i = 0; i < count; ++i) values.push_back(lo + i * step);
+  return values;
+}
+}  // namespace
+
+UncertaintyModel::UncertaintyModel() : UncertaintyModel(Config{}) {}
+
+UncertaintyModel::UncertaintyModel(const Config& config) : config_(config) {
+  const LidarFieldOfView& fov = config_.field_of_view;
+  if (!(config_.azimuth_step > 0.0) || !(config_.elevation_step > 0.0)) {
+    throw std::invalid_argument("UncertaintyModel: azimuth_step and elevation_step must be > 0");
+  }
+  if (!(config_.eigenvalue_floor > 0.0)) {
+    throw std::invalid_argument("UncertaintyModel: eigenvalue_floor must be > 0");
+  }
+  if (!(fov.azimuth_max >= fov.azimuth_min) || !(fov.elevation_max >= fov.elevation_min)) {
+    throw std::invalid_argument("UncertaintyModel: field of view has max < min");
+  }
+  if (config_.lookup_radius_px < 0) {
+    throw std::invalid_argument("UncertaintyModel: lookup_radius_px must be >= 0");
+  }
+
+  // Rays at theta = 0: the motor frame coincides with the base frame.
+  const Eigen::Matrix3d R_BL0 = frames::lidarPoseInBase(0.0, config_.calibration).linear();
+  for (double azimuth : gridValues(fov.azimuth_min, fov.azimuth_max, config_.azimuth_step, true)) {
+    for (double elevation :
+         gridValues(fov.elevation_min, fov.elevation_max, config_.elevation_step, false)) {
+      const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
+                                std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+      const Eigen::Vector3d d_B = R_BL0 * d_L;
+      rays_L_.push_back(d_L);
+      ray_azimuth_at_zero_.push_back(std::atan2(d_B.y(), d_B.x()));
+      ray_elevation_.push_back(std::atan2(d_B.z(), std::hypot(d_B.x(), d_B.y())));
+    }
+  }
+}
+
+Vector6d UncertaintyModel::pointToPlaneJacobian(const Eigen::Vector3d& p,
+                                                const Eigen::Vector3d& n) {
+  Vector6d J;
+  J << p.cross(n), n;
+  return J;
+}
+
+// The ray lookup of one control step, prepared once for all candidate angles: each ray's row and
+// its column offset at theta = 0 (in columns, within [0, W)).
+struct UncertaintyModel::RayTable {
+  std::vector<int> rows;
+  std::vector<double> columns_at_zero;
+  double columns_per_rad = 0.0;
+};
+
+UncertaintyModel::RayTable UncertaintyModel::rayTable(const PanoramicDepthMap& map) const {
+  RayTable table;
+  table.columns_per_rad = map.width() / kTwoPi;
+  for (std::size_t k = 0; k < ray_elevation_.size(); ++k) {
+    table.rows.push_back(map.row(ray_elevation_[k]));
+    // Eq. 5 column, unfloored: (azimuth + pi) / (2 pi) * W, azimuth in [-pi, pi].
+    const double column = (ray_azimuth_at_zero_[k] + 0.5 * kTwoPi) * table.columns_per_rad;
+    table.columns_at_zero.push_back(std::min(column, std::nextafter(map.width(), 0.0)));
+  }
+  return table;
+}
+
+Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals,
+                                      const RayTable& table, double theta) const {
+  const int width = map.width();
+  // theta in columns, reduced to [0, W): the same column arithmetic for any number of turns.
+  double shift = theta * table.columns_per_rad;
+  shift -= width * std::floor(shift / width);
+  // Upper triangle of sum_k J_k J_k^T, accumulated by hand: 21 products per ray instead of 36.
+  double upper[21] = {};
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    int u = static_cast<int>(table.columns_at_zero[k] + shift);  // in [0, 2W)
+    if (u >= width) u -= width;
+    const int pixel = map.lookup(u, table.rows[k], config_.lookup_radius_px);
+    if (pixel < 0) continue;
+    const Eigen::Vector3f* n = normals.normal(pixel);
+    if (n == nullptr) continue;
+    // J = [ p x n ; n ] in base axes (see the header), written out to stay in registers.
+    const Eigen::Vector3f& p = map.point(pixel);
+    const double J[6] = {double(p.y()) * n->z() - double(p.z()) * n->y(),
+                         double(p.z()) * n->x() - double(p.x()) * n->z(),
+                         double(p.x()) * n->y() - double(p.y()) * n->x(),
+                         n->x(), n->y(), n->z()};
+    int e = 0;
+    for (int r = 0; r < 6; ++r) {
+      for (int c = r; c < 6; ++c) upper[e++] += J[r] * J[c];
+    }
+  }
+  Matrix6d lambda;
+  int e = 0;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = r; c < 6; ++c) {
+      lambda(r, c) = upper[e];
+      lambda(c, r) = upper[e];
+      ++e;
+    }
+  }
+  return lambda;
+}
+
+Matrix6d UncertaintyModel::information(const PanoramicDepthMap& map, DepthMapNormals& normals,
+                                       double theta) const {
+  return accumulate(map, normals, rayTable(map), theta);
+}
+
+double UncertaintyModel::aOptimality(const Matrix6d& information) const {
+  if (!information.allFinite()) return maxUncertainty();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> solver(information, Eigen::EigenvaluesOnly);
+  if (solver.info() != Eigen::Success) return maxUncertainty();
+  double trace = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    trace += 1.0 / std::max(solver.eigenvalues()[i], config_.eigenvalue_floor);
+  }
+  return trace;
+}
+
+double UncertaintyModel::uncertainty(const PanoramicDepthMap& map, DepthMapNormals& normals,
+                                     double theta) const {
+  return aOptimality(information(map, normals, theta));
+}
+
+std::vector<double> UncertaintyModel::sample(const PanoramicDepthMap& map,
+                                             DepthMapNormals& normals, double theta_start,
+                                             double step, int count) const {
+  const RayTable table = rayTable(map);
+  std::vector<double> samples(static_cast<std::size_t>(std::max(count, 0)));
+  for (int s = 0; s < count; ++s) {
+    samples[s] = aOptimality(accumulate(map, normals, table, theta_start + s * step));
+  }
+  return samples;
+}
+
+}  // namespace uampc::mpc

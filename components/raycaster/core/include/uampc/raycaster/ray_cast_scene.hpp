@@ -1,0 +1,60 @@
+// The world as Embree sees it: built once, then queried by many rays.
+//
+// Triangles are cast against exactly. A point map has no surfaces, so each of its points becomes
+// a sphere of radius point_radius (Embree sphere points): a ray hits the first sphere it meets,
+// so ranges to a point map carry an error of up to point_radius, and a map sparser than about
+// 2 * point_radius lets rays slip through. Choose point_radius near the map's point spacing
+// (e.g. half the voxel size used to downsample it, or a little more).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "uampc/world/triangle_mesh.hpp"
+
+namespace uampc::raycaster {
+
+struct Hit {
+  bool valid = false;
+  float distance = 0.0f;                             // m along the (unit) direction
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit, facing against the ray
+};
+
+struct Ray {
+  Eigen::Vector3f origin;
+  Eigen::Vector3f direction;  // unit
+  float max_distance;
+};
+
+class RayCastScene {
+ public:
+  // Throws std::runtime_error if Embree fails or the world holds nothing.
+  // build_threads: threads Embree may use to build its BVH (queries always run on the caller's).
+  RayCastScene(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points = {},
+               float point_radius = 0.05f, int build_threads = 1);
+  ~RayCastScene();
+  RayCastScene(RayCastScene&&) noexcept;
+  RayCastScene& operator=(RayCastScene&&) noexcept;
+  RayCastScene(const RayCastScene&) = delete;
+  RayCastScene& operator=(const RayCastScene&) = delete;
+
+  // First hit along one ray, from its origin up to max_distance.
+  Hit intersect(const Ray& ray) const;
+
+  // Many rays, in packets of 16 (faster for bundles of rays from one origin); hits.size() ==
+  // rays.size() afterwards.
+  void intersect(const std::vector<Ray>& rays, std::vector<Hit>& hits) const;
+
+  std::size_t triangleCount() const { return triangles_; }
+  std::size_t pointCount() const { return points_; }
+
+ private:
+  struct Embree;
+  std::unique_ptr<Embree> embree_;
+  std::size_t triangles_ = 0;
+  std::size_t points_ = 0;
+};
+
+}  // namespace uampc::raycaster

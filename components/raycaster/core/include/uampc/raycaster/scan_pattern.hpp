@@ -1,0 +1,28 @@
+// The scan pattern of one frame: where each ray points and when it fires.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "uampc/raycaster/lidar_model.hpp"
+
+namespace uampc::raycaster {
+
+struct PatternPoint {
+  Eigen::Vector3f direction;  // unit vector in the LiDAR frame
+  float time_offset = 0.0f;   // s since the frame start
+  std::uint16_t ring = 0;     // ring (spinning) or laser (non-repetitive) index
+};
+
+// Points in one frame: points_per_second / frame_rate_hz, rounded (spinning: a whole number of
+// columns).
+std::size_t pointsPerFrame(const LidarModel& model);
+
+// The pattern of frame number frame_index (0, 1, 2, ...). Non-repetitive patterns continue where
+// frame_index - 1 ended, so their coverage builds up; spinning patterns ignore frame_index.
+// Points come in firing order; time offsets lie in [0, 1 / frame_rate_hz).
+std::vector<PatternPoint> scanPattern(const LidarModel& model, std::uint64_t frame_index);
+
+}  // namespace uampc::raycaster

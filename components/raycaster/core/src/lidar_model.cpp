@@ -1,0 +1,69 @@
+#include "uampc/raycaster/lidar_model.hpp"
+
+#include <stdexcept>
+
+namespace uampc::raycaster {
+
+LidarModel livoxMid360() {
+  LidarModel m;
+  m.name = "livox_mid360";
+  m.kind = ScanPatternKind::kZigzag;
+  m.points_per_second = 200000.0;
+  m.frame_rate_hz = 10.0;
+  m.min_range = 1.5;
+  m.max_range = 40.0;
+  m.min_elevation_deg = -7.0;
+  m.max_elevation_deg = 52.0;
+  m.lasers = 4;
+  // About 1 degree between points both ways within a frame (4 lasers, 50k points/s each), and
+  // not a multiple of 10 Hz: each frame's sweeps fall 0.73 of a period after the last ones.
+  m.sweep_frequency_hz = 437.3;
+  return m;
+}
+
+LidarModel velodyneVlp16() {
+  std::vector<double> elevations;
+  for (int k = 0; k < 16; ++k) elevations.push_back(-15.0 + 2.0 * k);
+  LidarModel m = spinningLidar(elevations, 288000.0, 10.0, 0.5, 100.0);
+  m.name = "velodyne_vlp16";
+  return m;
+}
+
+LidarModel livoxAvia() {
+  LidarModel m;
+  m.name = "livox_avia";
+  m.kind = ScanPatternKind::kRosette;
+  m.points_per_second = 240000.0;
+  m.frame_rate_hz = 10.0;
+  m.min_range = 1.0;
+  m.max_range = 200.0;
+  m.lasers = 6;
+  m.horizontal_fov_deg = 70.4;
+  m.vertical_fov_deg = 77.2;
+  m.prism1_hz = 123.57;
+  m.prism2_hz = 89.31;
+  return m;
+}
+
+LidarModel lidarModelByName(const std::string& name) {
+  if (name == "livox_mid360") return livoxMid360();
+  if (name == "velodyne_vlp16") return velodyneVlp16();
+  if (name == "livox_avia") return livoxAvia();
+  throw std::invalid_argument("unknown LiDAR model '" + name +
+                              "' (expected livox_mid360, velodyne_vlp16 or livox_avia)");
+}
+
+LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_second,
+                         double frame_rate_hz, double min_range, double max_range) {
+  LidarModel m;
+  m.name = "spinning";
+  m.kind = ScanPatternKind::kSpinning;
+  m.elevations_deg = std::move(elevations_deg);
+  m.points_per_second = points_per_second;
+  m.frame_rate_hz = frame_rate_hz;
+  m.min_range = min_range;
+  m.max_range = max_range;
+  return m;
+}
+
+}  // namespace uampc::raycaster

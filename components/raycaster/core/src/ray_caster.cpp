@@ -1,0 +1,106 @@
+#include "uampc/raycaster/ray_caster.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "uampc/world/seeded_random.hpp"
+
+namespace uampc::raycaster {
+
+RayCaster::RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points,
+                     RayCasterConfig config)
+    : config_(std::move(config)), scene_(mesh, points, config_.point_radius) {
+  if (!(config_.model.max_range > config_.model.min_range) || config_.model.min_range < 0.0) {
+    throw std::invalid_argument("RayCaster: need 0 <= min_range < max_range");
+  }
+  if (config_.range_noise_stddev < 0.0 || config_.dropout_probability < 0.0 ||
+      config_.dropout_probability > 1.0) {
+    throw std::invalid_argument("RayCaster: noise must be >= 0 and dropout in [0, 1]");
+  }
+}
+
+const std::vector<PatternPoint>& RayCaster::pattern(std::uint64_t frame_index) {
+  const bool repeats = config_.model.kind == ScanPatternKind::kSpinning;
+  if (cached_pattern_.empty() || (!repeats && frame_index != cached_frame_)) {
+    cached_pattern_ = scanPattern(config_.model, frame_index);
+    cached_frame_ = frame_index;
+  }
+  return cached_pattern_;
+}
+
+Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
+                          const BasePoseAt& base_pose_at, const MotorAngleAt& motor_angle_at) {
+  const std::vector<PatternPoint>& points = pattern(frame_index);
+  const auto max_range = static_cast<float>(config_.model.max_range);
+  const auto min_range = static_cast<float>(config_.model.min_range);
+
+  // Eq. 1 per point: the LiDAR's pose in the world at the point's own time.
+  rays_.resize(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double t = frame_start + static_cast<double>(points[k].time_offset);
+    const Eigen::Isometry3d T_WB = base_pose_at(t);
+    const Eigen::Isometry3d T_BL = frames::lidarPoseInBase(motor_angle_at(t), config_.calibration);
+    const Eigen::Matrix3d R_WL = T_WB.linear() * T_BL.linear();
+    rays_[k].origin = (T_WB * T_BL.translation()).cast<float>();
+    rays_[k].direction = (R_WL * points[k].direction.cast<double>()).normalized().cast<float>();
+    rays_[k].max_distance = max_range;
+  }
+  if (config_.use_packets) {
+    scene_.intersect(rays_, hits_);
+  } else {
+    hits_.resize(rays_.size());
+    for (std::size_t k = 0; k < rays_.size(); ++k) hits_[k] = scene_.intersect(rays_[k]);
+  }
+
+  Scan scan;
+  scan.stamp = frame_start;
+  scan.frame_index = frame_index;
+  scan.rays = points.size();
+  scan.points.reserve(points.size());
+  // Noise and dropout are drawn for every ray in order, hit or not, so a frame's random numbers
+  // do not depend on what the world looks like.
+  world::SeededRandom random(world::mixSeed(config_.seed, frame_index));
+  const bool noisy = config_.range_noise_stddev > 0.0;
+  const bool lossy = config_.dropout_probability > 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const double noise = noisy ? config_.range_noise_stddev * random.normal() : 0.0;
+    const bool dropped = lossy && random.chance(config_.dropout_probability);
+    const Hit& hit = hits_[k];
+    if (!hit.valid || hit.distance < min_range || dropped) continue;
+    const float range = hit.distance + static_cast<float>(noise);
+    if (!(range > 0.0f)) continue;
+    ScanPoint p;
+    p.position = points[k].direction * range;
+    p.intensity = 255.0f * std::abs(hit.normal.dot(rays_[k].direction));
+    p.time_offset = points[k].time_offset;
+    p.ring = points[k].ring;
+    scan.points.push_back(p);
+  }
+  return scan;
+}
+
+Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
+                          const world::Trajectory& trajectory,
+                          const frames::MotorAngleTrack& motor) {
+  const std::vector<PatternPoint>& points = pattern(frame_index);
+  const double frame_end =
+      frame_start + (points.empty() ? 0.0 : static_cast<double>(points.back().time_offset));
+  std::ostringstream msg;
+  msg.precision(17);
+  if (!trajectory.contains(frame_start) || !trajectory.contains(frame_end)) {
+    msg << "RayCaster: trajectory does not cover frame " << frame_index << " [" << frame_start
+        << ", " << frame_end << "] s";
+    throw std::out_of_range(msg.str());
+  }
+  if (!motor.covers(frame_start, frame_end)) {
+    msg << "RayCaster: motor readings do not cover frame " << frame_index << " [" << frame_start
+        << ", " << frame_end << "] s";
+    throw std::out_of_range(msg.str());
+  }
+  return castFrame(
+      frame_index, frame_start, [&](double t) { return trajectory.poseAt(t); },
+      [&](double t) { return *motor.thetaAt(t); });
+}
+
+}  // namespace uampc::raycaster

@@ -1,0 +1,106 @@
+#include "uampc/raycaster/scan_pattern.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace uampc::raycaster {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+double frac(double x) { return x - std::floor(x); }
+
+Eigen::Vector3f direction(double azimuth, double elevation) {
+  const double c = std::cos(elevation);
+  return Eigen::Vector3d(c * std::cos(azimuth), c * std::sin(azimuth), std::sin(elevation))
+      .cast<float>();
+}
+
+// Phase (in periods, [0, 1)) of a frequency f at time frame_index / frame_rate + t, computed in
+// two parts so that late frames keep full precision.
+double phase(double f, std::uint64_t frame_index, double frame_rate, double t) {
+  return frac(frac(f * static_cast<double>(frame_index) / frame_rate) + f * t);
+}
+
+void checkModel(const LidarModel& m) {
+  if (!(m.points_per_second > 0.0) || !(m.frame_rate_hz > 0.0)) {
+    throw std::invalid_argument("LidarModel '" + m.name +
+                                "': points_per_second and frame_rate_hz must be positive");
+  }
+  if (m.kind == ScanPatternKind::kSpinning && m.elevations_deg.empty()) {
+    throw std::invalid_argument("LidarModel '" + m.name + "': spinning model without rings");
+  }
+  if (m.kind != ScanPatternKind::kSpinning && m.lasers < 1) {
+    throw std::invalid_argument("LidarModel '" + m.name + "': needs at least one laser");
+  }
+}
+
+}  // namespace
+
+std::size_t pointsPerFrame(const LidarModel& m) {
+  checkModel(m);
+  const double per_frame = m.points_per_second / m.frame_rate_hz;
+  if (m.kind == ScanPatternKind::kSpinning) {
+    const double rings = static_cast<double>(m.elevations_deg.size());
+    return static_cast<std::size_t>(std::lround(per_frame / rings)) * m.elevations_deg.size();
+  }
+  return static_cast<std::size_t>(std::lround(per_frame));
+}
+
+std::vector<PatternPoint> scanPattern(const LidarModel& m, std::uint64_t frame_index) {
+  const std::size_t n = pointsPerFrame(m);
+  std::vector<PatternPoint> pattern(n);
+  const double frame_period = 1.0 / m.frame_rate_hz;
+  switch (m.kind) {
+    case ScanPatternKind::kSpinning: {
+      const std::size_t rings = m.elevations_deg.size();
+      const std::size_t columns = n / rings;
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t column = k / rings, ring = k % rings;
+        // Lasers of a column fire one after another, evenly within the column's time slot.
+        const double t = (static_cast<double>(column) + static_cast<double>(ring) / rings) /
+                         static_cast<double>(columns) * frame_period;
+        const double azimuth = 2.0 * M_PI * static_cast<double>(column) / columns;
+        pattern[k] = {direction(azimuth, m.elevations_deg[ring] * kDegToRad), static_cast<float>(t),
+                      static_cast<std::uint16_t>(ring)};
+      }
+      break;
+    }
+    case ScanPatternKind::kZigzag: {
+      const double lo = m.min_elevation_deg * kDegToRad, hi = m.max_elevation_deg * kDegToRad;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double t = static_cast<double>(k) / m.points_per_second;
+        const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
+        // One head turn per frame; the lasers sweep the elevation band as triangle waves.
+        const double azimuth = 2.0 * M_PI * t * m.frame_rate_hz;
+        const double p = frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) +
+                              static_cast<double>(laser) / m.lasers);
+        const double wave = p < 0.5 ? 2.0 * p : 2.0 - 2.0 * p;
+        pattern[k] = {direction(azimuth, lo + (hi - lo) * wave), static_cast<float>(t),
+                      static_cast<std::uint16_t>(laser)};
+      }
+      break;
+    }
+    case ScanPatternKind::kRosette: {
+      const double half_h = 0.5 * m.horizontal_fov_deg * kDegToRad;
+      const double half_v = 0.5 * m.vertical_fov_deg * kDegToRad;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double t = static_cast<double>(k) / m.points_per_second;
+        const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
+        // Two prisms turning opposite ways; their deflections add up to a point in the unit disk.
+        const double a1 = 2.0 * M_PI *
+                          (phase(m.prism1_hz, frame_index, m.frame_rate_hz, t) +
+                           static_cast<double>(laser) / m.lasers);
+        const double a2 = -2.0 * M_PI * phase(m.prism2_hz, frame_index, m.frame_rate_hz, t);
+        const double u = 0.5 * (std::cos(a1) + std::cos(a2));
+        const double v = 0.5 * (std::sin(a1) + std::sin(a2));
+        pattern[k] = {direction(u * half_h, v * half_v), static_cast<float>(t),
+                      static_cast<std::uint16_t>(laser)};
+      }
+      break;
+    }
+  }
+  return pattern;
+}
+
+}  // namespace uampc::raycaster
