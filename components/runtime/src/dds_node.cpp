@@ -35,8 +35,9 @@ void applyPreset(Qos& qos, QosPreset preset, bool lockstep) {
     case QosPreset::kLatched:
       qos.reliability().kind = RELIABLE_RELIABILITY_QOS;
       qos.durability().kind = TRANSIENT_LOCAL_DURABILITY_QOS;
+      // Late joiners get the last 100 samples: enough for a world sent in chunks.
       qos.history().kind = KEEP_LAST_HISTORY_QOS;
-      qos.history().depth = 1;
+      qos.history().depth = 100;
       break;
   }
 }

@@ -392,8 +392,12 @@ class ProcessRunner {
     ack.process(process_);
     ack.step(step);
     ack.stamp(toMsg(stamp));
+    // The ready message counts nothing: samples written while the components were constructed
+    // (latched ones) carry time 0 and are delivered at step 1, counted by step 0's acknowledgement.
     std::map<std::string, std::uint64_t> written;
-    for (const auto& w : writers_) written[w->topic()] += w->written();
+    if (step >= 0) {
+      for (const auto& w : writers_) written[w->topic()] += w->written();
+    }
     for (const auto& [topic, count] : written) {
       uampc::msg::TopicCount c;
       c.topic(topic);

@@ -2,8 +2,9 @@
 //
 // std::atan2 is the dominant cost of rendering a 100k-point panorama (two calls per point). This
 // approximation has a maximum error below 1e-5 rad, three orders of magnitude under a 1-degree
-// pixel. It is written without branches: the octant tests of a naive version are unpredictable
-// for a point cloud and their mispredictions cost more than the arithmetic. Internal to the library.
+// pixel. It is written without branches, as selects: the octant tests of a naive version are
+// unpredictable for a point cloud, and selects let the compiler vectorise a loop that calls it
+// (SSE2 baseline, 4 floats per instruction). Internal to the library.
 #pragma once
 
 #include <algorithm>
@@ -12,20 +13,20 @@
 
 namespace uampc::mpc::detail {
 
-inline double fastAtan2(double y, double x) {
-  constexpr double kPi = 3.14159265358979323846;
-  const double ax = std::abs(x);
-  const double ay = std::abs(y);
-  const double a = std::min(ax, ay) / std::max(std::max(ax, ay), std::numeric_limits<double>::min());
-  const double s = a * a;
+template <typename T>
+inline T fastAtan2(T y, T x) {
+  constexpr T kPi = T(3.14159265358979323846);
+  const T ax = std::abs(x);
+  const T ay = std::abs(y);
+  const T a = std::min(ax, ay) / std::max(std::max(ax, ay), std::numeric_limits<T>::min());
+  const T s = a * a;
   // atan(a) on [0, 1], odd minimax polynomial of degree 11.
-  double r = a * (0.99997726 +
-                  s * (-0.33262347 +
-                       s * (0.19354346 + s * (-0.11643287 + s * (0.05265332 + s * -0.01172120)))));
-  const double swapped = static_cast<double>(ay > ax);  // r = pi/2 - r
-  r += swapped * (0.5 * kPi - 2.0 * r);
-  const double negative_x = static_cast<double>(x < 0.0);  // r = pi - r
-  r += negative_x * (kPi - 2.0 * r);
+  T r = a * (T(0.99997726) +
+             s * (T(-0.33262347) +
+                  s * (T(0.19354346) +
+                       s * (T(-0.11643287) + s * (T(0.05265332) + s * T(-0.01172120))))));
+  r = ay > ax ? T(0.5) * kPi - r : r;  // octant swap
+  r = x < T(0) ? kPi - r : r;          // left half-plane
   return std::copysign(r, y);
 }
 

@@ -14,6 +14,7 @@
 #include "uampc/msg/MotorCommandPubSubTypes.h"
 #include "uampc/msg/StepAckPubSubTypes.h"
 #include "uampc/msg/UncertaintyProfilePubSubTypes.h"
+#include "uampc/msg/WorldMeshPubSubTypes.h"
 
 namespace uampc {
 
@@ -39,6 +40,7 @@ UAMPC_MESSAGE_TYPE(uampc, Metrics)
 UAMPC_MESSAGE_TYPE(uampc, MotorCommand)
 UAMPC_MESSAGE_TYPE(uampc, StepAck)
 UAMPC_MESSAGE_TYPE(uampc, UncertaintyProfile)
+UAMPC_MESSAGE_TYPE(uampc, WorldMesh)
 
 #undef UAMPC_MESSAGE_TYPE
 

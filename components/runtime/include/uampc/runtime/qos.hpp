@@ -8,7 +8,7 @@ namespace uampc {
 enum class QosPreset {
   kSensor,   // streams: best-effort keep-last 5 in real time
   kControl,  // commands and states: reliable keep-last 10
-  kLatched,  // maps, configuration: reliable transient-local keep-last 1
+  kLatched,  // maps, configuration: reliable transient-local, the last 100 samples kept for late joiners
 };
 
 const char* toString(QosPreset preset);

@@ -1,0 +1,182 @@
+// Tests of the files the evaluator writes: TUM trajectories, metrics JSON, CSV series.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+
+#include "test_directory.hpp"
+#include "uampc/evaluator/csv_writer.hpp"
+#include "uampc/evaluator/json_writer.hpp"
+#include "uampc/evaluator/pose_interpolator.hpp"
+#include "uampc/evaluator/report_files.hpp"
+#include "uampc/evaluator/tum_trajectory.hpp"
+
+namespace uampc::evaluator {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string contentOf(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+// Runs a Python check on a JSON file: the file must parse with json.load, then the script (with
+// the parsed object as d) must not raise.
+int checkJsonWithPython(const std::string& path, const std::string& script) {
+  const std::string command = "python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); " +
+                              script + "' " + path;
+  return std::system(command.c_str());
+}
+
+template <typename Exception, typename Function>
+void expectThrowNaming(Function function, const std::string& text) {
+  try {
+    function();
+    ADD_FAILURE() << "no exception";
+  } catch (const Exception& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+TEST(TumTrajectory, RoundTripsAtFullPrecision) {
+  test::TestDirectory directory;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> uniform(-1000.0, 1000.0);
+  std::vector<TimedPose> poses;
+  for (int k = 0; k < 100; ++k) {
+    TimedPose p;
+    p.time = 1700000000.0 + 0.1 * k + 1e-7;  // unix-like stamps need all 17 digits
+    p.pose.linear() = Eigen::Quaterniond::UnitRandom().toRotationMatrix();
+    p.pose.translation() = Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng)) / 3.0;
+    poses.push_back(p);
+  }
+  const std::string path = directory.file("trajectory.tum");
+  writeTumTrajectory(path, poses);
+  const std::vector<TimedPose> read = readTumTrajectory(path);
+  ASSERT_EQ(read.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_EQ(read[i].time, poses[i].time);  // bit-exact
+    EXPECT_EQ(read[i].pose.translation(), poses[i].pose.translation());
+    EXPECT_LT((read[i].pose.linear() - poses[i].pose.linear()).norm(), 1e-14);
+  }
+  // The format itself: 8 fields, quaternion last with qw >= 0.
+  std::istringstream lines(contentOf(path));
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line[0], '#');
+  std::getline(lines, line);
+  std::istringstream fields(line);
+  double v[8];
+  for (double& x : v) ASSERT_TRUE(fields >> x);
+  EXPECT_NEAR(Eigen::Vector4d(v[4], v[5], v[6], v[7]).norm(), 1.0, 1e-15);
+  EXPECT_GE(v[7], 0.0);
+}
+
+TEST(TumTrajectory, ErrorsNameThePathAndLine) {
+  test::TestDirectory directory;
+  const std::string path = directory.file("bad.tum");
+  std::ofstream(path) << "# comment\n\n0 1 2 3 0 0 0 1\n1 2 3 x 0 0 0 1\n";
+  expectThrowNaming<std::runtime_error>([&] { readTumTrajectory(path); }, path + ":4");
+  std::ofstream(path) << "0 1 2 3 0 0 0\n";
+  expectThrowNaming<std::runtime_error>([&] { readTumTrajectory(path); }, path + ":1");
+  expectThrowNaming<std::runtime_error>([&] { readTumTrajectory(directory.file("missing.tum")); },
+                                        directory.file("missing.tum"));
+  expectThrowNaming<std::runtime_error>([&] { writeTumTrajectory("/nonexistent/t.tum", {}); },
+                                        "/nonexistent/t.tum");
+}
+
+TEST(JsonWriter, WritesValidJsonWithNullForNaN) {
+  test::TestDirectory directory;
+  JsonObject inner;
+  inner.set("rmse", 0.1).set("nan", kNaN).set("inf", std::numeric_limits<double>::infinity());
+  JsonObject json;
+  json.set("name", "ua \"mpc\"\n\\ \x01")
+      .set("count", std::uint64_t{18446744073709551615ull})
+      .set("negative", std::int64_t{-3})
+      .set("flag", true)
+      .set("tiny", 1e-300)
+      .set("inner", inner)
+      .set("empty", JsonObject())
+      .set("list", std::vector<double>{1.5, kNaN, -2.0})
+      .set("replaced", 1.0)
+      .set("replaced", 2.0);
+  const std::string path = directory.file("metrics.json");
+  writeJson(path, json);
+  EXPECT_EQ(checkJsonWithPython(path,
+                                "assert d[\"name\"] == \"ua \\\"mpc\\\"\\n\\\\ \\x01\", d; "
+                                "assert d[\"count\"] == 2**64 - 1; assert d[\"negative\"] == -3; "
+                                "assert d[\"flag\"] is True; assert d[\"tiny\"] == 1e-300; "
+                                "assert d[\"inner\"] == {\"rmse\": 0.1, \"nan\": None, \"inf\": None}; "
+                                "assert d[\"empty\"] == {}; assert d[\"list\"] == [1.5, None, -2.0]; "
+                                "assert d[\"replaced\"] == 2.0; "
+                                "assert list(d) == [\"name\", \"count\", \"negative\", \"flag\", "
+                                "\"tiny\", \"inner\", \"empty\", \"list\", \"replaced\"]"),
+            0)
+      << contentOf(path);
+  expectThrowNaming<std::runtime_error>([&] { writeJson("/nonexistent/m.json", json); },
+                                        "/nonexistent/m.json");
+}
+
+TEST(JsonWriter, ReportsBecomeValidJson) {
+  test::TestDirectory directory;
+  const PoseInterpolator truth({{0.0, Eigen::Isometry3d::Identity()},
+                                {100.0, Eigen::Isometry3d(Eigen::Translation3d(200, 0, 0))}});
+  TrajectoryEvaluator evaluator([&truth](double t) { return truth(t); });
+  for (int k = 0; k <= 1000; ++k) {
+    evaluator.addEstimate(0.1 * k, Eigen::Isometry3d(Eigen::Translation3d(2.0 * k * 0.1 * 1.01, 0, 0)));
+  }
+  Completeness cmplt;
+  cmplt.addScan(0.0, {{0, 0, 0}});
+  JsonObject json;
+  json.set("trajectory", toJson(evaluator.report())).set("cmplt_estimate", toJson(cmplt.report()));
+  const std::string path = directory.file("report.json");
+  writeJson(path, json);
+  EXPECT_EQ(checkJsonWithPython(path,
+                                "t = d[\"trajectory\"]; assert t[\"paired\"] == 1001; "
+                                "assert abs(t[\"rpe_10m\"][\"translation_percent\"][\"mean\"] - 1) < 1e-6; "
+                                "assert t[\"rpe_100m\"][\"segment_length_m\"] == 100; "
+                                "assert t[\"ate\"][\"aligned_m\"][\"rmse\"] >= 0; "
+                                "assert d[\"cmplt_estimate\"][\"cmplt\"] is None"),
+            0)
+      << contentOf(path);
+}
+
+TEST(CsvWriter, WritesHeaderAndRows) {
+  test::TestDirectory directory;
+  const std::string path = directory.file("series.csv");
+  CsvWriter csv(path, {"time", "ate_m"});
+  csv.addRow({0.1, 2.0});
+  csv.addRow({1e20, kNaN});
+  EXPECT_THROW(csv.addRow({1.0}), std::invalid_argument);
+  csv.close();
+  EXPECT_EQ(contentOf(path), "time,ate_m\n0.1,2\n1e+20,nan\n");
+  expectThrowNaming<std::runtime_error>([&] { CsvWriter("/nonexistent/s.csv", {"a"}); },
+                                        "/nonexistent/s.csv");
+}
+
+TEST(CsvWriter, SeriesFiles) {
+  test::TestDirectory directory;
+  writeAteSeriesCsv(directory.file("ate.csv"), {{1.0, 0.5, 0.25}});
+  EXPECT_EQ(contentOf(directory.file("ate.csv")), "time,ate_m,ate_aligned_m\n1,0.5,0.25\n");
+  CompletenessWindow window;
+  window.index = 2;
+  window.start = 10.0;
+  window.end = 15.0;
+  window.voxels = 7;
+  window.scans = 50;
+  window.points = 1000;
+  window.complete = true;
+  writeCompletenessWindowsCsv(directory.file("cmplt.csv"), {window});
+  EXPECT_EQ(contentOf(directory.file("cmplt.csv")),
+            "window,start,end,voxels,scans,points,complete\n2,10,15,7,50,1000,1\n");
+}
+
+}  // namespace
+}  // namespace uampc::evaluator

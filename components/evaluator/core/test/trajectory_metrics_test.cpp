@@ -1,0 +1,289 @@
+// Tests of pose association, Umeyama alignment, ATE and RPE.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "uampc/evaluator/absolute_trajectory_error.hpp"
+#include "uampc/evaluator/pose_interpolator.hpp"
+#include "uampc/evaluator/relative_pose_error.hpp"
+#include "uampc/evaluator/trajectory_evaluator.hpp"
+#include "uampc/evaluator/umeyama.hpp"
+
+namespace uampc::evaluator {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kDegree = M_PI / 180.0;
+
+Eigen::Isometry3d poseOf(const Eigen::Vector3d& position, double yaw) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  pose.translation() = position;
+  return pose;
+}
+
+std::vector<Eigen::Vector3d> randomPoints(std::size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> uniform(-20.0, 20.0);
+  std::vector<Eigen::Vector3d> points(n);
+  for (auto& p : points) p = Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng));
+  return points;
+}
+
+Eigen::Isometry3d knownTransform() {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(4.0, -2.5, 1.25);
+  return T;
+}
+
+// ---------------------------------------------------------------- Umeyama
+
+TEST(Umeyama, RecoversKnownTransformExactlyAndNotTransposed) {
+  std::mt19937 rng(1);
+  const std::vector<Eigen::Vector3d> source = randomPoints(50, rng);
+  const Eigen::Isometry3d T = knownTransform();
+  // The rotation is far from symmetric, so applying R^T instead of R would be caught.
+  ASSERT_GT((T.linear() - T.linear().transpose()).norm(), 0.5);
+  std::vector<Eigen::Vector3d> target;
+  for (const auto& s : source) target.push_back(T * s);
+
+  const Eigen::Isometry3d A = umeyamaAlignment(source, target);
+  EXPECT_LT((A.linear() - T.linear()).norm(), 1e-12);
+  EXPECT_LT((A.translation() - T.translation()).norm(), 1e-12);
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    EXPECT_LT((A * source[i] - target[i]).norm(), 1e-11);
+  }
+}
+
+TEST(Umeyama, RecoversKnownTransformFromNoisyPoints) {
+  std::mt19937 rng(2);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  const std::vector<Eigen::Vector3d> source = randomPoints(2000, rng);
+  const Eigen::Isometry3d T = knownTransform();
+  std::vector<Eigen::Vector3d> target;
+  for (const auto& s : source) target.push_back(T * s + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+
+  const Eigen::Isometry3d A = umeyamaAlignment(source, target);
+  EXPECT_LT(Eigen::AngleAxisd(A.linear().transpose() * T.linear()).angle(), 1e-3);
+  EXPECT_LT((A.translation() - T.translation()).norm(), 1e-2);
+
+  // Same answer as Eigen's own implementation (without scaling).
+  Eigen::Matrix3Xd src(3, source.size()), dst(3, target.size());
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    src.col(static_cast<Eigen::Index>(i)) = source[i];
+    dst.col(static_cast<Eigen::Index>(i)) = target[i];
+  }
+  const Eigen::Matrix4d eigen = Eigen::umeyama(src, dst, false);
+  EXPECT_LT((A.matrix() - eigen).norm(), 1e-9);
+}
+
+TEST(Umeyama, NeverReturnsAReflection) {
+  // Coplanar points and a mirrored target: a plain U V^T can have det -1 here.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uniform(-5.0, 5.0);
+  std::vector<Eigen::Vector3d> source, mirrored, rotated;
+  const Eigen::Isometry3d T = knownTransform();
+  for (int i = 0; i < 30; ++i) {
+    const Eigen::Vector3d p(uniform(rng), uniform(rng), 0.0);
+    source.push_back(p);
+    mirrored.push_back(Eigen::Vector3d(p.x(), -p.y(), p.z()));
+    rotated.push_back(T * p);
+  }
+  const Eigen::Isometry3d planar = umeyamaAlignment(source, rotated);
+  EXPECT_NEAR(planar.linear().determinant(), 1.0, 1e-12);
+  EXPECT_LT((planar.linear() - T.linear()).norm(), 1e-10);
+
+  std::vector<Eigen::Vector3d> source3d = randomPoints(30, rng), mirrored3d;
+  for (const auto& p : source3d) mirrored3d.push_back(Eigen::Vector3d(p.x(), -p.y(), p.z()));
+  EXPECT_NEAR(umeyamaAlignment(source3d, mirrored3d).linear().determinant(), 1.0, 1e-12);
+}
+
+TEST(Umeyama, DegenerateInputs) {
+  EXPECT_THROW(umeyamaAlignment({Eigen::Vector3d::Zero()}, {}), std::invalid_argument);
+  EXPECT_TRUE(umeyamaAlignment({}, {}).isApprox(Eigen::Isometry3d::Identity()));
+  const Eigen::Isometry3d one = umeyamaAlignment({Eigen::Vector3d(1, 2, 3)}, {Eigen::Vector3d(2, 2, 2)});
+  EXPECT_LT((one * Eigen::Vector3d(1, 2, 3) - Eigen::Vector3d(2, 2, 2)).norm(), 1e-12);
+}
+
+// ---------------------------------------------------------------- interpolation
+
+TEST(PoseInterpolator, LinearPositionSlerpAttitudeInsideRangeOnly) {
+  const PoseInterpolator truth({{1.0, poseOf({10, 0, 0}, 0.4)}, {0.0, poseOf({0, 0, 0}, 0.0)}});
+  ASSERT_EQ(truth.size(), 2u);
+  const auto middle = truth(0.25);
+  ASSERT_TRUE(middle.has_value());
+  EXPECT_LT((middle->translation() - Eigen::Vector3d(2.5, 0, 0)).norm(), 1e-12);
+  EXPECT_NEAR(Eigen::AngleAxisd(middle->linear()).angle(), 0.1, 1e-12);
+  EXPECT_TRUE(truth(0.0).has_value());  // end points are inside
+  EXPECT_TRUE(truth(1.0).has_value());
+  EXPECT_FALSE(truth(-1e-9).has_value());
+  EXPECT_FALSE(truth(1.0 + 1e-9).has_value());
+  EXPECT_FALSE(truth(kNaN).has_value());
+  EXPECT_FALSE(PoseInterpolator()(0.0).has_value());
+}
+
+TEST(PoseInterpolator, SortsDropsDuplicatesAndNonFiniteTimes) {
+  PoseInterpolator truth({{2.0, poseOf({2, 0, 0}, 0)},
+                          {0.0, poseOf({0, 0, 0}, 0)},
+                          {2.0, poseOf({99, 0, 0}, 0)},
+                          {kNaN, poseOf({0, 0, 0}, 0)}});
+  EXPECT_EQ(truth.size(), 2u);
+  EXPECT_EQ(truth.droppedPoses(), 2u);
+  EXPECT_NEAR(truth(2.0)->translation().x(), 2.0, 1e-12);  // the first of the equal times stays
+  EXPECT_TRUE(truth.add({3.0, poseOf({3, 0, 0}, 0)}));
+  EXPECT_TRUE(truth.add({1.0, poseOf({5, 0, 0}, 0)}));  // out of order: inserted at its place
+  EXPECT_FALSE(truth.add({1.0, poseOf({7, 0, 0}, 0)}));
+  EXPECT_NEAR(truth(0.5)->translation().x(), 2.5, 1e-12);
+  EXPECT_NEAR(truth(1.5)->translation().x(), 3.5, 1e-12);
+  EXPECT_DOUBLE_EQ(truth.endTime(), 3.0);
+}
+
+// Ground truth at 10 Hz moving at 10 m/s along x; an estimate stamped between two samples is
+// compared with the truth at its own time. Nearest-neighbour association within 0.1 s would
+// compare it with the sample 0.05 s away, 0.5 m off.
+TEST(TrajectoryEvaluator, AssociatesByExactTimeNotNearestPose) {
+  std::vector<TimedPose> samples;
+  for (int k = 0; k <= 100; ++k) samples.push_back({0.1 * k, poseOf({1.0 * k, 0, 0}, 0.0)});
+  const PoseInterpolator truth(samples);
+  TrajectoryEvaluator evaluator([&truth](double t) { return truth(t); });
+  for (int k = 0; k < 100; ++k) {
+    const double t = 0.1 * k + 0.05;
+    EXPECT_TRUE(evaluator.addEstimate(t, poseOf({10.0 * t, 0, 0}, 0.0)));
+  }
+  const TrajectoryReport report = evaluator.report();
+  EXPECT_EQ(report.paired, 100u);
+  EXPECT_LT(report.ate.unaligned.max, 1e-9);
+  EXPECT_LT(report.ate.unaligned.rmse, 1e-9);
+}
+
+TEST(TrajectoryEvaluator, EstimatesOutsideGroundTruthAreUnpairedNotPairedWrongly) {
+  const PoseInterpolator truth({{10.0, poseOf({0, 0, 0}, 0)}, {20.0, poseOf({10, 0, 0}, 0)}});
+  TrajectoryEvaluator evaluator([&truth](double t) { return truth(t); });
+  EXPECT_FALSE(evaluator.addEstimate(9.99, poseOf({0, 0, 0}, 0)));
+  EXPECT_FALSE(evaluator.addEstimate(20.01, poseOf({10, 0, 0}, 0)));
+  EXPECT_FALSE(evaluator.addEstimate(kNaN, poseOf({10, 0, 0}, 0)));
+  EXPECT_FALSE(evaluator.addEstimate(15.0, poseOf({kNaN, 0, 0}, 0)));
+  EXPECT_TRUE(evaluator.addEstimate(15.0, poseOf({5, 0, 1}, 0)));
+  const TrajectoryReport report = evaluator.report();
+  EXPECT_EQ(report.estimates, 5u);
+  EXPECT_EQ(report.paired, 1u);
+  EXPECT_EQ(report.unpaired, 2u);
+  EXPECT_EQ(report.invalid, 2u);
+  EXPECT_NEAR(report.ate.unaligned.rmse, 1.0, 1e-12);
+  ASSERT_EQ(report.rpe.size(), 2u);
+  EXPECT_DOUBLE_EQ(report.rpe[0].segment_length, 10.0);
+  EXPECT_DOUBLE_EQ(report.rpe[1].segment_length, 100.0);
+  ASSERT_EQ(evaluator.pairedGroundTruth().size(), 1u);
+  EXPECT_NEAR(evaluator.pairedGroundTruth()[0].pose.translation().x(), 5.0, 1e-12);
+}
+
+// ---------------------------------------------------------------- ATE
+
+TEST(AbsoluteTrajectoryError, ConstantOffsetIsTheOffsetUnalignedAndZeroAligned) {
+  AbsoluteTrajectoryError ate;
+  const Eigen::Vector3d offset(0.3, -0.4, 0.0);  // 0.5 m
+  for (int k = 0; k < 200; ++k) {
+    const double a = 0.05 * k;
+    const Eigen::Vector3d truth(20.0 * std::cos(a), 20.0 * std::sin(a), 0.1 * k);
+    ate.add(0.1 * k, truth + offset, truth);
+  }
+  const AteReport report = ate.report();
+  EXPECT_EQ(report.unaligned.count, 200u);
+  EXPECT_NEAR(report.unaligned.rmse, 0.5, 1e-12);
+  EXPECT_NEAR(report.unaligned.mean, 0.5, 1e-12);
+  EXPECT_NEAR(report.unaligned.median, 0.5, 1e-12);
+  EXPECT_NEAR(report.unaligned.max, 0.5, 1e-12);
+  EXPECT_LT(report.aligned.rmse, 1e-9);
+  EXPECT_LT((report.alignment.translation() + offset).norm(), 1e-9);
+}
+
+TEST(AbsoluteTrajectoryError, StatisticsAndSeriesSortedByTime) {
+  AbsoluteTrajectoryError ate;
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  ate.add(3.0, {3, 0, 0}, zero);
+  ate.add(1.0, {1, 0, 0}, zero);
+  ate.add(4.0, {0, 4, 0}, zero);
+  ate.add(2.0, {0, 0, 2}, zero);
+  EXPECT_FALSE(ate.add(5.0, {kNaN, 0, 0}, zero));
+  EXPECT_EQ(ate.rejected(), 1u);
+  const AteReport report = ate.report();
+  EXPECT_NEAR(report.unaligned.rmse, std::sqrt(7.5), 1e-12);
+  EXPECT_NEAR(report.unaligned.mean, 2.5, 1e-12);
+  EXPECT_NEAR(report.unaligned.median, 2.5, 1e-12);
+  EXPECT_NEAR(report.unaligned.max, 4.0, 1e-12);
+  ASSERT_EQ(report.series.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_DOUBLE_EQ(report.series[k].time, k + 1.0);
+    EXPECT_NEAR(report.series[k].error, k + 1.0, 1e-12);
+  }
+}
+
+TEST(AbsoluteTrajectoryError, EmptyIsNaNNotZero) {
+  const AteReport report = AbsoluteTrajectoryError().report();
+  EXPECT_EQ(report.unaligned.count, 0u);
+  EXPECT_TRUE(std::isnan(report.unaligned.rmse));
+  EXPECT_TRUE(std::isnan(report.aligned.rmse));
+}
+
+// ---------------------------------------------------------------- RPE
+
+TEST(RelativePoseError, PerfectEstimateHasZeroError) {
+  RelativePoseError rpe;
+  for (int k = 0; k < 600; ++k) {  // a 0.5 m-step curve with turning attitude, ~300 m
+    const double a = 0.01 * k;
+    const Eigen::Isometry3d truth = poseOf({50.0 * std::sin(a), 50.0 * (1 - std::cos(a)), 0.01 * k}, a);
+    rpe.add(0.1 * k, truth, truth);
+  }
+  for (const double d : {10.0, 100.0}) {
+    const RpeReport report = rpe.report(d);
+    EXPECT_GT(report.translation.count, 100u) << d;
+    EXPECT_LT(report.translation.max, 1e-9) << d;
+    EXPECT_LT(report.translation_percent.max, 1e-9) << d;
+    EXPECT_LT(report.rotation_deg.max, 1e-6) << d;
+  }
+  const RpeReport too_long = rpe.report(1000.0);
+  EXPECT_EQ(too_long.translation.count, 0u);
+  EXPECT_TRUE(std::isnan(too_long.translation.rmse));
+  EXPECT_THROW(rpe.report(0.0), std::invalid_argument);
+  EXPECT_THROW(rpe.report(-10.0), std::invalid_argument);
+}
+
+TEST(RelativePoseError, ScaleDriftGivesItsPercentage) {
+  // Straight line at 1 m per pose (exact distances), heading 30 degrees off the direction of
+  // travel; the estimate travels 2% too far.
+  RelativePoseError rpe;
+  const double scale_drift = 0.02;
+  const Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  for (int k = 300; k >= 0; --k) {  // added backwards: the report sorts by time
+    rpe.add(0.1 * k, poseOf((1.0 + scale_drift) * k * direction, 30 * kDegree),
+            poseOf(k * direction, 30 * kDegree));
+  }
+  const RpeReport ten = rpe.report(10.0);
+  EXPECT_EQ(ten.translation.count, 291u);  // starts 0..290 reach 10 m
+  EXPECT_NEAR(ten.translation_percent.mean, 2.0, 1e-9);
+  EXPECT_NEAR(ten.translation_percent.max, 2.0, 1e-9);
+  EXPECT_NEAR(ten.translation.rmse, 0.2, 1e-9);
+  EXPECT_LT(ten.rotation_deg.max, 1e-9);
+  const RpeReport hundred = rpe.report(100.0);
+  EXPECT_EQ(hundred.translation.count, 201u);
+  EXPECT_NEAR(hundred.translation.rmse, 2.0, 1e-9);
+  EXPECT_NEAR(hundred.translation_percent.mean, 2.0, 1e-9);
+}
+
+TEST(RelativePoseError, HeadingDriftGivesItsRotationPerSegment) {
+  // The estimate's heading drifts by 0.1 degree per metre: 1 degree per 10 m segment.
+  RelativePoseError rpe;
+  for (int k = 0; k <= 50; ++k) {
+    rpe.add(0.1 * k, poseOf({1.0 * k, 0, 0}, 0.1 * kDegree * k), poseOf({1.0 * k, 0, 0}, 0.0));
+  }
+  const RpeReport report = rpe.report(10.0);
+  EXPECT_EQ(report.rotation_deg.count, 41u);
+  EXPECT_NEAR(report.rotation_deg.mean, 1.0, 1e-9);
+  EXPECT_NEAR(report.rotation_deg.max, 1.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace uampc::evaluator

@@ -1,0 +1,80 @@
+// Iterated EKF on the constant-velocity state of the base, with point-to-plane measurements.
+//
+// State x = (R_WB, r_WB, v_W, w_B); error state (12) = [dtheta, dr, dv, dw], with the rotation
+// perturbed on the right: R = R_hat Exp(dtheta). Units: rad, m, m/s, rad/s.
+//
+// Prediction (constant velocity over dt):
+//   R- = R Exp(w dt),  r- = r + v dt,  v- = v,  w- = w            (state prediction x- = f(x))
+//   P- = F P F^T + Q,  Q = q dt on the v and w blocks             (covariance prediction)
+// where q (process_noise) is the spectral density of a velocity random walk.
+//
+// Update: residual of a point i (base frame p_i at time offset tau_i) against its map plane
+//   z_i = n^T ( R Exp(w tau_i) p_i + r + v tau_i ) + d              (measurement model h(x))
+// so the deskew is part of the measurement and v, w are observed inside one frame too.
+// The iterated update (Bell & Cathey 1993) is Gauss-Newton on the MAP cost
+//   ||x (-) x-||^2_{P-^-1} + sum_i z_i^2 / sigma^2,
+// re-linearised at every iterate x_j (planes re-associated while the steps are large):
+//   (P-^-1 + H^T H / sigma^2) dx = -H^T z / sigma^2 - P-^-1 (x_j (-) x-),  x_{j+1} = x_j (+) dx
+// which is the IEKF step  x_{j+1} = x- (+) K_j ( -z_j + H_j (x_j (-) x-) ),
+//   K_j = P- H_j^T (H_j P- H_j^T + sigma^2 I)^-1,
+// written in information form: only 12x12 matrices, however many points there are. The Jacobian
+// of x_j (-) x- in the rotation is taken as identity, as FAST-LIO and I2EKF-LO do.
+// The posterior covariance is P+ = (I - K H) P- = (P-^-1 + H^T H / sigma^2)^-1.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <vector>
+
+#include "uampc/lo/deskew.hpp"
+#include "uampc/lo/local_map.hpp"
+#include "uampc/lo/scan.hpp"
+
+namespace uampc::lo {
+
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+struct UpdateOptions {
+  std::size_t nearest_neighbours = 5;
+  double plane_max_point_distance = 0.1;  // m
+  double max_neighbour_distance = 1.0;    // m, the k-th neighbour must be closer than this
+  double measurement_variance = 0.001;    // m^2
+  int max_iterations = 10;
+  double convergence_rotation = 1e-5;     // rad, step size that ends the iterations
+  double convergence_translation = 1e-4;  // m
+  // Planes are re-associated after a step larger than these, kept after smaller ones.
+  double reassociation_rotation = 1e-3;     // rad
+  double reassociation_translation = 1e-2;  // m
+  std::size_t min_correspondences = 30;   // fewer: the update is skipped
+  // Residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
+  double min_residual_gate = 0.05;  // m
+};
+
+struct UpdateSummary {
+  bool applied = false;     // false: too few correspondences or a non-finite step; x- kept
+  bool converged = false;   // the last step was below the convergence thresholds
+  int iterations = 0;
+  std::size_t correspondences = 0;
+  // Information of the pose from the last linearisation, unit weight, [rotation, translation]:
+  // Lambda = sum_i J_i J_i^T (as in DESIGN.md section 1, step 4).
+  Matrix6d pose_information = Matrix6d::Zero();
+};
+
+class IteratedEkf {
+ public:
+  IteratedEkf(const BaseState& initial, const Matrix12d& covariance);
+
+  void predict(double dt, double process_noise);
+  UpdateSummary update(const std::vector<TimedPoint>& points, const LocalMap& map,
+                       const UpdateOptions& options);
+
+  const BaseState& state() const { return state_; }
+  const Matrix12d& covariance() const { return covariance_; }
+
+ private:
+  BaseState state_;
+  Matrix12d covariance_;
+};
+
+}  // namespace uampc::lo

@@ -1,0 +1,87 @@
+// The LO's local map: a voxel hash map holding one world point per voxel.
+//
+// Voxel downsampling of the map (0.3 m by default) is the voxel grid itself: the first point seen
+// in a voxel stays, later ones only refresh the voxel's observation time. The map is bounded:
+// voxels farther than max_radius from the sensor are dropped, so its size does not grow with the
+// length of the run.
+//
+// Neighbour search is the hottest loop of the odometry. Voxels are stored by 2x2x2 blocks in an
+// open-addressing hash table (linear probing, tombstones on erase), so the 3x3x3 voxels around
+// a query are covered by 8 block look-ups instead of 27 voxel look-ups.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "uampc/lo/voxel.hpp"
+
+namespace uampc::lo {
+
+struct MapPoint {
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+  double time = 0.0;  // s, when the voxel was last observed
+};
+
+class LocalMap {
+ public:
+  LocalMap(double voxel_size, double max_radius);
+
+  // Adds world points observed at time (s).
+  void insert(const std::vector<Eigen::Vector3d>& points_W, double time);
+
+  // Drops voxels whose point is farther than max_radius from origin_W.
+  void removeFarFrom(const Eigen::Vector3d& origin_W);
+
+  // Up to k map points nearest to q, nearest first, written to neighbours (cleared first); the
+  // candidates are the points of the 8 blocks covering the 3x3x3 voxels around q's voxel (at
+  // least 1 voxel of margin in every direction). Returns how many were found.
+  std::size_t nearest(const Eigen::Vector3d& q, std::size_t k,
+                      std::vector<Eigen::Vector3d>& neighbours) const;
+
+  // Points observed at or after observed_since (s); all points by default.
+  std::vector<MapPoint> points(
+      double observed_since = -std::numeric_limits<double>::infinity()) const;
+
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  void clear();
+  double voxelSize() const { return voxel_size_; }
+  double maxRadius() const { return max_radius_; }
+
+ private:
+  double voxel_size_;
+  double inverse_voxel_size_;
+  double max_radius_;
+
+  // Eight voxels, 2x2x2; bit i of occupied says whether voxel i holds a point. Points are
+  // float (plenty for 0.3 m voxels within a few km of the origin) so a block is ~100 bytes.
+  struct Block {
+    std::uint8_t occupied = 0;
+    std::array<Eigen::Vector3f, 8> points_W;
+  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  static constexpr std::uint64_t kErased = kEmpty - 1;
+  static constexpr std::size_t kNoSlot = ~std::size_t{0};
+  static std::uint64_t blockKey(const Voxel& voxel);
+  std::size_t home(std::uint64_t key) const;
+  std::size_t slotOf(std::uint64_t key) const;
+  void placeKey(std::uint64_t key, std::uint32_t block);
+  void rehash(std::size_t capacity);
+
+  // Open-addressing table from block key to an index into the dense block pool.
+  std::vector<std::uint64_t> keys_;  // capacity a power of two; kEmpty, kErased or a block key
+  std::vector<std::uint32_t> index_;  // pool index of the block in the same slot
+  std::vector<Block> pool_;           // blocks, dense: neighbours in space mostly near in memory
+  std::vector<std::array<double, 8>> times_;  // observation times, parallel to pool_
+  std::vector<std::uint32_t> free_;   // pool indices of removed blocks, for reuse
+  std::size_t size_ = 0;              // occupied voxels
+  std::size_t blocks_used_ = 0;       // live blocks
+  std::size_t erased_ = 0;            // tombstones
+  int shift_ = 64;                    // 64 - log2(capacity), for Fibonacci hashing
+};
+
+}  // namespace uampc::lo

@@ -1,0 +1,114 @@
+// LiDAR odometry for a LiDAR spun by a motor: the composition of the core in one class.
+//
+// registerScan: de-rotate every point with the encoder angle at its own time (Eq. 1), voxel
+// downsample, predict with the constant-velocity model, register to the local map with the
+// iterated EKF (point-to-plane, deskew inside the measurement model), then add the registered
+// scan to the map and drop what is now out of range.
+//
+// The pose refers to the scan end: the time of the latest usable point (Result::time).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "uampc/frames/motor_angle_track.hpp"
+#include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/lo/iterated_ekf.hpp"
+#include "uampc/lo/local_map.hpp"
+#include "uampc/lo/scan.hpp"
+
+namespace uampc::lo {
+
+// Defaults are the LO settings of DESIGN.md section 1 where it names them.
+struct OdometryConfig {
+  frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
+  Eigen::Isometry3d initial_pose = Eigen::Isometry3d::Identity();  // T_WB of the first scan
+
+  double min_range = 0.5;        // m, measured in the LiDAR frame
+  double max_range = 100.0;      // m
+  double scan_voxel_size = 0.3;  // m
+  double map_voxel_size = 0.3;   // m
+  double map_radius = 60.0;      // m, voxels farther than this from the base are dropped
+
+  std::size_t nearest_neighbours = 5;
+  double plane_max_point_distance = 0.1;  // m, a plane is rejected if a neighbour is farther off
+  double max_neighbour_distance = 1.0;    // m
+  double measurement_variance = 0.001;    // m^2
+  double process_noise = 0.01;            // velocity random walk density, (m/s)^2/s and (rad/s)^2/s
+  int max_iterations = 10;
+  std::size_t min_correspondences = 30;
+
+  double initial_velocity_variance = 1.0;  // (m/s)^2 and (rad/s)^2 at the first scan
+  // Warnings: smallest eigenvalue of the unit-weight pose information below this (degenerate
+  // geometry, e.g. a corridor or an open field), or position standard deviation above this.
+  double degeneracy_threshold = 20.0;
+  double max_position_std = 1.0;  // m
+};
+
+enum class OdometryStatus {
+  kInitialised,    // first usable scan: the map starts at initial_pose
+  kTracking,       // registered
+  kDegenerate,     // registered, but some direction is poorly constrained (see warning)
+  kPredictedOnly,  // no update (no usable points or too few correspondences): motion model only
+  kRejected,       // scan not newer than the previous one: state unchanged
+};
+
+const char* toString(OdometryStatus status);
+
+struct OdometryResult {
+  OdometryStatus status = OdometryStatus::kPredictedOnly;
+  std::string warning;  // empty when all is well; otherwise says what and why
+
+  double time = 0.0;  // s, the time T_WB refers to: the scan end
+  Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d linear_velocity_W = Eigen::Vector3d::Zero();   // m/s, world frame
+  Eigen::Vector3d angular_velocity_B = Eigen::Vector3d::Zero();  // rad/s, base frame
+  // Error-state covariance, order [rotation (right perturbation of R_WB), position, linear
+  // velocity, angular velocity]; rad, m, m/s, rad/s.
+  Matrix12d covariance = Matrix12d::Zero();
+
+  // Every usable point in the world frame, placed with the base pose at its own time (deskewed).
+  std::vector<Eigen::Vector3f> registered_points_W;
+
+  // Smallest eigenvalue of the unit-weight pose information sum_i J_i J_i^T (DESIGN.md step 4);
+  // near zero means some direction is unobservable. 0 when there was no update.
+  double min_information_eigenvalue = 0.0;
+  std::size_t correspondences = 0;
+  int iterations = 0;
+
+  std::size_t points_in = 0;
+  std::size_t points_used = 0;  // after downsampling, fed to the filter
+  std::size_t dropped_non_finite = 0;
+  std::size_t dropped_range = 0;
+  std::size_t dropped_outside_motor_track = 0;
+};
+
+class MotorizedLidarOdometry {
+ public:
+  explicit MotorizedLidarOdometry(const OdometryConfig& config = OdometryConfig{});
+
+  // Throws std::invalid_argument when scan.points_L and scan.time_offsets differ in size.
+  OdometryResult registerScan(const Scan& scan, const frames::MotorAngleTrack& motor);
+
+  // The local map in the world frame with the time each voxel was last observed; pass
+  // time - 5.0 to get what was seen in the latest 5 s.
+  std::vector<MapPoint> localMapPoints(
+      double observed_since = -std::numeric_limits<double>::infinity()) const {
+    return map_.points(observed_since);
+  }
+  const LocalMap& localMap() const { return map_; }
+  bool initialised() const { return filter_.has_value(); }
+  const OdometryConfig& config() const { return config_; }
+
+ private:
+  OdometryConfig config_;
+  LocalMap map_;
+  std::optional<IteratedEkf> filter_;
+  double last_time_ = 0.0;
+};
+
+}  // namespace uampc::lo

@@ -1,0 +1,238 @@
+#include "uampc/lo/iterated_ekf.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+#include "uampc/lo/plane_fit.hpp"
+#include "uampc/lo/so3.hpp"
+#include "uampc/lo/voxel.hpp"
+
+namespace uampc::lo {
+
+namespace {
+
+using Vector12d = Eigen::Matrix<double, 12, 1>;
+
+// x (-) x_prior, in the error-state order [dtheta, dr, dv, dw].
+Vector12d boxMinus(const BaseState& x, const BaseState& prior) {
+  Vector12d d;
+  d.segment<3>(0) = logSO3(prior.R_WB.transpose() * x.R_WB);
+  d.segment<3>(3) = x.r_WB - prior.r_WB;
+  d.segment<3>(6) = x.v_W - prior.v_W;
+  d.segment<3>(9) = x.w_B - prior.w_B;
+  return d;
+}
+
+// x (+) dx.
+BaseState boxPlus(const BaseState& x, const Vector12d& dx) {
+  BaseState out = x;
+  out.R_WB = x.R_WB * expSO3(dx.segment<3>(0));
+  // Keep R orthonormal over long runs.
+  out.R_WB = Eigen::Quaterniond(out.R_WB).normalized().toRotationMatrix();
+  out.r_WB += dx.segment<3>(3);
+  out.v_W += dx.segment<3>(6);
+  out.w_B += dx.segment<3>(9);
+  return out;
+}
+
+// Morton code of a point's voxel (10 bits per axis, wrapping: only locality matters).
+std::uint32_t mortonCode(const Voxel& v) {
+  auto spread = [](std::uint32_t x) {
+    x &= 0x3FF;
+    x = (x | (x << 16)) & 0x030000FF;
+    x = (x | (x << 8)) & 0x0300F00F;
+    x = (x | (x << 4)) & 0x030C30C3;
+    x = (x | (x << 2)) & 0x09249249;
+    return x;
+  };
+  return spread(static_cast<std::uint32_t>(v.x())) |
+         (spread(static_cast<std::uint32_t>(v.y())) << 1) |
+         (spread(static_cast<std::uint32_t>(v.z())) << 2);
+}
+
+std::vector<const TimedPoint*> spatialOrder(const std::vector<TimedPoint>& points,
+                                            double voxel_size) {
+  std::vector<std::pair<std::uint32_t, const TimedPoint*>> keyed;
+  keyed.reserve(points.size());
+  for (const TimedPoint& p : points) keyed.emplace_back(mortonCode(voxelOf(p.p_B, 1.0 / voxel_size)), &p);
+  std::sort(keyed.begin(), keyed.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<const TimedPoint*> out;
+  out.reserve(points.size());
+  for (const auto& [code, p] : keyed) out.push_back(p);
+  return out;
+}
+
+bool finite(const BaseState& x) {
+  return x.R_WB.allFinite() && x.r_WB.allFinite() && x.v_W.allFinite() && x.w_B.allFinite();
+}
+
+}  // namespace
+
+IteratedEkf::IteratedEkf(const BaseState& initial, const Matrix12d& covariance)
+    : state_(initial), covariance_(covariance) {}
+
+void IteratedEkf::predict(double dt, double process_noise) {
+  const Eigen::Vector3d phi = state_.w_B * dt;
+  // State prediction x- = f(x): constant velocity.
+  state_.R_WB = state_.R_WB * expSO3(phi);
+  state_.r_WB += state_.v_W * dt;
+  // Covariance prediction P- = F P F^T + Q, F the error-state Jacobian of f.
+  Matrix12d F = Matrix12d::Identity();
+  F.block<3, 3>(0, 0) = expSO3(-phi);
+  F.block<3, 3>(0, 9) = rightJacobianSO3(phi) * dt;
+  F.block<3, 3>(3, 6) = Eigen::Matrix3d::Identity() * dt;
+  Matrix12d Q = Matrix12d::Zero();
+  Q.diagonal().tail<6>().setConstant(process_noise * dt);
+  covariance_ = F * covariance_ * F.transpose() + Q;
+  covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
+}
+
+UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const LocalMap& map,
+                                  const UpdateOptions& options) {
+  UpdateSummary summary;
+  const BaseState prior = state_;
+  const Matrix12d prior_information = covariance_.ldlt().solve(Matrix12d::Identity());
+  const double inverse_variance = 1.0 / options.measurement_variance;
+  const double max_neighbour_distance2 =
+      options.max_neighbour_distance * options.max_neighbour_distance;
+
+  BaseState x = prior;
+  Matrix12d posterior_information = prior_information;
+  std::vector<Eigen::Vector3d> neighbours;
+  neighbours.reserve(options.nearest_neighbours);
+  struct Correspondence {
+    const TimedPoint* point;
+    Plane plane;
+  };
+  std::vector<Correspondence> correspondences;
+  correspondences.reserve(points.size());
+  // Query the map in spatial (Morton) order: successive queries then share most of their 27
+  // voxels, which stay in cache. Same result, about twice as fast as scan order.
+  const std::vector<const TimedPoint*> ordered = spatialOrder(points, map.voxelSize());
+  bool associate = true;
+  bool gated = false;  // the residual gate is applied once the ungated iterations converged
+  double gate = std::numeric_limits<double>::infinity();
+  double rotation_since_association = 0.0, translation_since_association = 0.0;
+  struct Row {
+    Vector12d h;  // dz/d(error state)
+    double z;     // point-to-plane residual
+  };
+  std::vector<Row> rows;
+  rows.reserve(points.size());
+  std::vector<double> magnitudes;
+
+  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+    if (associate) {
+      rotation_since_association = translation_since_association = 0.0;
+      // Data association at the current iterate x_j: the plane through the k nearest map points.
+      correspondences.clear();
+      for (const TimedPoint* point_ptr : ordered) {
+        const TimedPoint& point = *point_ptr;
+        const Eigen::Vector3d q = x.R_WB * (expSO3(x.w_B * point.tau) * point.p_B) + x.r_WB +
+                                  x.v_W * point.tau;
+        if (map.nearest(q, options.nearest_neighbours, neighbours) < options.nearest_neighbours) {
+          continue;
+        }
+        if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
+        const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance);
+        if (plane) correspondences.push_back({&point, *plane});
+      }
+      summary.correspondences = correspondences.size();
+      if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
+    }
+
+    // Linearise the measurement model h(x) at x_j.
+    rows.clear();
+    for (const Correspondence& c : correspondences) {
+      const TimedPoint& point = *c.point;
+      const Eigen::Vector3d& n = c.plane.normal;
+      const Eigen::Matrix3d E = expSO3(x.w_B * point.tau);  // deskew rotation, Exp(w tau)
+      const Eigen::Vector3d s = E * point.p_B;              // point in B at the scan end
+      const Eigen::Vector3d q = x.R_WB * s + x.r_WB + x.v_W * point.tau;
+      const Eigen::Vector3d n_B = x.R_WB.transpose() * n;
+      Row row;
+      row.z = n.dot(q) + c.plane.offset;                                      // residual
+      row.h.segment<3>(0) = s.cross(n_B);                                       // rotation (right)
+      row.h.segment<3>(3) = n;                                                  // position
+      row.h.segment<3>(6) = point.tau * n;                                      // linear velocity
+      row.h.segment<3>(9) = point.tau * point.p_B.cross(E.transpose() * n_B);  // angular vel.
+      rows.push_back(row);
+    }
+    // Gate: a residual far beyond the typical one is a wrong plane (the point lies on a surface
+    // the map has not seen yet, or across an edge), not noise; left in, a few such points at
+    // weight 1/sigma^2 bias the pose by millimetres to centimetres. The typical residual is
+    // 1.4826 * median |z| (robust standard deviation); the gate is 3 of those, at least
+    // options.min_residual_gate.
+    // The gate is set once, when the gated iterations start, so that they converge on a fixed
+    // set of residuals.
+    if (gated && !std::isfinite(gate)) {
+      magnitudes.resize(rows.size());
+      for (std::size_t i = 0; i < rows.size(); ++i) magnitudes[i] = std::abs(rows[i].z);
+      const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
+      std::nth_element(magnitudes.begin(), middle, magnitudes.end());
+      gate = std::max(options.min_residual_gate, 3.0 * 1.4826 * *middle);
+    }
+    Matrix12d HtH = Matrix12d::Zero();
+    Vector12d Htz = Vector12d::Zero();
+    std::size_t used = 0;
+    for (const Row& row : rows) {
+      if (std::abs(row.z) > gate) continue;
+      HtH.selfadjointView<Eigen::Upper>().rankUpdate(row.h);
+      Htz.noalias() += row.h * row.z;
+      ++used;
+    }
+    HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
+    summary.correspondences = used;
+    if (used < options.min_correspondences) break;
+
+    // Gauss-Newton step of the IEKF (information form, see header).
+    const Matrix12d A = prior_information + inverse_variance * HtH;
+    const Vector12d b = -inverse_variance * Htz - prior_information * boxMinus(x, prior);
+    const Vector12d dx = A.ldlt().solve(b);
+    if (!dx.allFinite()) {
+      summary.applied = false;
+      state_ = prior;
+      return summary;
+    }
+    x = boxPlus(x, dx);
+    posterior_information = A;
+    summary.pose_information = HtH.topLeftCorner<6, 6>();
+    summary.applied = true;
+    summary.iterations = iteration + 1;
+    const double step_rotation = dx.segment<3>(0).norm();
+    const double step_translation = dx.segment<3>(3).norm();
+    rotation_since_association += step_rotation;
+    translation_since_association += step_translation;
+    if (step_rotation < options.convergence_rotation &&
+        step_translation < options.convergence_translation) {
+      // Converged with every correspondence: now drop the outliers and converge again. Gating
+      // earlier would drop the inliers of a direction the prediction got wrong.
+      if (gated) {
+        summary.converged = true;
+        break;
+      }
+      gated = true;
+    }
+    // Re-associating after tiny steps only makes the set of planes flicker (a 2-cycle between
+    // two sets); the association is redone only once the state has moved enough since.
+    associate = rotation_since_association > options.reassociation_rotation ||
+                translation_since_association > options.reassociation_translation;
+  }
+  if (!summary.applied || !finite(x)) {
+    summary.applied = false;
+    state_ = prior;
+    return summary;
+  }
+  state_ = x;
+  // Covariance update P+ = (I - K H) P- = (P-^-1 + H^T H / sigma^2)^-1.
+  covariance_ = posterior_information.ldlt().solve(Matrix12d::Identity());
+  covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
+  return summary;
+}
+
+}  // namespace uampc::lo

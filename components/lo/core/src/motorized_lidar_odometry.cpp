@@ -1,0 +1,178 @@
+#include "uampc/lo/motorized_lidar_odometry.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <sstream>
+
+#include "uampc/lo/derotation.hpp"
+#include "uampc/lo/deskew.hpp"
+#include "uampc/lo/voxel_downsample.hpp"
+
+namespace uampc::lo {
+
+namespace {
+
+void addWarning(std::string& warning, const std::string& text) {
+  if (!warning.empty()) warning += "; ";
+  warning += text;
+}
+
+}  // namespace
+
+const char* toString(OdometryStatus status) {
+  switch (status) {
+    case OdometryStatus::kInitialised:
+      return "initialised";
+    case OdometryStatus::kTracking:
+      return "tracking";
+    case OdometryStatus::kDegenerate:
+      return "degenerate";
+    case OdometryStatus::kPredictedOnly:
+      return "predicted-only";
+    case OdometryStatus::kRejected:
+      return "rejected";
+  }
+  return "unknown";
+}
+
+MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
+    : config_(config), map_(config.map_voxel_size, config.map_radius) {}
+
+OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
+                                                    const frames::MotorAngleTrack& motor) {
+  OdometryResult result;
+  result.points_in = scan.points_L.size();
+  DerotatedScan derotated =
+      derotate(scan, motor, config_.calibration, config_.min_range, config_.max_range);
+  result.dropped_non_finite = derotated.dropped_non_finite;
+  result.dropped_range = derotated.dropped_range;
+  result.dropped_outside_motor_track = derotated.dropped_outside_motor_track;
+  if (derotated.dropped_outside_motor_track > 0) {
+    addWarning(result.warning, std::to_string(derotated.dropped_outside_motor_track) +
+                                   " points dropped: their time lies outside the motor track");
+  }
+  if (derotated.dropped_non_finite > 0) {
+    addWarning(result.warning,
+               std::to_string(derotated.dropped_non_finite) + " non-finite points dropped");
+  }
+
+  auto fill = [&](const IteratedEkf& filter) {
+    const BaseState& x = filter.state();
+    result.time = last_time_;
+    result.T_WB = x.pose();
+    result.linear_velocity_W = x.v_W;
+    result.angular_velocity_B = x.w_B;
+    result.covariance = filter.covariance();
+  };
+
+  if (!filter_) {
+    if (derotated.points.empty()) {
+      result.status = OdometryStatus::kPredictedOnly;
+      result.time = derotated.end_time;
+      result.T_WB = config_.initial_pose;
+      addWarning(result.warning, "no usable points: map not initialised yet");
+      return result;
+    }
+    // First scan: the map starts at the initial pose, at rest, the pose known exactly.
+    BaseState x;
+    x.R_WB = config_.initial_pose.linear();
+    x.r_WB = config_.initial_pose.translation();
+    Matrix12d P = Matrix12d::Zero();
+    P.diagonal().head<6>().setConstant(1e-8);
+    P.diagonal().tail<6>().setConstant(config_.initial_velocity_variance);
+    filter_.emplace(x, P);
+    last_time_ = derotated.end_time;
+    const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
+    map_.insert(points_W, last_time_);
+    map_.removeFarFrom(x.r_WB);
+    result.status = OdometryStatus::kInitialised;
+    result.points_used = derotated.points.size();
+    result.registered_points_W.reserve(points_W.size());
+    for (const auto& p : points_W) result.registered_points_W.push_back(p.cast<float>());
+    fill(*filter_);
+    return result;
+  }
+
+  const double end_time = derotated.points.empty() ? scan.stamp : derotated.end_time;
+  const double dt = end_time - last_time_;
+  if (!(dt > 0.0)) {
+    result.status = OdometryStatus::kRejected;
+    addWarning(result.warning, "scan ends at " + std::to_string(end_time) +
+                                   " s, not after the previous one (" +
+                                   std::to_string(last_time_) + " s): ignored");
+    fill(*filter_);
+    return result;
+  }
+  filter_->predict(dt, config_.process_noise);
+  last_time_ = end_time;
+
+  const std::vector<TimedPoint> keypoints =
+      voxelDownsample(derotated.points, config_.scan_voxel_size);
+  result.points_used = keypoints.size();
+  UpdateSummary summary;
+  if (!keypoints.empty()) {
+    UpdateOptions options;
+    options.nearest_neighbours = config_.nearest_neighbours;
+    options.plane_max_point_distance = config_.plane_max_point_distance;
+    options.max_neighbour_distance = config_.max_neighbour_distance;
+    options.measurement_variance = config_.measurement_variance;
+    options.max_iterations = config_.max_iterations;
+    options.min_correspondences = config_.min_correspondences;
+    summary = filter_->update(keypoints, map_, options);
+  }
+  result.correspondences = summary.correspondences;
+  result.iterations = summary.iterations;
+
+  if (!summary.applied) {
+    result.status = OdometryStatus::kPredictedOnly;
+    std::ostringstream why;
+    if (keypoints.empty()) {
+      why << "no usable points";
+    } else {
+      why << "only " << summary.correspondences << " plane correspondences (need "
+          << config_.min_correspondences << ")";
+    }
+    why << ": pose predicted by the constant-velocity model, uncertainty grows";
+    addWarning(result.warning, why.str());
+  } else {
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> solver(summary.pose_information,
+                                                         Eigen::EigenvaluesOnly);
+    result.min_information_eigenvalue = std::max(0.0, solver.eigenvalues()(0));
+    if (result.min_information_eigenvalue < config_.degeneracy_threshold) {
+      result.status = OdometryStatus::kDegenerate;
+      std::ostringstream why;
+      why << "degenerate geometry: smallest pose information eigenvalue "
+          << result.min_information_eigenvalue << " < " << config_.degeneracy_threshold
+          << " (a direction is poorly constrained, e.g. a corridor or an open field)";
+      addWarning(result.warning, why.str());
+    } else {
+      result.status = OdometryStatus::kTracking;
+    }
+    if (!summary.converged) {
+      addWarning(result.warning, "iterated EKF did not converge in " +
+                                     std::to_string(config_.max_iterations) + " iterations");
+    }
+  }
+
+  const double position_std =
+      std::sqrt(filter_->covariance().block<3, 3>(3, 3).diagonal().maxCoeff());
+  if (!(position_std <= config_.max_position_std)) {
+    std::ostringstream why;
+    why << "position standard deviation " << position_std << " m exceeds "
+        << config_.max_position_std << " m";
+    addWarning(result.warning, why.str());
+  }
+
+  // The map grows with the registered scan, at full resolution (the map voxel grid downsamples).
+  const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, filter_->state());
+  if (summary.applied) {
+    map_.insert(points_W, last_time_);
+    map_.removeFarFrom(filter_->state().r_WB);
+  }
+  result.registered_points_W.reserve(points_W.size());
+  for (const auto& p : points_W) result.registered_points_W.push_back(p.cast<float>());
+  fill(*filter_);
+  return result;
+}
+
+}  // namespace uampc::lo

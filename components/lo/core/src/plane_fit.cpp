@@ -1,0 +1,51 @@
+#include "uampc/lo/plane_fit.hpp"
+
+#include <cmath>
+
+namespace uampc::lo {
+
+// The normal is the eigenvector of the scatter matrix S with the smallest eigenvalue. It is
+// taken from the adjugate adj(S) = sum_i (prod_{j != i} lambda_j) v_i v_i^T, which for a planar
+// patch (lambda_0 << lambda_1 <= lambda_2) is dominated by v_0 v_0^T: its largest column is
+// already close to the normal, and two power-iteration steps on adj(S) (each shrinking the error
+// by lambda_0 / lambda_1) make it exact to rounding. No trigonometry, unlike a full 3x3
+// eigen-solver, and this runs for every correspondence.
+std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
+                              double max_point_distance) {
+  if (points.size() < 3) return std::nullopt;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) {
+    const Eigen::Vector3d d = p - centroid;
+    S.noalias() += d * d.transpose();
+  }
+  // Adjugate of the symmetric S (cofactors).
+  Eigen::Matrix3d adj;
+  adj(0, 0) = S(1, 1) * S(2, 2) - S(1, 2) * S(1, 2);
+  adj(1, 1) = S(0, 0) * S(2, 2) - S(0, 2) * S(0, 2);
+  adj(2, 2) = S(0, 0) * S(1, 1) - S(0, 1) * S(0, 1);
+  adj(0, 1) = adj(1, 0) = S(0, 2) * S(1, 2) - S(0, 1) * S(2, 2);
+  adj(0, 2) = adj(2, 0) = S(0, 1) * S(1, 2) - S(0, 2) * S(1, 1);
+  adj(1, 2) = adj(2, 1) = S(0, 1) * S(0, 2) - S(0, 0) * S(1, 2);
+  // Collinear (or coincident) points: lambda_0 = lambda_1 = 0, so adj(S) vanishes against
+  // trace(S)^2 ~ lambda_2^2; no plane.
+  const double trace = S.trace();
+  int best = 0;
+  adj.diagonal().maxCoeff(&best);
+  if (!(adj(best, best) > 1e-10 * trace * trace)) return std::nullopt;
+  Eigen::Vector3d normal = adj.col(best).normalized();
+  normal = (adj * normal).normalized();
+  normal = (adj * normal).normalized();
+  if (!normal.allFinite()) return std::nullopt;
+  Plane plane;
+  plane.normal = normal;
+  plane.offset = -normal.dot(centroid);
+  for (const auto& p : points) {
+    if (std::abs(normal.dot(p) + plane.offset) > max_point_distance) return std::nullopt;
+  }
+  return plane;
+}
+
+}  // namespace uampc::lo

@@ -1,0 +1,342 @@
+// Tests of the LO core against synthetic scans ray-cast in analytic worlds (synthetic_world.hpp):
+// a motor spinning at 3.6 rad/s during each 0.1 s frame, the reference rig's 30 degree tilt,
+// a Mid-360-like field of view.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "synthetic_world.hpp"
+#include "uampc/lo/derotation.hpp"
+#include "uampc/lo/local_map.hpp"
+#include "uampc/lo/motorized_lidar_odometry.hpp"
+#include "uampc/lo/plane_fit.hpp"
+#include "uampc/lo/so3.hpp"
+#include "uampc/lo/voxel_downsample.hpp"
+
+namespace uampc::lo {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+double rotationAngle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
+
+Eigen::Isometry3d identityAt(double) { return Eigen::Isometry3d::Identity(); }
+
+// Runs the odometry over frames [0, frames) and calls check(frame, result, ground truth).
+template <typename Check>
+void runOdometry(MotorizedLidarOdometry& odometry, const sim::World& world,
+                 const sim::Trajectory& truth, const sim::LidarModel& lidar, int frames,
+                 Check check) {
+  frames::MotorAngleTrack motor;
+  for (int k = 0; k < frames; ++k) {
+    const double stamp = k * lidar.frame_duration;
+    sim::feedMotor(motor, lidar, stamp, stamp + lidar.frame_duration);
+    const sim::SimulatedScan simulated = sim::simulateScan(world, truth, lidar, stamp, k);
+    const OdometryResult result = odometry.registerScan(simulated.scan, motor);
+    check(k, result, truth(result.time));
+  }
+}
+
+TEST(PlaneFit, AcceptsAPlaneAndRejectsACorner) {
+  const std::vector<Eigen::Vector3d> plane_points = {
+      {0, 0, 1}, {0.3, 0, 1}, {0, 0.3, 1}, {0.3, 0.3, 1}, {0.15, 0.6, 1}};
+  const auto plane = fitPlane(plane_points, 0.1);
+  ASSERT_TRUE(plane);
+  EXPECT_NEAR(std::abs(plane->normal.z()), 1.0, 1e-12);
+  EXPECT_NEAR(plane->normal.dot(Eigen::Vector3d(5, 5, 1)) + plane->offset, 0.0, 1e-12);
+  // Three on the floor, two up a wall: no plane fits all within 0.1 m.
+  const std::vector<Eigen::Vector3d> corner = {
+      {0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0.6, 0, 0.3}, {0.6, 0.3, 0.6}};
+  EXPECT_FALSE(fitPlane(corner, 0.1));
+  const std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+  EXPECT_FALSE(fitPlane(line, 0.1));
+}
+
+TEST(VoxelDownsample, KeepsOnePointPerVoxelWithItsTime) {
+  std::vector<TimedPoint> points = {{{0.01, 0.01, 0.01}, -0.1},
+                                    {{0.02, 0.02, 0.02}, -0.05},
+                                    {{0.5, 0.01, 0.01}, -0.02}};
+  const auto out = voxelDownsample(points, 0.3);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_DOUBLE_EQ(out[0].tau, -0.1);
+  EXPECT_DOUBLE_EQ(out[1].tau, -0.02);
+}
+
+TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
+  LocalMap map(0.3, 10.0);
+  std::vector<Eigen::Vector3d> points;
+  for (int i = -5; i <= 5; ++i) {
+    for (int j = -5; j <= 5; ++j) points.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
+  }
+  points.emplace_back(50.0, 0.0, 0.0);
+  map.insert(points, 1.0);
+  EXPECT_EQ(map.size(), points.size());
+  std::vector<Eigen::Vector3d> neighbours;
+  ASSERT_EQ(map.nearest(Eigen::Vector3d(0.16, 0.14, 0.1), 5, neighbours), 5u);
+  EXPECT_LT((neighbours[0] - Eigen::Vector3d(0.15, 0.15, 0.0)).norm(), 1e-6);  // stored as float
+  for (std::size_t i = 1; i < neighbours.size(); ++i) {
+    EXPECT_LE((neighbours[i - 1] - Eigen::Vector3d(0.16, 0.14, 0.1)).norm(),
+              (neighbours[i] - Eigen::Vector3d(0.16, 0.14, 0.1)).norm() + 1e-6);
+  }
+  // A later observation refreshes the voxel time but keeps its first point.
+  map.insert({Eigen::Vector3d(0.2, 0.2, 0.01)}, 2.0);
+  EXPECT_EQ(map.points(1.5).size(), 1u);
+  EXPECT_LT((map.points(1.5)[0].p_W - Eigen::Vector3d(0.15, 0.15, 0.0)).norm(), 1e-6);
+  map.removeFarFrom(Eigen::Vector3d::Zero());
+  EXPECT_EQ(map.size(), points.size() - 1);
+}
+
+TEST(Derotation, SpinningMotorIsTakenOutExactlyPerPoint) {
+  // Base at rest at the world origin, so the base frame is the world frame: every de-rotated
+  // point must land on the surface it was cast against.
+  const sim::World world = sim::featureRoom();
+  const sim::LidarModel lidar;
+  frames::MotorAngleTrack motor;
+  sim::feedMotor(motor, lidar, 0.0, 0.2);
+  const sim::SimulatedScan simulated = sim::simulateScan(world, identityAt, lidar, 0.05, 0);
+  const DerotatedScan derotated = derotate(simulated.scan, motor, lidar.calibration, 0.1, 100.0);
+  ASSERT_EQ(derotated.points.size(), simulated.hits_W.size());
+  ASSERT_GT(derotated.points.size(), 12000u);
+  double worst = 0.0;
+  double worst_one_angle = 0.0;
+  const double theta_mid = sim::motorAngle(lidar, 0.1);
+  for (std::size_t i = 0; i < derotated.points.size(); ++i) {
+    worst = std::max(worst, (derotated.points[i].p_B - simulated.hits_W[i]).norm());
+    // What one encoder angle for the whole frame would do instead.
+    const Eigen::Vector3d one_angle = frames::lidarToBase(
+        simulated.scan.points_L[i].cast<double>(), theta_mid, lidar.calibration);
+    worst_one_angle = std::max(worst_one_angle, (one_angle - simulated.hits_W[i]).norm());
+  }
+  EXPECT_LT(worst, 1e-4);            // float coordinates, up to 40 m
+  EXPECT_GT(worst_one_angle, 0.5);   // 0.18 rad of motor turn at ~10 m is metres
+  // Times are relative to the latest point, which is the reference time.
+  EXPECT_NEAR(derotated.end_time, 0.05 + simulated.scan.time_offsets.back(), 1e-9);
+  EXPECT_DOUBLE_EQ(derotated.points.back().tau, 0.0);
+  EXPECT_LT(derotated.points.front().tau, -0.09);
+}
+
+TEST(Derotation, DropsAndCountsNonFiniteAndOutOfTrackPoints) {
+  const sim::World world = sim::featureRoom();
+  const sim::LidarModel lidar;
+  sim::SimulatedScan simulated = sim::simulateScan(world, identityAt, lidar, 1.0, 0);
+  const std::size_t n = simulated.scan.points_L.size();
+  simulated.scan.points_L[10].x() = std::numeric_limits<float>::quiet_NaN();
+  simulated.scan.points_L[20].z() = std::numeric_limits<float>::infinity();
+  simulated.scan.time_offsets[30] = std::numeric_limits<float>::quiet_NaN();
+  // The motor track ends half way through the frame.
+  frames::MotorAngleTrack motor;
+  sim::feedMotor(motor, lidar, 0.9, 1.0);
+  motor.add({1.05, sim::motorAngle(lidar, 1.05), lidar.omega});
+  std::size_t beyond = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i != 10 && i != 20 && i != 30 && 1.0 + double(simulated.scan.time_offsets[i]) > 1.05) {
+      ++beyond;
+    }
+  }
+  const DerotatedScan derotated = derotate(simulated.scan, motor, lidar.calibration, 0.1, 100.0);
+  EXPECT_EQ(derotated.dropped_non_finite, 3u);
+  EXPECT_EQ(derotated.dropped_outside_motor_track, beyond);
+  EXPECT_GT(beyond, n / 3);
+  EXPECT_EQ(derotated.points.size(), n - 3 - beyond);
+  for (const auto& p : derotated.points) EXPECT_TRUE(p.p_B.allFinite());
+
+  Scan bad;
+  bad.points_L.resize(3);
+  bad.time_offsets.resize(2);
+  EXPECT_THROW(derotate(bad, motor, lidar.calibration, 0.1, 100.0), std::invalid_argument);
+}
+
+TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
+  const sim::World world = sim::featureRoom();
+  const sim::LidarModel lidar;
+  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0);
+  OdometryConfig config;
+  config.initial_pose = truth(0.0);
+  MotorizedLidarOdometry odometry(config);
+  Eigen::Isometry3d previous_estimate, previous_truth;
+  double worst_rotation = 0.0, worst_translation = 0.0, min_eigenvalue = 1e30;
+  runOdometry(odometry, world, truth, lidar, 40,
+              [&](int k, const OdometryResult& result, const Eigen::Isometry3d& T_true) {
+                ASSERT_TRUE(result.T_WB.matrix().allFinite());
+                if (k == 0) {
+                  EXPECT_EQ(result.status, OdometryStatus::kInitialised);
+                } else {
+                  EXPECT_EQ(result.status, OdometryStatus::kTracking) << result.warning;
+                  EXPECT_TRUE(result.warning.empty()) << result.warning;
+                  EXPECT_GT(result.correspondences, 500u);
+                  const Eigen::Isometry3d d_est = previous_estimate.inverse() * result.T_WB;
+                  const Eigen::Isometry3d d_true = previous_truth.inverse() * T_true;
+                  const Eigen::Isometry3d error = d_true.inverse() * d_est;
+                  worst_rotation = std::max(worst_rotation, rotationAngle(error.linear()));
+                  worst_translation = std::max(worst_translation, error.translation().norm());
+                  min_eigenvalue = std::min(min_eigenvalue, result.min_information_eigenvalue);
+                }
+                previous_estimate = result.T_WB;
+                previous_truth = T_true;
+              });
+  EXPECT_LT(worst_rotation, 0.1 * kDegree);
+  EXPECT_LT(worst_translation, 0.01);
+  EXPECT_GT(min_eigenvalue, config.degeneracy_threshold);
+  const Eigen::Isometry3d final_error = truth(3.99).inverse() * previous_estimate;
+  std::printf("known motion: worst per-frame rotation %.4f deg, translation %.4f m, final "
+              "position error %.4f m, min eigenvalue %.1f\n",
+              worst_rotation / kDegree, worst_translation, final_error.translation().norm(),
+              min_eigenvalue);
+}
+
+TEST(MotorizedLidarOdometry, CorridorIsFlaggedDegenerateButStaysFinite) {
+  const sim::World world = sim::corridor();
+  const sim::LidarModel lidar;
+  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0, 0.5, 0.5, 10.0);
+  OdometryConfig config;
+  config.initial_pose = truth(0.0);
+  MotorizedLidarOdometry odometry(config);
+  int degenerate = 0;
+  OdometryResult last;
+  Eigen::Isometry3d last_truth;
+  runOdometry(odometry, world, truth, lidar, 30,
+              [&](int k, const OdometryResult& result, const Eigen::Isometry3d& T_true) {
+                ASSERT_TRUE(result.T_WB.matrix().allFinite());
+                ASSERT_TRUE(result.covariance.allFinite());
+                ASSERT_TRUE(result.linear_velocity_W.allFinite());
+                if (k == 0) return;
+                if (result.status == OdometryStatus::kDegenerate) {
+                  ++degenerate;
+                  EXPECT_FALSE(result.warning.empty());
+                  // The feature room gives ~700 (RecoversKnownMotionFrameByFrame).
+                  EXPECT_LT(result.min_information_eigenvalue, config.degeneracy_threshold);
+                }
+                last = result;
+                last_truth = T_true;
+              });
+  EXPECT_EQ(degenerate, 29);
+  // Across the corridor, height and attitude are still observed...
+  const Eigen::Isometry3d error = last_truth.inverse() * last.T_WB;
+  EXPECT_LT(rotationAngle(error.linear()), 0.5 * kDegree);
+  EXPECT_NEAR(last.T_WB.translation().y(), last_truth.translation().y(), 0.05);
+  EXPECT_NEAR(last.T_WB.translation().z(), last_truth.translation().z(), 0.05);
+  // ...and the covariance says which direction is not: x grows more than y.
+  EXPECT_GT(last.covariance(3, 3), 10.0 * last.covariance(4, 4));
+  std::printf("corridor: min eigenvalue %.3g, var x %.3g var y %.3g, warning: %s\n",
+              last.min_information_eigenvalue, last.covariance(3, 3), last.covariance(4, 4),
+              last.warning.c_str());
+}
+
+TEST(MotorizedLidarOdometry, OpenFieldIsFlaggedDegenerate) {
+  const sim::World world = sim::openField();
+  const sim::LidarModel lidar;
+  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0);
+  MotorizedLidarOdometry odometry;
+  runOdometry(odometry, world, truth, lidar, 10,
+              [&](int k, const OdometryResult& result, const Eigen::Isometry3d&) {
+                ASSERT_TRUE(result.T_WB.matrix().allFinite());
+                ASSERT_TRUE(result.covariance.allFinite());
+                if (k > 0) {
+                  EXPECT_EQ(result.status, OdometryStatus::kDegenerate);
+                  EXPECT_NE(result.warning.find("degenerate"), std::string::npos);
+                }
+              });
+}
+
+TEST(MotorizedLidarOdometry, NanPointsAndEmptyScansAreSurvived) {
+  const sim::World world = sim::featureRoom();
+  const sim::LidarModel lidar;
+  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0);
+  OdometryConfig config;
+  config.initial_pose = truth(0.0);
+  MotorizedLidarOdometry odometry(config);
+  frames::MotorAngleTrack motor;
+  // An empty scan first: nothing to initialise from, and no crash.
+  sim::feedMotor(motor, lidar, 0.0, 0.1);
+  OdometryResult result = odometry.registerScan(Scan{}, motor);
+  EXPECT_EQ(result.status, OdometryStatus::kPredictedOnly);
+  EXPECT_FALSE(result.warning.empty());
+  EXPECT_FALSE(odometry.initialised());
+
+  for (int k = 0; k < 15; ++k) {
+    const double stamp = k * lidar.frame_duration;
+    sim::feedMotor(motor, lidar, stamp, stamp + lidar.frame_duration);
+    sim::SimulatedScan simulated = sim::simulateScan(world, truth, lidar, stamp, k);
+    if (k == 7) {
+      simulated.scan.points_L.clear();  // a dropped frame
+      simulated.scan.time_offsets.clear();
+      result = odometry.registerScan(simulated.scan, motor);
+      EXPECT_EQ(result.status, OdometryStatus::kPredictedOnly);
+      EXPECT_FALSE(result.warning.empty());
+      EXPECT_TRUE(result.T_WB.matrix().allFinite());
+      continue;
+    }
+    for (std::size_t i = 0; i < simulated.scan.points_L.size(); i += 50) {
+      simulated.scan.points_L[i] = Eigen::Vector3f::Constant(std::nanf(""));
+    }
+    simulated.scan.points_L[1].y() = std::numeric_limits<float>::infinity();
+    const std::size_t expected = (simulated.scan.points_L.size() + 49) / 50 + 1;
+    result = odometry.registerScan(simulated.scan, motor);
+    EXPECT_EQ(result.dropped_non_finite, expected);
+    EXPECT_NE(result.warning.find("non-finite"), std::string::npos);
+    ASSERT_TRUE(result.T_WB.matrix().allFinite());
+    for (const auto& p : result.registered_points_W) ASSERT_TRUE(p.allFinite());
+  }
+  const Eigen::Isometry3d error = truth(result.time).inverse() * result.T_WB;
+  EXPECT_LT(error.translation().norm(), 0.02);
+  EXPECT_LT(rotationAngle(error.linear()), 0.2 * kDegree);
+}
+
+TEST(MotorizedLidarOdometry, RejectsAScanThatIsNotNewer) {
+  const sim::World world = sim::featureRoom();
+  const sim::LidarModel lidar;
+  frames::MotorAngleTrack motor;
+  sim::feedMotor(motor, lidar, 0.0, 0.3);
+  MotorizedLidarOdometry odometry;
+  const auto first = sim::simulateScan(world, identityAt, lidar, 0.1, 0);
+  odometry.registerScan(first.scan, motor);
+  const OdometryResult again = odometry.registerScan(first.scan, motor);
+  EXPECT_EQ(again.status, OdometryStatus::kRejected);
+  EXPECT_FALSE(again.warning.empty());
+}
+
+TEST(MotorizedLidarOdometry, LongRunDriftsLessThanOnePercentWithBoundedMap) {
+  const sim::World world = sim::featureHall();
+  sim::LidarModel lidar;
+  lidar.points_per_frame = 10000;  // keeps the test short; the benchmark runs 20k
+  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.5, 1.0, 1.0, 15.0);
+  OdometryConfig config;
+  config.initial_pose = truth(0.0);
+  config.map_radius = 30.0;
+  MotorizedLidarOdometry odometry(config);
+  const int frames = 500;  // 50 s, ~74 m
+  double distance = 0.0, worst_drift_ratio = 0.0, final_error = 0.0;
+  std::size_t max_map = 0;
+  Eigen::Vector3d previous_truth = truth(0.0).translation();
+  runOdometry(odometry, world, truth, lidar, frames,
+              [&](int k, const OdometryResult& result, const Eigen::Isometry3d& T_true) {
+                ASSERT_TRUE(result.T_WB.matrix().allFinite());
+                EXPECT_TRUE(result.status == OdometryStatus::kTracking ||
+                            result.status == OdometryStatus::kInitialised)
+                    << k << ": " << result.warning;
+                distance += (T_true.translation() - previous_truth).norm();
+                previous_truth = T_true.translation();
+                final_error = (result.T_WB.translation() - T_true.translation()).norm();
+                if (distance > 10.0) worst_drift_ratio = std::max(worst_drift_ratio, final_error / distance);
+                max_map = std::max(max_map, odometry.localMap().size());
+                for (const auto& point : odometry.localMap().points()) {
+                  ASSERT_LE((point.p_W - result.T_WB.translation()).norm(), config.map_radius + 1e-6);
+                }
+              });
+  EXPECT_GT(distance, 60.0);
+  EXPECT_LT(worst_drift_ratio, 0.01);
+  // The latest 5 s of the map is a non-empty part of it.
+  const double now = (frames - 1) * lidar.frame_duration + lidar.frame_duration;
+  const auto recent = odometry.localMapPoints(now - 5.0);
+  EXPECT_GT(recent.size(), 1000u);
+  EXPECT_LE(recent.size(), odometry.localMap().size());
+  for (const auto& point : recent) EXPECT_GE(point.time, now - 5.0);
+  std::printf("long run: %.1f m, final error %.3f m (%.3f%%), worst ratio %.3f%%, max map %zu "
+              "voxels, final map %zu\n",
+              distance, final_error, 100.0 * final_error / distance, 100.0 * worst_drift_ratio,
+              max_map, odometry.localMap().size());
+}
+
+}  // namespace
+}  // namespace uampc::lo

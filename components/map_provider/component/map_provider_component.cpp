@@ -1,0 +1,169 @@
+// map_provider: the simulated world and the ground truth (DESIGN.md section 2).
+// Publishes the world's surfaces once (latched, in chunks) for ray-casters in any process, a
+// point-cloud sample of it for viewers and tools, and the ground-truth base pose at sim time.
+#include <algorithm>
+#include <unordered_map>
+
+#include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/runtime/component.hpp"
+#include "uampc/world/point_sampling.hpp"
+#include "world_source.hpp"
+
+namespace uampc {
+
+class MapProvider : public Component {
+ public:
+  static void describe(ComponentSpec& spec) {
+    spec.summary = "Serves the world (procedural or a PCD/PLY map) and plays the ground-truth trajectory";
+    spec.output<msg::WorldMesh>("world", "/world/mesh", QosPreset::kLatched, "world surfaces, in chunks");
+    spec.output<sensor_msgs::msg::PointCloud2>("map", "/world/points", QosPreset::kLatched,
+                                               "point sample of the world, for viewers");
+    spec.output<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
+                                                 "ground-truth base pose T_WB at sim time");
+    spec.param("world", "campus", "campus, corridor, multilevel, around_trajectory or file")
+        .oneOf({"campus", "corridor", "multilevel", "around_trajectory", "file"});
+    spec.pathParam("map_file", "", "world: file: a PCD or PLY map (PLY with faces: a mesh)");
+    spec.param("map_voxel_size", 0.0, "voxel downsampling of point maps, m (0: none)").between(0.0, 10.0);
+    spec.param("map_offset", std::vector<double>{0.0, 0.0, 0.0}, "added to every map point, m (x, y, z)");
+    spec.param("trajectory", "generated", "generated (a path through the world) or file").oneOf({"generated", "file"});
+    spec.pathParam("trajectory_file", "", "MCD CSV (num,t,x,y,z,qx,qy,qz,qw) or TUM (t x y z qx qy qz qw)");
+    spec.param("attitude", "from_file", "from_file (MCD: z-down frame turned z-up), yaw_only or identity")
+        .oneOf({"from_file", "yaw_only", "identity"});
+    spec.param("trajectory_start", 0.0, "seconds of a file trajectory skipped at its start").atLeast(0.0);
+    spec.param("path_speed", 1.5, "speed of generated paths, m/s").between(0.01, 50.0);
+    spec.param("path_laps", 1, "laps of closed generated paths (campus)").between(1, 1000);
+    spec.param("base_height", 1.0, "height of generated paths above the ground, m").between(0.0, 100.0);
+    spec.param("pose_rate", 200.0, "ground-truth pose rate, Hz").between(1.0, 10000.0);
+    spec.param("map_point_spacing", 0.5, "voxel size of the published map sample, m").between(0.05, 10.0);
+    spec.param("chunk_triangles", 10000, "triangles per world chunk (keeps samples under ~0.5 MB)")
+        .between(100, 1000000);
+  }
+
+  explicit MapProvider(Context& ctx)
+      : ctx_(ctx),
+        world_(map_provider::buildWorld(settingsFrom(ctx))),
+        world_pub_(ctx.publisher<msg::WorldMesh>("world")),
+        map_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("map")),
+        pose_pub_(ctx.publisher<geometry_msgs::msg::PoseStamped>("ground_truth")) {
+    for (const auto& w : world_.warnings) ctx.log().warn(w);
+    ctx.log().info("world: ", world_.description, "; ", world_.mesh.triangles.size(), " triangles, ",
+                   world_.points.size(), " points; trajectory ", world_.trajectory.duration(), " s");
+    publishWorld(ctx.paramInt("chunk_triangles"), ctx.paramDouble("map_point_spacing"));
+    ctx.timer(1.0 / ctx.paramDouble("pose_rate"), [this] { publishPose(); });
+  }
+
+ private:
+  static map_provider::WorldSettings settingsFrom(const Context& ctx) {
+    map_provider::WorldSettings s;
+    s.world = ctx.paramString("world");
+    s.map_file = ctx.paramString("map_file");
+    s.map_voxel_size = ctx.paramDouble("map_voxel_size");
+    const auto offset = ctx.paramDoubleList("map_offset");
+    if (offset.size() != 3) throw std::runtime_error("map_offset must have three values (x, y, z)");
+    s.map_offset = Eigen::Vector3d(offset[0], offset[1], offset[2]).cast<float>();
+    s.trajectory = ctx.paramString("trajectory");
+    s.trajectory_file = ctx.paramString("trajectory_file");
+    s.attitude = ctx.paramString("attitude");
+    s.trajectory_start = ctx.paramDouble("trajectory_start");
+    s.path_speed = ctx.paramDouble("path_speed");
+    s.path_laps = static_cast<int>(ctx.paramInt("path_laps"));
+    s.base_height = ctx.paramDouble("base_height");
+    s.seed = ctx.seed();
+    return s;
+  }
+
+  // Latched samples may be written during construction: late joiners get them too.
+  void publishWorld(std::int64_t chunk_triangles, double map_spacing) {
+    const auto& mesh = world_.mesh;
+    const std::size_t per_chunk = static_cast<std::size_t>(chunk_triangles);
+    const std::size_t mesh_chunks = (mesh.triangles.size() + per_chunk - 1) / per_chunk;
+    const std::size_t point_chunks = (world_.points.size() + 3 * per_chunk - 1) / (3 * per_chunk);
+    const auto count = static_cast<std::uint32_t>(std::max<std::size_t>(1, mesh_chunks + point_chunks));
+    std::uint32_t chunk = 0;
+    auto header = [&](msg::WorldMesh& m) {
+      m.header().stamp(toMsg(ctx_.now()));
+      m.header().frame_id("map");
+      m.world(world_.description);
+      m.chunk(chunk++);
+      m.chunk_count(count);
+      m.point_radius(0.05f);
+    };
+    for (std::size_t c = 0; c < mesh_chunks; ++c) {
+      msg::WorldMesh m;
+      header(m);
+      // Each chunk is self-contained: its own copy of the vertices it uses, renumbered.
+      std::unordered_map<int, std::uint32_t> local;
+      const std::size_t end = std::min(mesh.triangles.size(), (c + 1) * per_chunk);
+      for (std::size_t t = c * per_chunk; t < end; ++t) {
+        for (int k = 0; k < 3; ++k) {
+          const int v = mesh.triangles[t][k];
+          auto [it, fresh] = local.emplace(v, static_cast<std::uint32_t>(local.size()));
+          if (fresh) {
+            for (int d = 0; d < 3; ++d) m.vertices().push_back(mesh.vertices[v][d]);
+          }
+          m.triangles().push_back(it->second);
+        }
+      }
+      world_pub_.publish(m);
+    }
+    for (std::size_t c = 0; c < point_chunks; ++c) {
+      msg::WorldMesh m;
+      header(m);
+      const std::size_t end = std::min(world_.points.size(), (c + 1) * 3 * per_chunk);
+      for (std::size_t i = c * 3 * per_chunk; i < end; ++i) {
+        for (int d = 0; d < 3; ++d) m.points().push_back(world_.points[i][d]);
+      }
+      world_pub_.publish(m);
+    }
+    if (mesh_chunks + point_chunks == 0) {
+      msg::WorldMesh empty;
+      header(empty);
+      world_pub_.publish(empty);
+    }
+    // The map sample: surface points (or the point map), one per map_spacing voxel.
+    std::vector<Eigen::Vector3f> sample =
+        mesh.empty() ? world_.points : world::sampleSurface(mesh, 4.0 / (map_spacing * map_spacing), ctx_.seed());
+    sample = world::voxelDownsample(sample, map_spacing);
+    auto cloud = pointcloud::makeXyzCloud(sample, "map");
+    cloud.header().stamp(toMsg(ctx_.now()));
+    map_pub_.publish(cloud);
+    ctx_.log().info("published the world in ", count, " chunk(s) and a map sample of ", sample.size(), " points");
+  }
+
+  void publishPose() {
+    const double t = ctx_.now().seconds();
+    double at = t;
+    if (!world_.trajectory.contains(t)) {
+      at = std::clamp(t, world_.trajectory.startTime(), world_.trajectory.endTime());
+      if (!warned_end_) {
+        ctx_.log().warn("the ground-truth trajectory ends at ", world_.trajectory.endTime(),
+                        " s; holding its last pose");
+        warned_end_ = true;
+      }
+    }
+    const Eigen::Isometry3d T = world_.trajectory.poseAt(at);
+    const Eigen::Quaterniond q(T.linear());
+    geometry_msgs::msg::PoseStamped pose;
+    pose.header().stamp(toMsg(ctx_.now()));
+    pose.header().frame_id("map");
+    pose.pose().position().x(T.translation().x());
+    pose.pose().position().y(T.translation().y());
+    pose.pose().position().z(T.translation().z());
+    pose.pose().orientation().x(q.x());
+    pose.pose().orientation().y(q.y());
+    pose.pose().orientation().z(q.z());
+    pose.pose().orientation().w(q.w());
+    pose_pub_.publish(pose);
+  }
+
+  Context& ctx_;
+  map_provider::World world_;
+  Publisher<msg::WorldMesh> world_pub_;
+  Publisher<sensor_msgs::msg::PointCloud2> map_pub_;
+  Publisher<geometry_msgs::msg::PoseStamped> pose_pub_;
+  bool warned_end_ = false;
+};
+
+}  // namespace uampc
+
+UAMPC_REGISTER_COMPONENT(uampc::MapProvider, "map_provider")

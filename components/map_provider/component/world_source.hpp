@@ -1,0 +1,39 @@
+// Which world and which ground-truth trajectory a map_provider serves, from its parameters.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "uampc/world/map_io.hpp"
+#include "uampc/world/trajectory.hpp"
+#include "uampc/world/triangle_mesh.hpp"
+
+namespace uampc::map_provider {
+
+struct WorldSettings {
+  std::string world = "campus";  // campus | corridor | multilevel | around_trajectory | file
+  std::string map_file;          // world = file: PCD or PLY
+  double map_voxel_size = 0.0;
+  Eigen::Vector3f map_offset = Eigen::Vector3f::Zero();
+  std::string trajectory = "generated";  // generated | file
+  std::string trajectory_file;           // MCD CSV (.csv) or TUM
+  std::string attitude = "from_file";    // from_file | yaw_only | identity
+  double trajectory_start = 0.0;         // s skipped at the start of a file trajectory
+  double path_speed = 1.5;               // m/s, generated paths
+  int path_laps = 1;
+  double base_height = 1.0;              // m above the ground, generated paths
+  std::uint64_t seed = 1;
+};
+
+struct World {
+  world::TriangleMesh mesh;
+  std::vector<Eigen::Vector3f> points;  // point maps only
+  world::Trajectory trajectory;         // starts at time 0 (sim time)
+  std::string description;
+  std::vector<std::string> warnings;
+};
+
+// Builds the world and the trajectory; throws std::runtime_error with a message a user can act on.
+World buildWorld(const WorldSettings& settings);
+
+}  // namespace uampc::map_provider

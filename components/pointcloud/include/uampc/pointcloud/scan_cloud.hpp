@@ -1,0 +1,48 @@
+// sensor_msgs/PointCloud2 <-> plain vectors, in one place.
+//
+// uampc's scans carry the fields of DESIGN.md section 4: x, y, z, intensity, t (float32, seconds
+// since the header stamp), ring (uint16); 22 bytes per point, little-endian, unorganised (height 1).
+// The reader also accepts other drivers' layouts: the per-point time may be called t, time,
+// timestamp or offset_time, in float32 or float64 seconds or integer nanoseconds (uint32, int32,
+// uint64 as two uint32 is not a PointField type, so offset_time in uint32 ns as Livox's driver).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sensor_msgs/msg/PointCloud2.h"
+
+namespace uampc::pointcloud {
+
+struct ScanPoints {
+  std::vector<Eigen::Vector3f> positions;  // m, in the cloud's frame
+  std::vector<float> intensities;          // empty when the cloud has no intensity field
+  std::vector<float> time_offsets;         // s since the header stamp; empty when no time field
+  std::vector<std::uint16_t> rings;        // empty when the cloud has no ring field
+};
+
+// Builds a scan cloud with fields x, y, z, intensity, t, ring.
+sensor_msgs::msg::PointCloud2 makeScanCloud(const ScanPoints& points, const std::string& frame_id);
+// Builds a cloud with x, y, z only (maps, registered scans).
+sensor_msgs::msg::PointCloud2 makeXyzCloud(const std::vector<Eigen::Vector3f>& points, const std::string& frame_id);
+
+// How a cloud's time field is read; found once per layout, so a bad layout is reported once.
+struct TimeField {
+  std::string name;         // empty: the cloud has no usable time field
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = 0;
+  double scale = 1.0;       // to seconds (1e-9 for integer nanoseconds)
+};
+
+// Finds the time field, or throws std::runtime_error with a message naming the fields present
+// and the accepted names and types.
+TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud);
+
+// Reads x, y, z (float32 required), and intensity, ring and time where present. Throws
+// std::runtime_error on an inconsistent cloud (data shorter than width*height*point_step, fields
+// beyond point_step, big-endian data). Non-finite points are kept: callers decide and count.
+ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField* time_field = nullptr);
+
+}  // namespace uampc::pointcloud

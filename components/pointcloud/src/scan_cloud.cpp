@@ -1,0 +1,164 @@
+#include "uampc/pointcloud/scan_cloud.hpp"
+
+#include <cstring>
+#include <stdexcept>
+
+namespace uampc::pointcloud {
+
+namespace {
+
+constexpr std::uint8_t kInt32 = 5, kUint32 = 6, kFloat32 = 7, kFloat64 = 8, kUint16 = 4;
+
+sensor_msgs::msg::PointField field(const char* name, std::uint32_t offset, std::uint8_t type) {
+  sensor_msgs::msg::PointField f;
+  f.name(name);
+  f.offset(offset);
+  f.datatype(type);
+  f.count(1);
+  return f;
+}
+
+void setLayout(sensor_msgs::msg::PointCloud2& cloud, std::size_t count, std::uint32_t point_step,
+               const std::string& frame_id) {
+  cloud.header().frame_id(frame_id);
+  cloud.height(1);
+  cloud.width(static_cast<std::uint32_t>(count));
+  cloud.is_bigendian(false);
+  cloud.point_step(point_step);
+  cloud.row_step(static_cast<std::uint32_t>(point_step * count));
+  cloud.is_dense(true);
+  cloud.data().resize(point_step * count);
+}
+
+std::size_t sizeOf(std::uint8_t datatype) {
+  switch (datatype) {
+    case 1: case 2: return 1;
+    case 3: case 4: return 2;
+    case 5: case 6: case 7: return 4;
+    case 8: return 8;
+  }
+  return 0;
+}
+
+const sensor_msgs::msg::PointField* find(const sensor_msgs::msg::PointCloud2& cloud, const std::string& name) {
+  for (const auto& f : cloud.fields()) {
+    if (f.name() == name) return &f;
+  }
+  return nullptr;
+}
+
+template <typename T>
+T readAs(const std::uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+}  // namespace
+
+sensor_msgs::msg::PointCloud2 makeScanCloud(const ScanPoints& points, const std::string& frame_id) {
+  constexpr std::uint32_t kStep = 22;
+  sensor_msgs::msg::PointCloud2 cloud;
+  cloud.fields({field("x", 0, kFloat32), field("y", 4, kFloat32), field("z", 8, kFloat32),
+                field("intensity", 12, kFloat32), field("t", 16, kFloat32), field("ring", 20, kUint16)});
+  const std::size_t n = points.positions.size();
+  setLayout(cloud, n, kStep, frame_id);
+  std::uint8_t* out = cloud.data().data();
+  for (std::size_t i = 0; i < n; ++i, out += kStep) {
+    std::memcpy(out, points.positions[i].data(), 12);
+    const float intensity = points.intensities.empty() ? 0.0f : points.intensities[i];
+    const float t = points.time_offsets.empty() ? 0.0f : points.time_offsets[i];
+    const std::uint16_t ring = points.rings.empty() ? 0 : points.rings[i];
+    std::memcpy(out + 12, &intensity, 4);
+    std::memcpy(out + 16, &t, 4);
+    std::memcpy(out + 20, &ring, 2);
+  }
+  return cloud;
+}
+
+sensor_msgs::msg::PointCloud2 makeXyzCloud(const std::vector<Eigen::Vector3f>& points, const std::string& frame_id) {
+  sensor_msgs::msg::PointCloud2 cloud;
+  cloud.fields({field("x", 0, kFloat32), field("y", 4, kFloat32), field("z", 8, kFloat32)});
+  setLayout(cloud, points.size(), 12, frame_id);
+  for (std::size_t i = 0; i < points.size(); ++i) std::memcpy(&cloud.data()[12 * i], points[i].data(), 12);
+  return cloud;
+}
+
+TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud) {
+  for (const char* name : {"t", "time", "timestamp", "offset_time"}) {
+    const auto* f = find(cloud, name);
+    if (!f) continue;
+    switch (f->datatype()) {
+      case kFloat32: case kFloat64: return {name, f->offset(), f->datatype(), 1.0};
+      case kUint32: case kInt32: return {name, f->offset(), f->datatype(), 1e-9};
+      default:
+        throw std::runtime_error(std::string("per-point time field '") + name + "' has PointField datatype " +
+                                 std::to_string(f->datatype()) +
+                                 "; accepted: float32 or float64 seconds, uint32 or int32 nanoseconds");
+    }
+  }
+  std::string present;
+  for (const auto& f : cloud.fields()) present += (present.empty() ? "" : ", ") + f.name();
+  throw std::runtime_error("no per-point time field (looked for t, time, timestamp, offset_time; the cloud has: " +
+                           present + ")");
+}
+
+ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField* time_field) {
+  if (cloud.is_bigendian()) throw std::runtime_error("big-endian point clouds are not supported");
+  const std::size_t n = static_cast<std::size_t>(cloud.width()) * cloud.height();
+  const std::size_t step = cloud.point_step();
+  if (cloud.data().size() < n * step) {
+    throw std::runtime_error("cloud data holds " + std::to_string(cloud.data().size()) + " bytes, but " +
+                             std::to_string(n) + " points of " + std::to_string(step) + " bytes need " +
+                             std::to_string(n * step));
+  }
+  auto checked = [&](const char* name, bool required, std::uint8_t want) -> const sensor_msgs::msg::PointField* {
+    const auto* f = find(cloud, name);
+    if (!f) {
+      if (required) throw std::runtime_error(std::string("cloud has no '") + name + "' field");
+      return nullptr;
+    }
+    if (want && f->datatype() != want) {
+      if (required) throw std::runtime_error(std::string("field '") + name + "' must be float32");
+      return nullptr;
+    }
+    if (f->offset() + sizeOf(f->datatype()) > step) {
+      throw std::runtime_error(std::string("field '") + name + "' lies beyond point_step");
+    }
+    return f;
+  };
+  const auto* fx = checked("x", true, kFloat32);
+  const auto* fy = checked("y", true, kFloat32);
+  const auto* fz = checked("z", true, kFloat32);
+  const auto* fi = checked("intensity", false, kFloat32);
+  const auto* fr = checked("ring", false, kUint16);
+  if (time_field && time_field->offset + sizeOf(time_field->datatype) > step) {
+    throw std::runtime_error("time field '" + time_field->name + "' lies beyond point_step");
+  }
+  ScanPoints out;
+  out.positions.resize(n);
+  if (fi) out.intensities.resize(n);
+  if (fr) out.rings.resize(n);
+  if (time_field) out.time_offsets.resize(n);
+  const std::uint8_t* base = cloud.data().data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* p = base + i * step;
+    out.positions[i] = {readAs<float>(p + fx->offset()), readAs<float>(p + fy->offset()), readAs<float>(p + fz->offset())};
+    if (fi) out.intensities[i] = readAs<float>(p + fi->offset());
+    if (fr) out.rings[i] = readAs<std::uint16_t>(p + fr->offset());
+    if (time_field) {
+      const std::uint8_t* q = p + time_field->offset;
+      double t = 0;
+      switch (time_field->datatype) {
+        case kFloat32: t = readAs<float>(q); break;
+        case kFloat64: t = readAs<double>(q); break;
+        case kUint32: t = readAs<std::uint32_t>(q) * time_field->scale; break;
+        case kInt32: t = readAs<std::int32_t>(q) * time_field->scale; break;
+      }
+      out.time_offsets[i] = static_cast<float>(t);
+    }
+  }
+  return out;
+}
+
+}  // namespace uampc::pointcloud

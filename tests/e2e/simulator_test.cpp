@@ -1,0 +1,65 @@
+// The simulator chain over DDS (map_provider, motor_bridge, raycaster in another process): frames
+// arrive at 10 Hz, and every point, de-rotated with the recorded encoder angles and ground truth
+// (Eq. 1), lands on the corridor's planes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "command_runner.hpp"
+#include "csv.hpp"
+#include "uampc/frames/motor_angle_track.hpp"
+#include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/world/trajectory.hpp"
+
+namespace uampc::test {
+namespace {
+
+double distanceToCorridor(const Eigen::Vector3d& p) {
+  return std::min({std::abs(std::abs(p.y()) - 1.5), std::abs(p.z()), std::abs(p.z() - 3.0), std::abs(p.x()),
+                   std::abs(p.x() - 300.0)});
+}
+
+TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
+  const std::string out = freshDirectory("simulator_corridor");
+  const CommandResult r =
+      runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out + " --set domain_id=41");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  std::vector<world::TimedPose> poses;
+  for (const auto& row : readCsv(out + "/recorder_ground_truth.csv")) {
+    poses.push_back({row[0], {row[1], row[2], row[3]}, Eigen::Quaterniond(row[7], row[4], row[5], row[6])});
+  }
+  const world::Trajectory ground_truth(poses);
+  frames::MotorAngleTrack motor(1000.0);
+  for (const auto& row : readCsv(out + "/recorder_motor_states.csv")) motor.add({row[0], row[1], row[2]});
+  const auto calibration = frames::MotorLidarCalibration::referenceRig();
+
+  std::map<double, int> points_per_frame;
+  double worst = 0;
+  for (const auto& row : readCsv(out + "/recorder_scans.csv")) {
+    const double stamp = row[0], t = stamp + row[5];
+    ++points_per_frame[stamp];
+    ASSERT_GE(row[5], 0.0);
+    ASSERT_LT(row[5], 0.1);
+    const Eigen::Vector3d p_L(row[1], row[2], row[3]);
+    ASSERT_GE(p_L.norm(), 1.5 - 1e-4);  // Mid-360 range limits
+    ASSERT_LE(p_L.norm(), 40.0 + 1e-4);
+    const auto theta = motor.thetaAt(t);
+    ASSERT_TRUE(theta.has_value()) << "no encoder state around t=" << t;
+    const Eigen::Vector3d p_W = frames::lidarToWorld(p_L, *theta, calibration, ground_truth.poseAt(t));
+    worst = std::max(worst, distanceToCorridor(p_W));
+  }
+  // The frames of [0, 0.5) s, at their start times; each with a plausible number of returns.
+  ASSERT_EQ(points_per_frame.size(), 5u);
+  int k = 0;
+  for (const auto& [stamp, count] : points_per_frame) {
+    EXPECT_NEAR(stamp, 0.1 * k++, 1e-9);
+    EXPECT_GT(count, 5000);
+    EXPECT_LE(count, 20000);
+  }
+  EXPECT_LT(worst, 1e-3) << "a de-rotated point is " << worst << " m off the corridor's planes";
+}
+
+}  // namespace
+}  // namespace uampc::test
