@@ -1,6 +1,7 @@
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "uampc/evaluator/umeyama.hpp"
@@ -35,7 +36,8 @@ AteReport AbsoluteTrajectoryError::report() const {
   std::stable_sort(order.begin(), order.end(),
                    [this](std::size_t a, std::size_t b) { return times_[a] < times_[b]; });
   report.series.reserve(n);
-  for (const std::size_t i : order) report.series.push_back({times_[i], errors[i], aligned_errors[i]});
+  for (const std::size_t i : order)
+    report.series.push_back({times_[i], errors[i], aligned_errors[i]});
 
   report.unaligned = summarize(std::move(errors));
   report.aligned = summarize(std::move(aligned_errors));

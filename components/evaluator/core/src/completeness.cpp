@@ -17,7 +17,8 @@ constexpr std::uint64_t kKeyMask = (std::uint64_t{1} << kKeyBits) - 1;
 
 // floor(coordinate / voxel_size) shifted to [0, 2^21); false when out of range.
 bool keyComponent(float coordinate, double inverse_voxel_size, std::uint64_t& component) {
-  const double shifted = std::floor(static_cast<double>(coordinate) * inverse_voxel_size) + kKeyOffset;
+  const double shifted =
+      std::floor(static_cast<double>(coordinate) * inverse_voxel_size) + kKeyOffset;
   if (!(shifted >= 0.0) || !(shifted < 2.0 * kKeyOffset)) return false;
   component = static_cast<std::uint64_t>(shifted);
   return true;
@@ -79,7 +80,8 @@ void Completeness::addScan(double stamp, const std::vector<Eigen::Vector3f>& poi
       continue;
     }
     std::uint64_t x = 0, y = 0, z = 0;
-    if (!keyComponent(p.x(), inverse_voxel_size_, x) || !keyComponent(p.y(), inverse_voxel_size_, y) ||
+    if (!keyComponent(p.x(), inverse_voxel_size_, x) ||
+        !keyComponent(p.y(), inverse_voxel_size_, y) ||
         !keyComponent(p.z(), inverse_voxel_size_, z)) {
       ++out_of_range_points_;
       continue;
@@ -87,7 +89,7 @@ void Completeness::addScan(double stamp, const std::vector<Eigen::Vector3f>& poi
     ++valid;
     const Key key = (x << (2 * kKeyBits)) | (y << kKeyBits) | z;
     // A voxel already in the window's set is already in the total: one look-up for most points.
-    if (window == nullptr || window->insert(key).second) total_.insert(key);
+    if (window == nullptr || window->insert(key)) total_.insert(key);
   }
   points_ += valid;
 
@@ -136,9 +138,9 @@ CompletenessReport Completeness::report(double end_time) const {
 std::vector<Eigen::Vector3i> Completeness::voxels() const {
   std::vector<Eigen::Vector3i> voxels;
   voxels.reserve(total_.size());
-  for (const Key key : total_) {
+  total_.forEach([&voxels](Key key) {
     voxels.emplace_back(unpack(key, 2 * kKeyBits), unpack(key, kKeyBits), unpack(key, 0));
-  }
+  });
   return voxels;
 }
 

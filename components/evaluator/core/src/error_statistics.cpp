@@ -22,11 +22,12 @@ ErrorStatistics summarize(std::vector<double> errors) {
   stats.mean = sum / n;
   stats.max = max;
   const std::size_t middle = errors.size() / 2;
-  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(middle), errors.end());
+  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(middle),
+                   errors.end());
   stats.median = errors[middle];
   if (errors.size() % 2 == 0) {
-    const double below = *std::max_element(errors.begin(),
-                                           errors.begin() + static_cast<std::ptrdiff_t>(middle));
+    const double below =
+        *std::max_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(middle));
     stats.median = 0.5 * (stats.median + below);
   }
   return stats;

@@ -19,11 +19,21 @@ void appendString(std::string& out, const std::string& text) {
   out += '"';
   for (const char c : text) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char escaped[8];
@@ -51,8 +61,12 @@ JsonObject& JsonObject::put(const std::string& name, Value value) {
 }
 
 JsonObject& JsonObject::set(const std::string& name, double value) { return put(name, value); }
-JsonObject& JsonObject::set(const std::string& name, std::int64_t value) { return put(name, value); }
-JsonObject& JsonObject::set(const std::string& name, std::uint64_t value) { return put(name, value); }
+JsonObject& JsonObject::set(const std::string& name, std::int64_t value) {
+  return put(name, value);
+}
+JsonObject& JsonObject::set(const std::string& name, std::uint64_t value) {
+  return put(name, value);
+}
 JsonObject& JsonObject::set(const std::string& name, bool value) { return put(name, value); }
 JsonObject& JsonObject::set(const std::string& name, const std::string& value) {
   return put(name, value);

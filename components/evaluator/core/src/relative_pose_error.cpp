@@ -35,9 +35,9 @@ RpeReport RelativePoseError::report(double segment_length) const {
   // Distance travelled along the ground truth up to each pose.
   std::vector<double> travelled(pairs.size(), 0.0);
   for (std::size_t i = 1; i < pairs.size(); ++i) {
-    travelled[i] = travelled[i - 1] + (pairs[i].ground_truth.translation() -
-                                       pairs[i - 1].ground_truth.translation())
-                                          .norm();
+    travelled[i] =
+        travelled[i - 1] +
+        (pairs[i].ground_truth.translation() - pairs[i - 1].ground_truth.translation()).norm();
   }
 
   std::vector<double> translation;

@@ -60,7 +60,8 @@ void writeCompletenessWindowsCsv(const std::string& path,
   CsvWriter csv(path, {"window", "start", "end", "voxels", "scans", "points", "complete"});
   for (const CompletenessWindow& w : windows) {
     csv.addRow({static_cast<double>(w.index), w.start, w.end, static_cast<double>(w.voxels),
-                static_cast<double>(w.scans), static_cast<double>(w.points), w.complete ? 1.0 : 0.0});
+                static_cast<double>(w.scans), static_cast<double>(w.points),
+                w.complete ? 1.0 : 0.0});
   }
   csv.close();
 }

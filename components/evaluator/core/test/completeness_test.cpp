@@ -1,4 +1,6 @@
 // Tests of CMPLT: distinct voxels per window, bad input, and the OctoMap export.
+#include "uampc/evaluator/completeness.hpp"
+
 #include <gtest/gtest.h>
 #include <octomap/OcTree.h>
 
@@ -10,7 +12,6 @@
 #include <tuple>
 
 #include "test_directory.hpp"
-#include "uampc/evaluator/completeness.hpp"
 #include "uampc/evaluator/voxel_octree.hpp"
 
 namespace uampc::evaluator {
@@ -28,11 +29,13 @@ VoxelSet asSet(const std::vector<Eigen::Vector3i>& voxels) {
 }
 
 // A point inside voxel v (0.5 m voxels).
-Eigen::Vector3f in(int x, int y, int z) { return Eigen::Vector3f(x + 0.5f, y + 0.5f, z + 0.5f) * 0.5f; }
+Eigen::Vector3f in(int x, int y, int z) {
+  return Eigen::Vector3f(x + 0.5f, y + 0.5f, z + 0.5f) * 0.5f;
+}
 
 TEST(Completeness, VoxelBoundariesAndNegativeCoordinates) {
   Completeness cmplt;
-  cmplt.addScan(0.0, {{0.0f, 0.0f, 0.0f},      // voxel (0, 0, 0): a boundary belongs to the voxel above
+  cmplt.addScan(0.0, {{0.0f, 0.0f, 0.0f},  // voxel (0, 0, 0): a boundary belongs to the voxel above
                       {0.49f, 0.2f, 0.3f},     // (0, 0, 0)
                       {0.5f, 0.0f, 0.0f},      // (1, 0, 0)
                       {-0.01f, 0.0f, 0.0f},    // (-1, 0, 0): floor, not truncation toward zero
@@ -101,10 +104,10 @@ TEST(Completeness, SkipsAndCountsBadInput) {
 TEST(Completeness, OutOfOrderStampsGoToTheirWindowWhileItIsHeld) {
   Completeness cmplt;
   cmplt.addScan(0.0, {in(0, 0, 0)});
-  cmplt.addScan(6.0, {in(1, 0, 0)});  // window 1
-  cmplt.addScan(4.0, {in(2, 0, 0)});  // late, window 0 is still held
+  cmplt.addScan(6.0, {in(1, 0, 0)});   // window 1
+  cmplt.addScan(4.0, {in(2, 0, 0)});   // late, window 0 is still held
   cmplt.addScan(12.0, {in(3, 0, 0)});  // window 2
-  cmplt.addScan(3.0, {in(4, 0, 0)});  // window 0 is no longer held: total only
+  cmplt.addScan(3.0, {in(4, 0, 0)});   // window 0 is no longer held: total only
   cmplt.addScan(-1.0, {in(5, 0, 0)});  // before the first stamp: total only
   const CompletenessReport report = cmplt.report();
   ASSERT_EQ(report.windows.size(), 3u);

@@ -12,7 +12,8 @@ namespace uampc::evaluator::test {
 class TestDirectory {
  public:
   TestDirectory() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "uampc_evaluator_XXXXXX").string();
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "uampc_evaluator_XXXXXX").string();
     if (mkdtemp(pattern.data()) == nullptr) ADD_FAILURE() << "cannot create " << pattern;
     path_ = pattern;
   }

@@ -64,7 +64,8 @@ TEST(Umeyama, RecoversKnownTransformFromNoisyPoints) {
   const std::vector<Eigen::Vector3d> source = randomPoints(2000, rng);
   const Eigen::Isometry3d T = knownTransform();
   std::vector<Eigen::Vector3d> target;
-  for (const auto& s : source) target.push_back(T * s + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+  for (const auto& s : source)
+    target.push_back(T * s + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
 
   const Eigen::Isometry3d A = umeyamaAlignment(source, target);
   EXPECT_LT(Eigen::AngleAxisd(A.linear().transpose() * T.linear()).angle(), 1e-3);
@@ -104,7 +105,8 @@ TEST(Umeyama, NeverReturnsAReflection) {
 TEST(Umeyama, DegenerateInputs) {
   EXPECT_THROW(umeyamaAlignment({Eigen::Vector3d::Zero()}, {}), std::invalid_argument);
   EXPECT_TRUE(umeyamaAlignment({}, {}).isApprox(Eigen::Isometry3d::Identity()));
-  const Eigen::Isometry3d one = umeyamaAlignment({Eigen::Vector3d(1, 2, 3)}, {Eigen::Vector3d(2, 2, 2)});
+  const Eigen::Isometry3d one =
+      umeyamaAlignment({Eigen::Vector3d(1, 2, 3)}, {Eigen::Vector3d(2, 2, 2)});
   EXPECT_LT((one * Eigen::Vector3d(1, 2, 3) - Eigen::Vector3d(2, 2, 2)).norm(), 1e-12);
 }
 
@@ -234,7 +236,8 @@ TEST(RelativePoseError, PerfectEstimateHasZeroError) {
   RelativePoseError rpe;
   for (int k = 0; k < 600; ++k) {  // a 0.5 m-step curve with turning attitude, ~300 m
     const double a = 0.01 * k;
-    const Eigen::Isometry3d truth = poseOf({50.0 * std::sin(a), 50.0 * (1 - std::cos(a)), 0.01 * k}, a);
+    const Eigen::Isometry3d truth =
+        poseOf({50.0 * std::sin(a), 50.0 * (1 - std::cos(a)), 0.01 * k}, a);
     rpe.add(0.1 * k, truth, truth);
   }
   for (const double d : {10.0, 100.0}) {

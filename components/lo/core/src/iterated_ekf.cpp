@@ -58,7 +58,8 @@ std::vector<const TimedPoint*> spatialOrder(const std::vector<TimedPoint>& point
                                             double voxel_size) {
   std::vector<std::pair<std::uint32_t, const TimedPoint*>> keyed;
   keyed.reserve(points.size());
-  for (const TimedPoint& p : points) keyed.emplace_back(mortonCode(voxelOf(p.p_B, 1.0 / voxel_size)), &p);
+  for (const TimedPoint& p : points)
+    keyed.emplace_back(mortonCode(voxelOf(p.p_B, 1.0 / voxel_size)), &p);
   std::sort(keyed.begin(), keyed.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<const TimedPoint*> out;
@@ -118,12 +119,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   bool gated = false;  // the residual gate is applied once the ungated iterations converged
   double gate = std::numeric_limits<double>::infinity();
   double rotation_since_association = 0.0, translation_since_association = 0.0;
-  struct Row {
-    Vector12d h;  // dz/d(error state)
-    double z;     // point-to-plane residual
-  };
-  std::vector<Row> rows;
-  rows.reserve(points.size());
+  Eigen::Matrix<double, Eigen::Dynamic, 12> H;  // Jacobian of the residuals, dz/d(error state)
+  Eigen::VectorXd z;                            // point-to-plane residuals
   std::vector<double> magnitudes;
 
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
@@ -133,8 +130,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
       correspondences.clear();
       for (const TimedPoint* point_ptr : ordered) {
         const TimedPoint& point = *point_ptr;
-        const Eigen::Vector3d q = x.R_WB * (expSO3(x.w_B * point.tau) * point.p_B) + x.r_WB +
-                                  x.v_W * point.tau;
+        const Eigen::Vector3d q =
+            x.R_WB * (expSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
         if (map.nearest(q, options.nearest_neighbours, neighbours) < options.nearest_neighbours) {
           continue;
         }
@@ -146,49 +143,53 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
     }
 
-    // Linearise the measurement model h(x) at x_j.
-    rows.clear();
-    for (const Correspondence& c : correspondences) {
+    // Linearise the measurement model h(x) at x_j: one row of H and one residual per plane.
+    H.resize(static_cast<Eigen::Index>(correspondences.size()), 12);
+    z.resize(static_cast<Eigen::Index>(correspondences.size()));
+    for (std::size_t i = 0; i < correspondences.size(); ++i) {
+      const Correspondence& c = correspondences[i];
       const TimedPoint& point = *c.point;
       const Eigen::Vector3d& n = c.plane.normal;
       const Eigen::Matrix3d E = expSO3(x.w_B * point.tau);  // deskew rotation, Exp(w tau)
       const Eigen::Vector3d s = E * point.p_B;              // point in B at the scan end
       const Eigen::Vector3d q = x.R_WB * s + x.r_WB + x.v_W * point.tau;
       const Eigen::Vector3d n_B = x.R_WB.transpose() * n;
-      Row row;
-      row.z = n.dot(q) + c.plane.offset;                                      // residual
-      row.h.segment<3>(0) = s.cross(n_B);                                       // rotation (right)
-      row.h.segment<3>(3) = n;                                                  // position
-      row.h.segment<3>(6) = point.tau * n;                                      // linear velocity
-      row.h.segment<3>(9) = point.tau * point.p_B.cross(E.transpose() * n_B);  // angular vel.
-      rows.push_back(row);
+      const auto row = static_cast<Eigen::Index>(i);
+      z(row) = n.dot(q) + c.plane.offset;                 // residual
+      H.block<1, 3>(row, 0) = s.cross(n_B).transpose();   // rotation (right)
+      H.block<1, 3>(row, 3) = n.transpose();              // position
+      H.block<1, 3>(row, 6) = point.tau * n.transpose();  // linear velocity
+      H.block<1, 3>(row, 9) =                             // angular velocity
+          point.tau * point.p_B.cross(E.transpose() * n_B).transpose();
     }
     // Gate: a residual far beyond the typical one is a wrong plane (the point lies on a surface
     // the map has not seen yet, or across an edge), not noise; left in, a few such points at
     // weight 1/sigma^2 bias the pose by millimetres to centimetres. The typical residual is
     // 1.4826 * median |z| (robust standard deviation); the gate is 3 of those, at least
-    // options.min_residual_gate.
-    // The gate is set once, when the gated iterations start, so that they converge on a fixed
-    // set of residuals.
+    // options.min_residual_gate. It is set once, when the gated iterations start, so that they
+    // converge on a fixed set of residuals.
     if (gated && !std::isfinite(gate)) {
-      magnitudes.resize(rows.size());
-      for (std::size_t i = 0; i < rows.size(); ++i) magnitudes[i] = std::abs(rows[i].z);
+      magnitudes.assign(z.data(), z.data() + z.size());
+      for (double& m : magnitudes) m = std::abs(m);
       const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
       std::nth_element(magnitudes.begin(), middle, magnitudes.end());
       gate = std::max(options.min_residual_gate, 3.0 * 1.4826 * *middle);
     }
-    Matrix12d HtH = Matrix12d::Zero();
-    Vector12d Htz = Vector12d::Zero();
-    std::size_t used = 0;
-    for (const Row& row : rows) {
-      if (std::abs(row.z) > gate) continue;
-      HtH.selfadjointView<Eigen::Upper>().rankUpdate(row.h);
-      Htz.noalias() += row.h * row.z;
-      ++used;
+    std::size_t used = correspondences.size();
+    if (std::isfinite(gate)) {
+      for (Eigen::Index i = 0; i < z.size(); ++i) {
+        if (std::abs(z(i)) > gate) {
+          H.row(i).setZero();  // a zero row contributes nothing to H^T H and H^T z
+          z(i) = 0.0;
+          --used;
+        }
+      }
     }
-    HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
     summary.correspondences = used;
     if (used < options.min_correspondences) break;
+    Matrix12d HtH;
+    HtH.noalias() = H.transpose() * H;
+    const Vector12d Htz = H.transpose() * z;
 
     // Gauss-Newton step of the IEKF (information form, see header).
     const Matrix12d A = prior_information + inverse_variance * HtH;
@@ -208,8 +209,10 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     const double step_translation = dx.segment<3>(3).norm();
     rotation_since_association += step_rotation;
     translation_since_association += step_translation;
-    if (step_rotation < options.convergence_rotation &&
-        step_translation < options.convergence_translation) {
+    // Without the gate, converging to 10x the tolerance is enough: the gated iterations refine.
+    const double tolerance_scale = gated ? 1.0 : 10.0;
+    if (step_rotation < tolerance_scale * options.convergence_rotation &&
+        step_translation < tolerance_scale * options.convergence_translation) {
       // Converged with every correspondence: now drop the outliers and converge again. Gating
       // earlier would drop the inliers of a direction the prediction got wrong.
       if (gated) {

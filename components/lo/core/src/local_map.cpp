@@ -17,9 +17,7 @@ constexpr std::size_t kInitialCapacity = 1 << 14;
 int floorHalf(int v) { return v >> 1; }
 
 // Index of a voxel inside its 2x2x2 block (two's complement: v & 1 is v mod 2).
-int indexInBlock(const Voxel& v) {
-  return (v.x() & 1) | ((v.y() & 1) << 1) | ((v.z() & 1) << 2);
-}
+int indexInBlock(const Voxel& v) { return (v.x() & 1) | ((v.y() & 1) << 1) | ((v.z() & 1) << 2); }
 
 }  // namespace
 

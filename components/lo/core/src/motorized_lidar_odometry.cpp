@@ -98,8 +98,8 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
   if (!(dt > 0.0)) {
     result.status = OdometryStatus::kRejected;
     addWarning(result.warning, "scan ends at " + std::to_string(end_time) +
-                                   " s, not after the previous one (" +
-                                   std::to_string(last_time_) + " s): ignored");
+                                   " s, not after the previous one (" + std::to_string(last_time_) +
+                                   " s): ignored");
     fill(*filter_);
     return result;
   }

@@ -26,7 +26,10 @@ struct Box {
   Eigen::Matrix3d R;  // from yaw
 
   Box(const Eigen::Vector3d& c, const Eigen::Vector3d& h, double yaw_rad, bool is_solid)
-      : center(c), half_size(h), yaw(yaw_rad), solid(is_solid),
+      : center(c),
+        half_size(h),
+        yaw(yaw_rad),
+        solid(is_solid),
         R(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix()) {}
 };
 
@@ -126,12 +129,9 @@ inline World featureHall(unsigned seed = 7) {
   for (double x = -6.0; x < 106.0; x += 4.0) {
     const double side = (static_cast<int>(x / 4.0) % 2 == 0) ? 1.0 : -1.0;
     w.boxes.push_back(Box({x + 2.0 * u(rng), side * (5.0 + 4.0 * u(rng)), 0.0},
-                          {0.4 + u(rng), 0.4 + u(rng), 0.5 + 2.0 * u(rng)},
-                       3.0 * u(rng), true));
-    w.pillars.push_back({{x + 2.0 + 2.0 * u(rng), -side * (4.0 + 3.0 * u(rng))},
-                         0.2 + 0.3 * u(rng),
-                         0.0,
-                         8.0});
+                          {0.4 + u(rng), 0.4 + u(rng), 0.5 + 2.0 * u(rng)}, 3.0 * u(rng), true));
+    w.pillars.push_back(
+        {{x + 2.0 + 2.0 * u(rng), -side * (4.0 + 3.0 * u(rng))}, 0.2 + 0.3 * u(rng), 0.0, 8.0});
   }
   return w;
 }

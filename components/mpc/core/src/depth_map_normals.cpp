@@ -49,11 +49,15 @@ bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
   int ring_position[8];
   int found = 0;
   for (int k = 0; k < 8; ++k) {
+    int uu = u;
+    int vv = v;
     for (int step = 1; step <= config_.neighbour_reach_px; ++step) {
-      const int vv = v + kDv[k] * step;
+      vv += kDv[k];
       if (vv < 0 || vv >= height) break;
-      int uu = (u + kDu[k] * step) % width;
-      if (uu < 0) uu += width;
+      // Columns wrap; stepping by one column needs no integer division (which cost most of the
+      // time here when written as a modulo).
+      uu += kDu[k];
+      uu = uu < 0 ? uu + width : (uu >= width ? uu - width : uu);
       const int q = map.pixelIndex(uu, vv);
       // A hole, or the centre point's own splat: look one pixel further.
       if (!map.occupied(q) || map.pointIndex(q) == centre_index) continue;

@@ -25,8 +25,9 @@ struct AteSample {
 struct AteReport {
   ErrorStatistics unaligned;  // the paper's ATE is unaligned.rmse
   ErrorStatistics aligned;
-  Eigen::Isometry3d alignment = Eigen::Isometry3d::Identity();  // ground truth = alignment * estimate
-  std::vector<AteSample> series;  // sorted by time, for "ATE over time"
+  Eigen::Isometry3d alignment =
+      Eigen::Isometry3d::Identity();  // ground truth = alignment * estimate
+  std::vector<AteSample> series;      // sorted by time, for "ATE over time"
 };
 
 class AbsoluteTrajectoryError {

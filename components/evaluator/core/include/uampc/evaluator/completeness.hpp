@@ -15,7 +15,9 @@
 //   the latest or the one before it (their voxel sets are kept); a scan older than that, or
 //   before t0, adds to the total voxel set only and is counted in late_scans. A non-finite stamp
 //   drops the whole scan (invalid_scans).
-// The union of all voxels hit is kept too, and can be saved as an OctoMap .bt file.
+// The union of all voxels hit is kept too (as keys, the same voxels as OctoMap's leaves), and the
+// OctoMap tree is built from it only when saving a .bt file: a flat key set is much cheaper per
+// point than octree updates, and nothing reads the tree during the run.
 // The evaluator uses two instances: scans posed by the estimate and scans posed by ground truth.
 #pragma once
 
@@ -25,8 +27,9 @@
 #include <limits>
 #include <map>
 #include <string>
-#include <unordered_set>
 #include <vector>
+
+#include "uampc/evaluator/voxel_key_set.hpp"
 
 namespace uampc::evaluator {
 
@@ -36,7 +39,7 @@ struct CompletenessConfig {
 };
 
 struct CompletenessWindow {
-  long index = 0;  // k
+  long index = 0;      // k
   double start = 0.0;  // s, t0 + k w
   double end = 0.0;    // s, t0 + (k + 1) w
   std::size_t voxels = 0;
@@ -50,7 +53,7 @@ struct CompletenessReport {
   std::size_t complete_windows = 0;
   std::size_t total_voxels = 0;  // distinct voxels over the whole run
   std::size_t scans = 0;
-  std::size_t points = 0;  // valid points
+  std::size_t points = 0;               // valid points
   std::size_t invalid_points = 0;       // NaN or inf coordinates
   std::size_t out_of_range_points = 0;  // beyond +-2^20 voxels
   std::size_t late_scans = 0;
@@ -81,14 +84,7 @@ class Completeness {
 
  private:
   using Key = std::uint64_t;  // 21 bits per axis, offset by 2^20
-  struct KeyHash {
-    std::size_t operator()(Key key) const {
-      key ^= key >> 31;
-      key *= 0x9E3779B97F4A7C15ull;
-      return static_cast<std::size_t>(key ^ (key >> 29));
-    }
-  };
-  using VoxelSet = std::unordered_set<Key, KeyHash>;
+  using VoxelSet = VoxelKeySet;
   struct OpenWindow {
     long index = 0;
     VoxelSet voxels;

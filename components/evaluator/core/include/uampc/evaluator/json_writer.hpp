@@ -18,7 +18,9 @@ class JsonObject {
   JsonObject& set(const std::string& name, int value) { return set(name, std::int64_t{value}); }
   JsonObject& set(const std::string& name, bool value);
   JsonObject& set(const std::string& name, const std::string& value);
-  JsonObject& set(const std::string& name, const char* value) { return set(name, std::string(value)); }
+  JsonObject& set(const std::string& name, const char* value) {
+    return set(name, std::string(value));
+  }
   JsonObject& set(const std::string& name, const JsonObject& value);
   // A list of numbers (NaN and inf as null).
   JsonObject& set(const std::string& name, const std::vector<double>& values);

@@ -20,10 +20,10 @@
 namespace uampc::evaluator {
 
 struct RpeReport {
-  double segment_length = 0.0;  // m, d
-  ErrorStatistics translation;  // m per segment
+  double segment_length = 0.0;          // m, d
+  ErrorStatistics translation;          // m per segment
   ErrorStatistics translation_percent;  // % of the segment's length; its mean is KITTI's figure
-  ErrorStatistics rotation_deg;  // deg per segment
+  ErrorStatistics rotation_deg;         // deg per segment
 };
 
 class RelativePoseError {

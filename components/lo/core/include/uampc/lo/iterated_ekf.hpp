@@ -44,16 +44,16 @@ struct UpdateOptions {
   double convergence_rotation = 1e-5;     // rad, step size that ends the iterations
   double convergence_translation = 1e-4;  // m
   // Planes are re-associated after a step larger than these, kept after smaller ones.
-  double reassociation_rotation = 1e-3;     // rad
-  double reassociation_translation = 1e-2;  // m
-  std::size_t min_correspondences = 30;   // fewer: the update is skipped
+  double reassociation_rotation = 3e-3;     // rad
+  double reassociation_translation = 3e-2;  // m
+  std::size_t min_correspondences = 30;     // fewer: the update is skipped
   // Residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
   double min_residual_gate = 0.05;  // m
 };
 
 struct UpdateSummary {
-  bool applied = false;     // false: too few correspondences or a non-finite step; x- kept
-  bool converged = false;   // the last step was below the convergence thresholds
+  bool applied = false;    // false: too few correspondences or a non-finite step; x- kept
+  bool converged = false;  // the last step was below the convergence thresholds
   int iterations = 0;
   std::size_t correspondences = 0;
   // Information of the pose from the last linearisation, unit weight, [rotation, translation]:

@@ -47,6 +47,12 @@ class LocalMap {
       double observed_since = -std::numeric_limits<double>::infinity()) const;
 
   std::size_t size() const { return size_; }
+  // Heap memory held by the map (table and block pool), bytes.
+  std::size_t memoryBytes() const {
+    return keys_.capacity() * sizeof(std::uint64_t) + index_.capacity() * sizeof(std::uint32_t) +
+           pool_.capacity() * sizeof(Block) + times_.capacity() * sizeof(times_[0]) +
+           free_.capacity() * sizeof(std::uint32_t);
+  }
   bool empty() const { return size_ == 0; }
   void clear();
   double voxelSize() const { return voxel_size_; }
@@ -73,15 +79,15 @@ class LocalMap {
   void rehash(std::size_t capacity);
 
   // Open-addressing table from block key to an index into the dense block pool.
-  std::vector<std::uint64_t> keys_;  // capacity a power of two; kEmpty, kErased or a block key
+  std::vector<std::uint64_t> keys_;   // capacity a power of two; kEmpty, kErased or a block key
   std::vector<std::uint32_t> index_;  // pool index of the block in the same slot
   std::vector<Block> pool_;           // blocks, dense: neighbours in space mostly near in memory
   std::vector<std::array<double, 8>> times_;  // observation times, parallel to pool_
-  std::vector<std::uint32_t> free_;   // pool indices of removed blocks, for reuse
-  std::size_t size_ = 0;              // occupied voxels
-  std::size_t blocks_used_ = 0;       // live blocks
-  std::size_t erased_ = 0;            // tombstones
-  int shift_ = 64;                    // 64 - log2(capacity), for Fibonacci hashing
+  std::vector<std::uint32_t> free_;           // pool indices of removed blocks, for reuse
+  std::size_t size_ = 0;                      // occupied voxels
+  std::size_t blocks_used_ = 0;               // live blocks
+  std::size_t erased_ = 0;                    // tombstones
+  int shift_ = 64;                            // 64 - log2(capacity), for Fibonacci hashing
 };
 
 }  // namespace uampc::lo

@@ -16,6 +16,7 @@ struct Plane {
 // Least-squares plane (smallest eigenvector of the scatter matrix). Nothing when there are fewer
 // than 3 points, they are collinear, or any of them lies more than max_point_distance off the
 // fitted plane (the neighbourhood is not planar: an edge, a corner, clutter).
-std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points, double max_point_distance);
+std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
+                              double max_point_distance);
 
 }  // namespace uampc::lo

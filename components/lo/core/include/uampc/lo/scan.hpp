@@ -8,9 +8,9 @@ namespace uampc::lo {
 
 // A frame in the LiDAR frame L. Each point carries its own time: stamp + time_offsets[i] (s).
 struct Scan {
-  double stamp = 0.0;                      // s
-  std::vector<Eigen::Vector3f> points_L;   // m, LiDAR frame
-  std::vector<float> time_offsets;         // s since stamp, one per point
+  double stamp = 0.0;                     // s
+  std::vector<Eigen::Vector3f> points_L;  // m, LiDAR frame
+  std::vector<float> time_offsets;        // s since stamp, one per point
 };
 
 // A point in the base frame B as it was at its own time, tau seconds relative to the scan's

@@ -1,0 +1,239 @@
+// evaluator: measures a run as the paper does (DESIGN.md section 1, "Evaluation").
+//   ATE: the LO's poses against ground truth interpolated at their exact stamps, unaligned (the
+//        paper's figure) and after SE(3) Umeyama alignment; RPE over 10 m and 100 m.
+//   CMPLT: distinct 0.5 m voxels hit by the LO's registered scans per 5 s window, and the same from
+//        the raw scans placed with ground truth (Eq. 1), so completeness is not confounded with drift.
+// Publishes running figures; at the end writes into the run's output directory (--out): metrics.json,
+// estimate.tum, ground_truth.tum, ate.csv, cmplt_windows.csv, cmplt_ground_truth_windows.csv,
+// motor.csv, timings.csv, uncertainty.csv and scanned_voxels.bt (OctoMap, opens in octovis).
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <memory>
+
+#include "uampc/evaluator/completeness.hpp"
+#include "uampc/evaluator/csv_writer.hpp"
+#include "uampc/evaluator/json_writer.hpp"
+#include "uampc/evaluator/pose_interpolator.hpp"
+#include "uampc/evaluator/report_files.hpp"
+#include "uampc/evaluator/trajectory_evaluator.hpp"
+#include "uampc/evaluator/tum_trajectory.hpp"
+#include "uampc/frames/motor_angle_track.hpp"
+#include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/runtime/component.hpp"
+
+namespace uampc {
+
+namespace {
+
+Eigen::Isometry3d toIsometry(const geometry_msgs::msg::Pose& p) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  const auto& q = p.orientation();
+  T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
+  return T;
+}
+
+}  // namespace
+
+class EvaluatorComponent : public Component {
+ public:
+  static void describe(ComponentSpec& spec) {
+    spec.summary = "ATE, RPE and CMPLT of a run; writes metrics, trajectories and time series";
+    spec.input<nav_msgs::msg::Odometry>("odometry", "/lo/odometry", QosPreset::kControl, "estimated base poses");
+    spec.input<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
+                                                "ground-truth base poses");
+    spec.input<sensor_msgs::msg::PointCloud2>("registered", "/lo/registered", QosPreset::kSensor,
+                                              "registered scans, world frame (CMPLT)");
+    spec.input<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor,
+                                              "raw scans, placed with ground truth (ground-truth CMPLT)");
+    spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
+    spec.input<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "motor commands");
+    spec.input<msg::UncertaintyProfile>("profile", "/mpc/uncertainty", QosPreset::kSensor, "controller's U profile");
+    spec.input<msg::Metrics>("lo_metrics", "/lo/metrics", QosPreset::kSensor, "LO timings and degeneracy");
+    spec.input<msg::Metrics>("mpc_timing", "/mpc/timing", QosPreset::kSensor, "controller timings");
+    spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT");
+    spec.param("voxel_size", 0.5, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
+    spec.param("window", 5.0, "CMPLT window, s (the paper: 5)").between(0.1, 3600.0);
+    spec.param("tilt_deg", 30.0, "LiDAR tilt on the motor, degrees (to place raw scans with ground truth)")
+        .between(-180.0, 180.0);
+    spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame, m");
+    spec.param("report_period", 5.0, "running figures are published every this many s").between(0.1, 3600.0);
+  }
+
+  explicit EvaluatorComponent(Context& ctx)
+      : ctx_(ctx),
+        trajectory_([this](double t) { return ground_truth_(t); }),
+        cmplt_({ctx.paramDouble("voxel_size"), ctx.paramDouble("window")}),
+        cmplt_gt_({ctx.paramDouble("voxel_size"), ctx.paramDouble("window")}),
+        metrics_pub_(ctx.publisher<msg::Metrics>("metrics")) {
+    const auto offset = ctx.paramDoubleList("lidar_offset");
+    if (offset.size() != 3) throw std::runtime_error("lidar_offset must have three values (x, y, z)");
+    calibration_ = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
+                                                               Eigen::Vector3d(offset[0], offset[1], offset[2]));
+    const std::string& out = ctx.outputDirectory();
+    if (out.empty()) {
+      ctx.log().warn("no output directory (uampc launch --out DIR): figures are logged but no files written");
+    } else {
+      std::filesystem::create_directories(out);
+      motor_csv_ = std::make_unique<evaluator::CsvWriter>(out + "/motor.csv",
+                                                          std::vector<std::string>{"time", "theta", "omega", "command"});
+      timings_ = open(out + "/timings.csv", "time,source,name,value\n");
+      uncertainty_ = open(out + "/uncertainty.csv", "time,theta_start,delta_theta,command,samples...\n");
+    }
+    ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& m) {
+      ground_truth_.add({fromMsg(m.header().stamp()).seconds(), toIsometry(m.pose())});
+      flush();
+    });
+    ctx.subscribe<nav_msgs::msg::Odometry>("odometry", [this](const nav_msgs::msg::Odometry& m) {
+      pending_estimates_.push_back({fromMsg(m.header().stamp()).seconds(), toIsometry(m.pose().pose())});
+      flush();
+    });
+    ctx.subscribe<sensor_msgs::msg::PointCloud2>("registered", [this](const sensor_msgs::msg::PointCloud2& m) {
+      cmplt_.addScan(fromMsg(m.header().stamp()).seconds(), pointcloud::readCloud(m).positions);
+    });
+    ctx.subscribe<sensor_msgs::msg::PointCloud2>("scan", [this](const sensor_msgs::msg::PointCloud2& m) {
+      const auto time_field = pointcloud::findTimeField(m);
+      pending_scans_.push_back({fromMsg(m.header().stamp()).seconds(), pointcloud::readCloud(m, &time_field)});
+      flush();
+    });
+    ctx.subscribe<sensor_msgs::msg::JointState>("motor_state", [this](const sensor_msgs::msg::JointState& m) {
+      if (m.position().empty()) return;
+      const double t = fromMsg(m.header().stamp()).seconds();
+      const double omega = m.velocity().empty() ? 0.0 : m.velocity()[0];
+      motor_.add({t, m.position()[0], omega});
+      motor_speed_sum_ += omega;
+      ++motor_samples_;
+      if (motor_csv_) motor_csv_->addRow({t, m.position()[0], omega, command_});
+      flush();
+    });
+    ctx.subscribe<msg::MotorCommand>("command", [this](const msg::MotorCommand& m) { command_ = m.velocity(); });
+    ctx.subscribe<msg::UncertaintyProfile>("profile", [this](const msg::UncertaintyProfile& m) {
+      if (!uncertainty_ || m.samples().empty()) return;
+      std::fprintf(uncertainty_.get(), "%.9f,%.17g,%.17g,%.17g", fromMsg(m.header().stamp()).seconds(), m.theta_start(),
+                   m.delta_theta(), m.command());
+      for (double u : m.samples()) std::fprintf(uncertainty_.get(), ",%.9g", u);
+      std::fputc('\n', uncertainty_.get());
+    });
+    auto onMetrics = [this](const msg::Metrics& m) {
+      if (!timings_) return;
+      for (const auto& v : m.values()) {
+        std::fprintf(timings_.get(), "%.9f,%s,%s,%.9g\n", fromMsg(m.header().stamp()).seconds(), m.source().c_str(),
+                     v.name().c_str(), v.value());
+      }
+    };
+    ctx.subscribe<msg::Metrics>("lo_metrics", onMetrics);
+    ctx.subscribe<msg::Metrics>("mpc_timing", onMetrics);
+    ctx.timer(ctx.paramDouble("report_period"), [this] { publishRunning(); });
+  }
+
+  void shutdown() override {
+    flush();
+    const auto trajectory = trajectory_.report();
+    const auto cmplt = cmplt_.report(ctx_.now().seconds());
+    const auto cmplt_gt = cmplt_gt_.report(ctx_.now().seconds());
+    ctx_.log().info("ATE ", trajectory.ate.unaligned.rmse, " m (aligned ", trajectory.ate.aligned.rmse, " m) over ",
+                    trajectory.paired, " poses; CMPLT ", cmplt.mean_voxels_per_window, " voxels per window (",
+                    cmplt_gt.mean_voxels_per_window, " with ground truth)");
+    const std::string& out = ctx_.outputDirectory();
+    if (out.empty()) return;
+    evaluator::JsonObject root;
+    root.set("sim_time", ctx_.now().seconds());
+    root.set("trajectory", evaluator::toJson(trajectory));
+    root.set("cmplt", evaluator::toJson(cmplt));
+    root.set("cmplt_ground_truth", evaluator::toJson(cmplt_gt));
+    evaluator::JsonObject motor;
+    motor.set("mean_speed", motor_samples_ ? motor_speed_sum_ / motor_samples_ : 0.0);
+    root.set("motor", motor);
+    evaluator::writeJson(out + "/metrics.json", root);
+    evaluator::writeTumTrajectory(out + "/estimate.tum", trajectory_.pairedEstimates());
+    evaluator::writeTumTrajectory(out + "/ground_truth.tum", trajectory_.pairedGroundTruth());
+    evaluator::writeAteSeriesCsv(out + "/ate.csv", trajectory.ate.series);
+    evaluator::writeCompletenessWindowsCsv(out + "/cmplt_windows.csv", cmplt.windows);
+    evaluator::writeCompletenessWindowsCsv(out + "/cmplt_ground_truth_windows.csv", cmplt_gt.windows);
+    cmplt_gt_.saveOctree(out + "/scanned_voxels.bt");
+    if (motor_csv_) motor_csv_->close();
+  }
+
+ private:
+  struct PendingScan {
+    double stamp;
+    pointcloud::ScanPoints points;
+  };
+  using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+  static File open(const std::string& path, const char* header) {
+    File f(std::fopen(path.c_str(), "w"), &std::fclose);
+    if (!f) throw std::runtime_error("cannot write " + path);
+    std::fputs(header, f.get());
+    return f;
+  }
+
+  // Pairs estimates and places raw scans once ground truth (and encoder states) cover them.
+  void flush() {
+    if (ground_truth_.empty()) return;
+    const double covered = ground_truth_.endTime();
+    while (!pending_estimates_.empty() && pending_estimates_.front().time <= covered) {
+      trajectory_.addEstimate(pending_estimates_.front().time, pending_estimates_.front().pose);
+      pending_estimates_.pop_front();
+    }
+    while (!pending_scans_.empty()) {
+      const PendingScan& scan = pending_scans_.front();
+      double end = scan.stamp;
+      for (float t : scan.points.time_offsets) end = std::max(end, scan.stamp + t);
+      if (end > covered || motor_.empty() || motor_.newest().time < end) return;
+      std::vector<Eigen::Vector3f> world;
+      world.reserve(scan.points.positions.size());
+      for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
+        const double t = scan.stamp + scan.points.time_offsets[i];
+        const auto theta = motor_.thetaAt(t);
+        const auto T_WB = ground_truth_(t);
+        if (!theta || !T_WB) continue;  // before the first state: nothing to place it with
+        world.push_back(
+            frames::lidarToWorld(scan.points.positions[i].cast<double>(), *theta, calibration_, *T_WB).cast<float>());
+      }
+      cmplt_gt_.addScan(scan.stamp, world);
+      pending_scans_.pop_front();
+    }
+  }
+
+  void publishRunning() {
+    const auto trajectory = trajectory_.report();
+    msg::Metrics m;
+    m.header().stamp(toMsg(ctx_.now()));
+    m.source(ctx_.name());
+    auto add = [&](const char* name, double value, const char* unit) {
+      msg::MetricValue v;
+      v.name(name);
+      v.value(value);
+      v.unit(unit);
+      m.values().push_back(v);
+    };
+    add("ate", trajectory.ate.unaligned.rmse, "m");
+    add("ate_aligned", trajectory.ate.aligned.rmse, "m");
+    add("cmplt", cmplt_.report().mean_voxels_per_window, "");
+    add("cmplt_ground_truth", cmplt_gt_.report().mean_voxels_per_window, "");
+    metrics_pub_.publish(m);
+  }
+
+  Context& ctx_;
+  frames::MotorLidarCalibration calibration_;
+  evaluator::PoseInterpolator ground_truth_;
+  evaluator::TrajectoryEvaluator trajectory_;
+  evaluator::Completeness cmplt_;
+  evaluator::Completeness cmplt_gt_;
+  frames::MotorAngleTrack motor_{5.0};
+  Publisher<msg::Metrics> metrics_pub_;
+  std::deque<evaluator::TimedPose> pending_estimates_;
+  std::deque<PendingScan> pending_scans_;
+  std::unique_ptr<evaluator::CsvWriter> motor_csv_;
+  File timings_{nullptr, &std::fclose};
+  File uncertainty_{nullptr, &std::fclose};
+  double command_ = 0.0;
+  double motor_speed_sum_ = 0.0;
+  long motor_samples_ = 0;
+};
+
+}  // namespace uampc
+
+UAMPC_REGISTER_COMPONENT(uampc::EvaluatorComponent, "evaluator")

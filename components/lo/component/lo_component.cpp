@@ -1,0 +1,263 @@
+// lo: LiDAR odometry for a motorized LiDAR (DESIGN.md sections 1 and 2). Takes scans in the LiDAR
+// frame with per-point times and the encoder states, runs uampc_lo_core, and publishes the base
+// odometry with covariance, the registered scan and the local map (world frame), and its figures
+// (degeneracy, correspondences, processing time).
+#include <chrono>
+#include <deque>
+
+#include "uampc/frames/motor_angle_track.hpp"
+#include "uampc/lo/motorized_lidar_odometry.hpp"
+#include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/runtime/component.hpp"
+
+namespace uampc {
+
+class LoComponent : public Component {
+ public:
+  static void describe(ComponentSpec& spec) {
+    spec.summary = "Iterated-EKF point-to-plane LiDAR odometry for a LiDAR spun by a motor";
+    spec.input<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor,
+                                              "scans, LiDAR frame, per-point time (t, time, timestamp or offset_time)");
+    spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
+    spec.input<geometry_msgs::msg::PoseStamped>("initial_pose", "/ground_truth/pose", QosPreset::kControl,
+                                                "start pose (first sample used when init_from_pose is true)");
+    spec.output<nav_msgs::msg::Odometry>("odometry", "/lo/odometry", QosPreset::kControl,
+                                         "base pose and twist with covariance at the scan end");
+    spec.output<sensor_msgs::msg::PointCloud2>("registered", "/lo/registered", QosPreset::kSensor,
+                                               "the scan, deskewed, in the world frame");
+    spec.output<sensor_msgs::msg::PointCloud2>("local_map", "/lo/local_map", QosPreset::kSensor,
+                                               "local map points observed in the last local_map_window s");
+    spec.output<msg::Metrics>("metrics", "/lo/metrics", QosPreset::kSensor,
+                              "min information eigenvalue, correspondences, iterations, processing time");
+    spec.param("tilt_deg", 30.0, "LiDAR tilt about its x axis on the motor, degrees").between(-180.0, 180.0);
+    spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame, m (r_ML)");
+    spec.param("init_from_pose", true, "start at the first pose on initial_pose (else at the identity)");
+    spec.param("scan_voxel_size", 0.3, "voxel downsampling of the scan, m").between(0.01, 10.0);
+    spec.param("map_voxel_size", 0.3, "voxel size of the local map, m").between(0.01, 10.0);
+    spec.param("map_radius", 60.0, "local-map points farther than this from the base are dropped, m")
+        .between(1.0, 10000.0);
+    spec.param("measurement_variance", 0.001, "point-to-plane measurement variance, m^2").between(1e-9, 100.0);
+    spec.param("process_noise", 0.01, "constant-velocity process noise").between(0.0, 100.0);
+    spec.param("max_iterations", 10, "iterated EKF: at most this many re-linearisations").between(1, 100);
+    spec.param("min_range", 0.5, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
+    spec.param("max_range", 100.0, "points farther than this are dropped, m").between(0.1, 10000.0);
+    spec.param("local_map_window", 5.0, "the published local map holds points seen in the last N s")
+        .between(0.1, 3600.0);
+    spec.param("max_motor_wait", 0.5, "a scan waits at most this long for encoder states covering it, s")
+        .between(0.0, 10.0);
+  }
+
+  explicit LoComponent(Context& ctx)
+      : ctx_(ctx),
+        init_from_pose_(ctx.paramBool("init_from_pose")),
+        window_(ctx.paramDouble("local_map_window")),
+        max_motor_wait_(ctx.paramDouble("max_motor_wait")),
+        odometry_pub_(ctx.publisher<nav_msgs::msg::Odometry>("odometry")),
+        registered_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("registered")),
+        local_map_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("local_map")),
+        metrics_pub_(ctx.publisher<msg::Metrics>("metrics")) {
+    config_ = configFrom(ctx);
+    ctx.subscribe<sensor_msgs::msg::PointCloud2>("scan", [this](const sensor_msgs::msg::PointCloud2& m) {
+      onScan(m);
+      processReady();
+    });
+    ctx.subscribe<sensor_msgs::msg::JointState>("motor_state", [this](const sensor_msgs::msg::JointState& s) {
+      if (s.position().empty() || !std::isfinite(s.position()[0])) {
+        throw std::runtime_error("motor state without a finite position on " + ctx_.topicOf("motor_state"));
+      }
+      motor_.add({fromMsg(s.header().stamp()).seconds(), s.position()[0], s.velocity().empty() ? 0.0 : s.velocity()[0]});
+      processReady();
+    });
+    ctx.subscribe<geometry_msgs::msg::PoseStamped>("initial_pose", [this](const geometry_msgs::msg::PoseStamped& p) {
+      if (initial_poses_.size() > 4000) initial_poses_.pop_front();
+      if (!odometry_) initial_poses_.push_back(p);
+    });
+  }
+
+ private:
+  static lo::OdometryConfig configFrom(const Context& ctx) {
+    lo::OdometryConfig c;
+    const auto offset = ctx.paramDoubleList("lidar_offset");
+    if (offset.size() != 3) throw std::runtime_error("lidar_offset must have three values (x, y, z)");
+    c.calibration = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
+                                                                Eigen::Vector3d(offset[0], offset[1], offset[2]));
+    c.scan_voxel_size = ctx.paramDouble("scan_voxel_size");
+    c.map_voxel_size = ctx.paramDouble("map_voxel_size");
+    c.map_radius = ctx.paramDouble("map_radius");
+    c.measurement_variance = ctx.paramDouble("measurement_variance");
+    c.process_noise = ctx.paramDouble("process_noise");
+    c.max_iterations = static_cast<int>(ctx.paramInt("max_iterations"));
+    c.min_range = ctx.paramDouble("min_range");
+    c.max_range = ctx.paramDouble("max_range");
+    return c;
+  }
+
+  void onScan(const sensor_msgs::msg::PointCloud2& m) {
+    // The time field is looked up once per layout: a cloud we cannot read is reported once.
+    const std::string layout = layoutOf(m);
+    if (layout != layout_) {
+      layout_ = layout;
+      try {
+        time_field_ = pointcloud::findTimeField(m);
+        layout_error_.clear();
+      } catch (const std::exception& e) {
+        layout_error_ = e.what();
+        ctx_.log().error("cannot use scans on ", ctx_.topicOf("scan"), ": ", layout_error_,
+                         "; such scans are skipped (said once per layout)");
+      }
+    }
+    if (!layout_error_.empty()) return;
+    pointcloud::ScanPoints points = pointcloud::readCloud(m, &time_field_);
+    lo::Scan scan;
+    scan.stamp = fromMsg(m.header().stamp()).seconds();
+    scan.points_L = std::move(points.positions);
+    scan.time_offsets = std::move(points.time_offsets);
+    pending_.push_back(std::move(scan));
+  }
+
+  static std::string layoutOf(const sensor_msgs::msg::PointCloud2& m) {
+    std::string s = std::to_string(m.point_step());
+    for (const auto& f : m.fields()) s += "|" + f.name() + ":" + std::to_string(f.offset()) + ":" + std::to_string(f.datatype());
+    return s;
+  }
+
+  // Registers the scans whose points the encoder states cover (or that waited long enough).
+  void processReady() {
+    while (!pending_.empty()) {
+      const lo::Scan& scan = pending_.front();
+      double end = scan.stamp;
+      for (float t : scan.time_offsets) end = std::max(end, scan.stamp + t);
+      const bool covered = motor_.covers(scan.stamp, end);
+      const bool waited = !motor_.empty() && motor_.newest().time > end + max_motor_wait_;
+      if (!covered && !waited) return;
+      if (init_from_pose_ && !odometry_ && !initialise(end)) return;
+      if (!odometry_) odometry_ = std::make_unique<lo::MotorizedLidarOdometry>(config_);
+      process(scan);
+      pending_.pop_front();
+    }
+  }
+
+  // The start pose: the first initial_pose sample at or after the first scan's end, the time the
+  // LO's pose refers to (ground truth in simulation), so that unaligned ATE compares like with like.
+  bool initialise(double scan_end) {
+    for (const auto& p : initial_poses_) {
+      if (fromMsg(p.header().stamp()).seconds() + 1e-9 < scan_end) continue;
+      const auto& q = p.pose().orientation();
+      const auto& x = p.pose().position();
+      config_.initial_pose.setIdentity();
+      config_.initial_pose.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
+      config_.initial_pose.translation() = Eigen::Vector3d(x.x(), x.y(), x.z());
+      initial_poses_.clear();
+      return true;
+    }
+    if (!warned_no_pose_ && ctx_.now().seconds() > 2.0) {
+      ctx_.log().warn("waiting for a pose on ", ctx_.topicOf("initial_pose"),
+                      " to start from (init_from_pose: true); scans are queued");
+      warned_no_pose_ = true;
+    }
+    return false;
+  }
+
+  void process(const lo::Scan& scan) {
+    const auto start = std::chrono::steady_clock::now();
+    const lo::OdometryResult r = odometry_->registerScan(scan, motor_);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (r.status == lo::OdometryStatus::kRejected) {
+      ctx_.log().warn("scan at ", scan.stamp, " s rejected: ", r.warning);
+      return;
+    }
+    if (!r.warning.empty() && r.warning != last_warning_) ctx_.log().warn(r.warning);
+    last_warning_ = r.warning;
+    if (r.dropped_non_finite && !warned_nan_) {
+      ctx_.log().warn("scans on ", ctx_.topicOf("scan"), " contain non-finite points; they are dropped and counted");
+      warned_nan_ = true;
+    }
+    const Time stamp = Time::fromSeconds(r.time);
+    publishOdometry(r, stamp);
+    auto registered = pointcloud::makeXyzCloud(r.registered_points_W, "map");
+    registered.header().stamp(toMsg(stamp));
+    registered_pub_.publish(registered);
+    std::vector<Eigen::Vector3f> local;
+    for (const auto& p : odometry_->localMapPoints(r.time - window_)) local.push_back(p.p_W.cast<float>());
+    auto local_map = pointcloud::makeXyzCloud(local, "map");
+    local_map.header().stamp(toMsg(stamp));
+    local_map_pub_.publish(local_map);
+    publishMetrics(r, stamp, seconds);
+  }
+
+  void publishOdometry(const lo::OdometryResult& r, Time stamp) {
+    nav_msgs::msg::Odometry o;
+    o.header().stamp(toMsg(stamp));
+    o.header().frame_id("map");
+    o.child_frame_id("base");
+    const Eigen::Quaterniond q(r.T_WB.linear());
+    o.pose().pose().position().x(r.T_WB.translation().x());
+    o.pose().pose().position().y(r.T_WB.translation().y());
+    o.pose().pose().position().z(r.T_WB.translation().z());
+    o.pose().pose().orientation().x(q.x());
+    o.pose().pose().orientation().y(q.y());
+    o.pose().pose().orientation().z(q.z());
+    o.pose().pose().orientation().w(q.w());
+    // ROS orders pose covariance (x, y, z, rot x, rot y, rot z); the filter (rotation, position, ...).
+    const int ros_to_filter[6] = {3, 4, 5, 0, 1, 2};
+    for (int i = 0; i < 6; ++i) {
+      for (int j = 0; j < 6; ++j) {
+        o.pose().covariance()[6 * i + j] = r.covariance(ros_to_filter[i], ros_to_filter[j]);
+        // Twist: (linear, angular) = filter blocks 6..8 (world frame, rotated below) and 9..11.
+        o.twist().covariance()[6 * i + j] = r.covariance(6 + i, 6 + j);
+      }
+    }
+    // ROS expresses the twist in the child frame: rotate the world-frame velocity into the base.
+    const Eigen::Vector3d v_B = r.T_WB.linear().transpose() * r.linear_velocity_W;
+    o.twist().twist().linear().x(v_B.x());
+    o.twist().twist().linear().y(v_B.y());
+    o.twist().twist().linear().z(v_B.z());
+    o.twist().twist().angular().x(r.angular_velocity_B.x());
+    o.twist().twist().angular().y(r.angular_velocity_B.y());
+    o.twist().twist().angular().z(r.angular_velocity_B.z());
+    odometry_pub_.publish(o);
+  }
+
+  void publishMetrics(const lo::OdometryResult& r, Time stamp, double seconds) {
+    msg::Metrics m;
+    m.header().stamp(toMsg(stamp));
+    m.source(ctx_.name());
+    auto add = [&](const char* name, double value, const char* unit) {
+      msg::MetricValue v;
+      v.name(name);
+      v.value(value);
+      v.unit(unit);
+      m.values().push_back(v);
+    };
+    add("min_information_eigenvalue", r.min_information_eigenvalue, "");
+    add("correspondences", static_cast<double>(r.correspondences), "");
+    add("iterations", r.iterations, "");
+    add("points_used", static_cast<double>(r.points_used), "");
+    add("processing_time", seconds, "s");
+    metrics_pub_.publish(m);
+  }
+
+  Context& ctx_;
+  lo::OdometryConfig config_;
+  bool init_from_pose_;
+  double window_;
+  double max_motor_wait_;
+  Publisher<nav_msgs::msg::Odometry> odometry_pub_;
+  Publisher<sensor_msgs::msg::PointCloud2> registered_pub_;
+  Publisher<sensor_msgs::msg::PointCloud2> local_map_pub_;
+  Publisher<msg::Metrics> metrics_pub_;
+  std::unique_ptr<lo::MotorizedLidarOdometry> odometry_;
+  frames::MotorAngleTrack motor_{2.0};
+  std::deque<lo::Scan> pending_;
+  std::deque<geometry_msgs::msg::PoseStamped> initial_poses_;
+  std::string layout_;
+  std::string layout_error_;
+  pointcloud::TimeField time_field_;
+  std::string last_warning_;
+  bool warned_no_pose_ = false;
+  bool warned_nan_ = false;
+};
+
+}  // namespace uampc
+
+UAMPC_REGISTER_COMPONENT(uampc::LoComponent, "lo")

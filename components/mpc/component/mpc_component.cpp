@@ -1,0 +1,231 @@
+// mpc: the motor controller (DESIGN.md section 1; the paper's Section II). Mode ua_mpc runs
+// UA-MPC on the LO's local map and pose; modes constant and zero are the paper's baselines.
+// Every control period it publishes the motor command, the uncertainty profile (U samples, the
+// planned horizon, predicted U), the panoramic depth map as a 32FC1 image, and its timings.
+#include <cstring>
+
+#include "uampc/mpc/ua_mpc_controller.hpp"
+#include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/raycaster/lidar_model.hpp"
+#include "uampc/runtime/component.hpp"
+
+namespace uampc {
+
+class MpcComponent : public Component {
+ public:
+  static void describe(ComponentSpec& spec) {
+    spec.summary = "UA-MPC motor controller, with the constant- and zero-speed baselines as modes";
+    spec.input<nav_msgs::msg::Odometry>("odometry", "/lo/odometry", QosPreset::kControl, "base pose from the LO");
+    spec.input<sensor_msgs::msg::PointCloud2>("local_map", "/lo/local_map", QosPreset::kSensor,
+                                              "the LO's local map, world frame");
+    spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
+    spec.output<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "speed command, rad/s");
+    spec.output<msg::UncertaintyProfile>("profile", "/mpc/uncertainty", QosPreset::kSensor,
+                                         "U samples over one turn, planned horizon, predicted U");
+    spec.output<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,
+                                         "panoramic depth map (32FC1, m; 0 = empty)");
+    spec.output<msg::Metrics>("timing", "/mpc/timing", QosPreset::kSensor, "computation time per stage, s");
+    spec.param("mode", "ua_mpc", "ua_mpc, constant or zero").oneOf({"ua_mpc", "constant", "zero"});
+    spec.param("constant_speed", 3.6, "mode constant: the speed, rad/s (the paper's baseline: 3.6)")
+        .between(-100.0, 100.0);
+    spec.param("rate", 10.0, "control rate, Hz").between(0.1, 1000.0);
+    spec.param("alpha", 1000.0, "weight of the uncertainty term (used as is: cost = alpha * U'^2)").atLeast(0.0);
+    spec.param("beta", 1.0, "weight of the preferred-speed term (cost = beta * (omega - omega_pre)^2)").atLeast(0.0);
+    spec.param("omega_pre", 3.6, "preferred speed and initial guess, rad/s").between(-100.0, 100.0);
+    spec.param("omega_min", 0.0, "lower speed bound, rad/s").between(-100.0, 100.0);
+    spec.param("omega_max", 7.2, "upper speed bound, rad/s").between(-100.0, 100.0);
+    spec.param("horizon", 10, "M: the MPC optimises M + 1 future speeds").between(1, 200);
+    spec.param("horizon_dt", 0.1, "time between horizon steps, s").between(0.001, 10.0);
+    spec.param("sample_step_deg", 5.0, "delta_theta between U samples, degrees").between(0.5, 90.0);
+    spec.param("ray_step_deg", 5.0, "grid of the field-of-view rays for U, degrees").between(0.5, 30.0);
+    spec.param("panorama_width", 360, "panorama columns over 2 pi").between(16, 4096);
+    spec.param("panorama_height", 180, "panorama rows over pi").between(8, 2048);
+    spec.param("lidar_model", "livox_mid360", "field of view of U: livox_mid360, velodyne_vlp16 or livox_avia")
+        .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia"});
+    spec.param("tilt_deg", 30.0, "LiDAR tilt about its x axis on the motor, degrees").between(-180.0, 180.0);
+    spec.param("stale_after", 1.0, "a local map older than this is stale: command omega_pre, s").between(0.01, 3600.0);
+    spec.param("publish_panorama", true, "publish the panoramic depth map image");
+  }
+
+  explicit MpcComponent(Context& ctx)
+      : ctx_(ctx),
+        controller_(configFrom(ctx)),
+        stale_after_(Time::fromSeconds(ctx.paramDouble("stale_after"))),
+        omega_pre_(ctx.paramDouble("omega_pre")),
+        publish_panorama_(ctx.paramBool("publish_panorama")),
+        command_pub_(ctx.publisher<msg::MotorCommand>("command")),
+        profile_pub_(ctx.publisher<msg::UncertaintyProfile>("profile")),
+        panorama_pub_(ctx.publisher<sensor_msgs::msg::Image>("panorama")),
+        timing_pub_(ctx.publisher<msg::Metrics>("timing")) {
+    ctx.subscribe<nav_msgs::msg::Odometry>("odometry", [this](const nav_msgs::msg::Odometry& m) { onOdometry(m); });
+    ctx.subscribe<sensor_msgs::msg::PointCloud2>("local_map",
+                                                 [this](const sensor_msgs::msg::PointCloud2& m) { onLocalMap(m); });
+    ctx.subscribe<sensor_msgs::msg::JointState>("motor_state", [this](const sensor_msgs::msg::JointState& m) {
+      if (!m.position().empty() && std::isfinite(m.position()[0])) theta_ = m.position()[0];
+    });
+    ctx.timer(1.0 / ctx.paramDouble("rate"), [this] { control(); });
+  }
+
+ private:
+  static mpc::UaMpcController::Config configFrom(const Context& ctx) {
+    mpc::UaMpcController::Config c;
+    c.mode = mpc::parseMode(ctx.paramString("mode"));
+    c.constant_speed = ctx.paramDouble("constant_speed");
+    c.sample_step = ctx.paramDouble("sample_step_deg") * M_PI / 180.0;
+    c.mpc.alpha = ctx.paramDouble("alpha");
+    c.mpc.beta = ctx.paramDouble("beta");
+    c.mpc.omega_pre = ctx.paramDouble("omega_pre");
+    c.mpc.omega_min = ctx.paramDouble("omega_min");
+    c.mpc.omega_max = ctx.paramDouble("omega_max");
+    c.mpc.horizon = static_cast<int>(ctx.paramInt("horizon"));
+    c.mpc.dt = ctx.paramDouble("horizon_dt");
+    if (c.mpc.omega_min > c.mpc.omega_max) throw std::runtime_error("omega_min is above omega_max");
+    c.depth_map.width = static_cast<int>(ctx.paramInt("panorama_width"));
+    c.depth_map.height = static_cast<int>(ctx.paramInt("panorama_height"));
+    c.uncertainty.azimuth_step = c.uncertainty.elevation_step = ctx.paramDouble("ray_step_deg") * M_PI / 180.0;
+    c.uncertainty.calibration = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0);
+    // The field of view of U comes from the same LiDAR model description as the simulator's.
+    const raycaster::LidarModel model = raycaster::lidarModelByName(ctx.paramString("lidar_model"));
+    constexpr double kDeg = M_PI / 180.0;
+    if (model.kind == raycaster::ScanPatternKind::kRosette) {
+      c.uncertainty.field_of_view = {-0.5 * model.horizontal_fov_deg * kDeg, 0.5 * model.horizontal_fov_deg * kDeg,
+                                     -0.5 * model.vertical_fov_deg * kDeg, 0.5 * model.vertical_fov_deg * kDeg};
+    } else {
+      double lo = model.min_elevation_deg, hi = model.max_elevation_deg;
+      if (model.kind == raycaster::ScanPatternKind::kSpinning && !model.elevations_deg.empty()) {
+        lo = *std::min_element(model.elevations_deg.begin(), model.elevations_deg.end());
+        hi = *std::max_element(model.elevations_deg.begin(), model.elevations_deg.end());
+      }
+      c.uncertainty.field_of_view = {-M_PI, M_PI, lo * kDeg, hi * kDeg};
+    }
+    c.depth_map.max_range = model.max_range;
+    return c;
+  }
+
+  void onOdometry(const nav_msgs::msg::Odometry& m) {
+    const auto& p = m.pose().pose().position();
+    const auto& q = m.pose().pose().orientation();
+    const Eigen::Quaterniond rotation(q.w(), q.x(), q.y(), q.z());
+    if (!std::isfinite(p.x() + p.y() + p.z()) || !(rotation.norm() > 1e-6)) {
+      ctx_.log().warn("ignoring an odometry message with a non-finite pose on ", ctx_.topicOf("odometry"));
+      return;
+    }
+    T_WB_.setIdentity();
+    T_WB_.linear() = rotation.normalized().toRotationMatrix();
+    T_WB_.translation() = Eigen::Vector3d(p.x(), p.y(), p.z());
+    have_pose_ = true;
+  }
+
+  void onLocalMap(const sensor_msgs::msg::PointCloud2& m) {
+    const pointcloud::ScanPoints points = pointcloud::readCloud(m);
+    local_map_.clear();
+    local_map_.reserve(points.positions.size());
+    std::size_t bad = 0;
+    for (const auto& p : points.positions) {
+      if (p.allFinite()) local_map_.push_back(p.cast<double>());
+      else ++bad;
+    }
+    if (bad) ctx_.log().warn("dropped ", bad, " non-finite points of the local map on ", ctx_.topicOf("local_map"));
+    local_map_time_ = ctx_.now();
+  }
+
+  void control() {
+    const Time now = ctx_.now();
+    const bool uses_map = controller_.config().mode == mpc::Mode::kUaMpc;
+    const bool stale = !have_pose_ || local_map_.empty() || now - local_map_time_ > stale_after_;
+    mpc::UaMpcController::Decision decision;
+    if (uses_map && stale) {
+      // Nothing to plan on: the preferred speed keeps the LiDAR sweeping (and the LO fed).
+      if (!warned_stale_ && now.seconds() > 1.0) {
+        ctx_.log().warn("no recent local map or pose (", ctx_.topicOf("local_map"), ", ", ctx_.topicOf("odometry"),
+                        "); commanding omega_pre ", omega_pre_, " rad/s");
+        warned_stale_ = true;
+      }
+      decision.omega = omega_pre_;
+      decision.local_map_empty = true;
+    } else {
+      if (warned_stale_ && uses_map) {
+        ctx_.log().info("local map available again; planning");
+        warned_stale_ = false;
+      }
+      decision = controller_.step(T_WB_, local_map_, theta_);
+    }
+    msg::MotorCommand command;
+    command.header().stamp(toMsg(now));
+    command.header().frame_id("base");
+    command.velocity(decision.omega);
+    command_pub_.publish(command);
+    publishProfile(decision, now);
+    if (uses_map && !stale && publish_panorama_) publishPanorama(now);
+    publishTimings(decision, now);
+  }
+
+  void publishProfile(const mpc::UaMpcController::Decision& d, Time now) {
+    msg::UncertaintyProfile profile;
+    profile.header().stamp(toMsg(now));
+    profile.header().frame_id("base");
+    profile.theta_start(d.sample_start);
+    profile.delta_theta(d.sample_step);
+    profile.samples(d.samples);
+    profile.dt(controller_.config().mpc.dt);
+    profile.horizon_omega(d.plan.speeds);
+    profile.horizon_theta(d.plan.angles);
+    profile.horizon_uncertainty(d.plan.predicted_uncertainty);
+    profile.command(d.omega);
+    profile_pub_.publish(profile);
+  }
+
+  void publishPanorama(Time now) {
+    const auto& map = controller_.depthMap();
+    const std::vector<float>& depth = map.depthImage();
+    sensor_msgs::msg::Image image;
+    image.header().stamp(toMsg(now));
+    image.header().frame_id("base");
+    image.width(static_cast<std::uint32_t>(controller_.config().depth_map.width));
+    image.height(static_cast<std::uint32_t>(controller_.config().depth_map.height));
+    image.encoding("32FC1");
+    image.is_bigendian(0);
+    image.step(image.width() * 4);
+    image.data().resize(depth.size() * 4);
+    std::memcpy(image.data().data(), depth.data(), depth.size() * 4);
+    panorama_pub_.publish(image);
+  }
+
+  void publishTimings(const mpc::UaMpcController::Decision& d, Time now) {
+    msg::Metrics metrics;
+    metrics.header().stamp(toMsg(now));
+    metrics.source(ctx_.name());
+    auto add = [&](const char* name, double ms) {
+      msg::MetricValue v;
+      v.name(name);
+      v.value(ms * 1e-3);
+      v.unit("s");
+      metrics.values().push_back(v);
+    };
+    add("depth_map", d.timings.depth_map_ms);
+    add("uncertainty", d.timings.uncertainty_ms);
+    add("solve", d.timings.solve_ms);
+    add("total", d.timings.total_ms);
+    timing_pub_.publish(metrics);
+  }
+
+  Context& ctx_;
+  mpc::UaMpcController controller_;
+  Time stale_after_;
+  double omega_pre_;
+  bool publish_panorama_;
+  Publisher<msg::MotorCommand> command_pub_;
+  Publisher<msg::UncertaintyProfile> profile_pub_;
+  Publisher<sensor_msgs::msg::Image> panorama_pub_;
+  Publisher<msg::Metrics> timing_pub_;
+  Eigen::Isometry3d T_WB_ = Eigen::Isometry3d::Identity();
+  bool have_pose_ = false;
+  std::vector<Eigen::Vector3d> local_map_;
+  Time local_map_time_;
+  double theta_ = 0.0;
+  bool warned_stale_ = false;
+};
+
+}  // namespace uampc
+
+UAMPC_REGISTER_COMPONENT(uampc::MpcComponent, "mpc")
