@@ -3,7 +3,9 @@
 // odometry with covariance, the registered scan and the local map (world frame), and its figures
 // (degeneracy, correspondences, processing time).
 #include <chrono>
+#include <cctype>
 #include <deque>
+#include <map>
 
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
@@ -166,8 +168,7 @@ class LoComponent : public Component {
       ctx_.log().warn("scan at ", scan.stamp, " s rejected: ", r.warning);
       return;
     }
-    if (!r.warning.empty() && r.warning != last_warning_) ctx_.log().warn(r.warning);
-    last_warning_ = r.warning;
+    if (!r.warning.empty()) warnRepeated(r.warning);
     if (r.dropped_non_finite && !warned_nan_) {
       ctx_.log().warn("scans on ", ctx_.topicOf("scan"), " contain non-finite points; they are dropped and counted");
       warned_nan_ = true;
@@ -183,6 +184,22 @@ class LoComponent : public Component {
     local_map.header().stamp(toMsg(stamp));
     local_map_pub_.publish(local_map);
     publishMetrics(r, stamp, seconds);
+  }
+
+  // A warning that repeats every scan would drown the log: each kind (its text without numbers)
+  // is said the 1st, 10th, 100th ... time.
+  void warnRepeated(const std::string& warning) {
+    std::string kind;
+    for (char c : warning) {
+      if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.' && c != '-') kind += c;
+    }
+    const long n = ++warning_counts_[kind];
+    for (long k = 1; k <= n; k *= 10) {
+      if (k == n) {
+        ctx_.log().warn(warning, n > 1 ? " (" + std::to_string(n) + " times so far)" : std::string());
+        return;
+      }
+    }
   }
 
   void publishOdometry(const lo::OdometryResult& r, Time stamp) {
@@ -253,7 +270,7 @@ class LoComponent : public Component {
   std::string layout_;
   std::string layout_error_;
   pointcloud::TimeField time_field_;
-  std::string last_warning_;
+  std::map<std::string, long> warning_counts_;
   bool warned_no_pose_ = false;
   bool warned_nan_ = false;
 };
