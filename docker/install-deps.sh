@@ -15,6 +15,8 @@ packages=(
   libyaml-cpp-dev
   # tests and benchmarks; Cyclone DDS proves our wire format to another vendor
   libgtest-dev libgmock-dev libbenchmark-dev cyclonedds-dev cyclonedds-tools
+  # the experiment report is checked in headless Chromium; xmllint checks its SVG figures
+  chromium libxml2-utils
 )
 
 missing=()

@@ -3,6 +3,7 @@
 //   uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]
 //   uampc components [--json]
 //   uampc validate SCENE.yaml [--set NAME=VALUE ...]
+//   uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--set NAME=VALUE ...]
 //   uampc run-process SCENE.yaml --process NAME ...;  uampc clock SCENE.yaml ...
 #include <cstring>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "components_command.hpp"
+#include "experiment_command.hpp"
 #include "uampc/runtime/launcher.hpp"
 
 namespace {
@@ -20,6 +22,13 @@ const char* const kUsage = R"(usage:
       (seed, domain_id, ...). --out DIR collects the run's outputs. Ctrl-C stops everything.
   uampc validate SCENE.yaml [--set NAME=VALUE ...]
       Only validate the scene; print every problem with file:line:column.
+  uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]
+                   [--set NAME=VALUE ...] [--dry-run]
+      Run every scene x controller x seed of an experiment (at most N at once, default: one per
+      CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,
+      DIR/results.md (the paper's table) and DIR/report/index.html. Finished runs are kept:
+      running it again only runs what is missing or failed. ${data_dir} in the experiment's
+      overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.
   uampc components [--json]
       List installed component types with their ports and parameters.
   uampc run-process SCENE.yaml --process NAME [--set NAME=VALUE ...] [--out DIR]
@@ -114,6 +123,7 @@ int main(int argc, char** argv) {
     }
     return uampc::runProcessCommand(options, process);
   }
+  if (command == "experiment") return uampc::app::experimentCommand(args);
   if (command == "components") {
     if (args.size() > 1 || (args.size() == 1 && args[0] != "--json")) return usageError("components takes only --json");
     return uampc::app::componentsCommand(args.size() == 1);

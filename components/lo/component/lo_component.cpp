@@ -33,7 +33,7 @@ class LoComponent : public Component {
                               "min information eigenvalue, correspondences, iterations, processing time");
     spec.param("tilt_deg", 30.0, "LiDAR tilt about its x axis on the motor, degrees").between(-180.0, 180.0);
     spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame, m (r_ML)");
-    spec.param("init_from_pose", true, "start at the first pose on initial_pose (else at the identity)");
+    spec.param("init_from_pose", true, "start at the pose (and velocity) on initial_pose at the first scan; false: identity, at rest");
     spec.param("scan_voxel_size", 0.3, "voxel downsampling of the scan, m").between(0.01, 10.0);
     spec.param("map_voxel_size", 0.3, "voxel size of the local map, m").between(0.01, 10.0);
     spec.param("map_radius", 60.0, "local-map points farther than this from the base are dropped, m")
@@ -139,16 +139,23 @@ class LoComponent : public Component {
     }
   }
 
-  // The start pose: the first initial_pose sample at or after the first scan's end, the time the
-  // LO's pose refers to (ground truth in simulation), so that unaligned ATE compares like with like.
+  // The start pose: the initial_pose sample at the first scan's end, the time the LO's pose refers
+  // to (ground truth in simulation), so that unaligned ATE compares like with like; and the
+  // velocity there, differentiated from the sample before it, because the first scan is deskewed
+  // with it (a real robot without such a source starts at rest: init_from_pose false).
   bool initialise(double scan_end) {
-    for (const auto& p : initial_poses_) {
-      if (fromMsg(p.header().stamp()).seconds() + 1e-9 < scan_end) continue;
-      const auto& q = p.pose().orientation();
-      const auto& x = p.pose().position();
-      config_.initial_pose.setIdentity();
-      config_.initial_pose.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-      config_.initial_pose.translation() = Eigen::Vector3d(x.x(), x.y(), x.z());
+    for (std::size_t i = 1; i < initial_poses_.size(); ++i) {
+      const double t = fromMsg(initial_poses_[i].header().stamp()).seconds();
+      if (t + 1e-9 < scan_end) continue;
+      const double t0 = fromMsg(initial_poses_[i - 1].header().stamp()).seconds();
+      const Eigen::Isometry3d T1 = toIsometry(initial_poses_[i].pose());
+      const Eigen::Isometry3d T0 = toIsometry(initial_poses_[i - 1].pose());
+      config_.initial_pose = T1;
+      if (t > t0) {
+        config_.initial_velocity_W = (T1.translation() - T0.translation()) / (t - t0);
+        const Eigen::AngleAxisd turn(T0.linear().transpose() * T1.linear());
+        config_.initial_angular_velocity_B = turn.axis() * turn.angle() / (t - t0);
+      }
       initial_poses_.clear();
       return true;
     }
@@ -158,6 +165,14 @@ class LoComponent : public Component {
       warned_no_pose_ = true;
     }
     return false;
+  }
+
+  static Eigen::Isometry3d toIsometry(const geometry_msgs::msg::Pose& p) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    const auto& q = p.orientation();
+    T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
+    T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
+    return T;
   }
 
   void process(const lo::Scan& scan) {

@@ -33,6 +33,8 @@ class MapProvider : public Component {
     spec.param("path_speed", 1.5, "speed of generated paths, m/s").between(0.01, 50.0);
     spec.param("path_laps", 1, "laps of closed generated paths (campus)").between(1, 1000);
     spec.param("base_height", 1.0, "height of generated paths above the ground, m").between(0.0, 100.0);
+    spec.param("campus_poor_rows", 1, "world: campus: rows of blocks with poor geometry (0: all rich)")
+        .between(0, 3);
     spec.param("pose_rate", 200.0, "ground-truth pose rate, Hz").between(1.0, 10000.0);
     spec.param("map_point_spacing", 0.5, "voxel size of the published map sample, m").between(0.05, 10.0);
     spec.param("chunk_triangles", 10000, "triangles per world chunk (keeps samples under ~0.5 MB)")
@@ -68,6 +70,7 @@ class MapProvider : public Component {
     s.path_speed = ctx.paramDouble("path_speed");
     s.path_laps = static_cast<int>(ctx.paramInt("path_laps"));
     s.base_height = ctx.paramDouble("base_height");
+    s.campus_poor_rows = static_cast<int>(ctx.paramInt("campus_poor_rows"));
     s.seed = ctx.seed();
     return s;
   }

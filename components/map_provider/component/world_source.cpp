@@ -49,6 +49,7 @@ World buildWorld(const WorldSettings& s) {
   if (from_file) w.trajectory = readFileTrajectory(s);
   if (s.world == "campus") {
     world::CampusConfig config;
+    config.poor_rows = s.campus_poor_rows;
     w.mesh = world::makeCampus(config, s.seed);
     if (!from_file) w.trajectory = generatedPath(world::campusLoopWaypoints(config, s.base_height), true, s);
   } else if (s.world == "corridor") {

@@ -22,6 +22,7 @@ struct WorldSettings {
   double path_speed = 1.5;               // m/s, generated paths
   int path_laps = 1;
   double base_height = 1.0;              // m above the ground, generated paths
+  int campus_poor_rows = 1;              // campus: rows of blocks with poor geometry (0: all rich)
   std::uint64_t seed = 1;
 };
 

@@ -152,27 +152,37 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
   std::size_t n = 0;
   const Eigen::Vector3f qf = q.cast<float>();
   const Voxel center = voxelOf(q, inverse_voxel_size_);
-  // Voxels center-1 .. center+1 span exactly two blocks along each axis.
+  // Voxels center-1 .. center+1 span exactly two blocks along each axis. The 8 look-ups are
+  // independent: their keys, then their blocks, are prefetched together so that the cache
+  // misses overlap instead of queueing one behind the other.
   const Voxel low = center - Voxel::Ones();
-  for (int bx = 0; bx < 2; ++bx) {
-    for (int by = 0; by < 2; ++by) {
-      for (int bz = 0; bz < 2; ++bz) {
-        const Voxel corner(low.x() + 2 * bx, low.y() + 2 * by, low.z() + 2 * bz);
-        const std::size_t slot = slotOf(blockKey(corner));
-        if (slot == kNoSlot) continue;
-        const Block& block = pool_[index_[slot]];
-        for (unsigned bits = block.occupied; bits != 0; bits &= bits - 1) {
-          const int j = __builtin_ctz(bits);
-          const float d2 = (block.points_W[j] - qf).squaredNorm();
-          if (n == k && d2 >= best[k - 1].first) continue;
-          std::size_t i = (n < k) ? n++ : k - 1;
-          while (i > 0 && best[i - 1].first > d2) {
-            best[i] = best[i - 1];
-            --i;
-          }
-          best[i] = {d2, &block.points_W[j]};
-        }
+  std::array<std::uint64_t, 8> keys;
+  for (int c = 0; c < 8; ++c) {
+    keys[c] = blockKey(Voxel(low.x() + 2 * (c & 1), low.y() + (c & 2), low.z() + ((c & 4) >> 1)));
+    __builtin_prefetch(&keys_[home(keys[c])]);
+  }
+  std::array<const Block*, 8> blocks;
+  std::size_t found = 0;
+  for (int c = 0; c < 8; ++c) {
+    const std::size_t slot = slotOf(keys[c]);
+    if (slot == kNoSlot) continue;
+    blocks[found] = &pool_[index_[slot]];
+    __builtin_prefetch(blocks[found]);
+    __builtin_prefetch(reinterpret_cast<const char*>(blocks[found]) + 64);
+    ++found;
+  }
+  for (std::size_t c = 0; c < found; ++c) {
+    const Block& block = *blocks[c];
+    for (unsigned bits = block.occupied; bits != 0; bits &= bits - 1) {
+      const int j = __builtin_ctz(bits);
+      const float d2 = (block.points_W[j] - qf).squaredNorm();
+      if (n == k && d2 >= best[k - 1].first) continue;
+      std::size_t i = (n < k) ? n++ : k - 1;
+      while (i > 0 && best[i - 1].first > d2) {
+        best[i] = best[i - 1];
+        --i;
       }
+      best[i] = {d2, &block.points_W[j]};
     }
   }
   for (std::size_t i = 0; i < n; ++i) neighbours.push_back(best[i].second->cast<double>());

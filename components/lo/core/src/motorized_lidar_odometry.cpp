@@ -73,10 +73,12 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
       addWarning(result.warning, "no usable points: map not initialised yet");
       return result;
     }
-    // First scan: the map starts at the initial pose, at rest, the pose known exactly.
+    // First scan: the map starts at the initial pose (known exactly) and velocity.
     BaseState x;
     x.R_WB = config_.initial_pose.linear();
     x.r_WB = config_.initial_pose.translation();
+    x.v_W = config_.initial_velocity_W;
+    x.w_B = config_.initial_angular_velocity_B;
     Matrix12d P = Matrix12d::Zero();
     P.diagonal().head<6>().setConstant(1e-8);
     P.diagonal().tail<6>().setConstant(config_.initial_velocity_variance);

@@ -32,6 +32,7 @@ PanoramicDepthMap::PanoramicDepthMap(const Config& config) : config_(config) {
   winner_.assign(pixels, -1);
   points_B_.assign(pixels, Eigen::Vector3f::Zero());
   centre_.assign(pixels, ~std::uint64_t{0});
+  centre_points_.assign(pixels, Eigen::Vector3f::Zero());
   splat_pad_ = std::max(std::min(config_.max_splat_radius_px, config_.width / 2 - 1), 0);
   zbuffer_.assign(static_cast<std::size_t>(config_.width + 2 * splat_pad_) * config_.height,
                   ~std::uint64_t{0});
@@ -86,14 +87,14 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
   source_size_ = points_W.size();
 
   const Eigen::Matrix3d R_BW = T_WB.linear().transpose();
-  const Eigen::Vector3d r_BW = -(R_BW * T_WB.translation());
   const int width = config_.width;
   const int height = config_.height;
 
   // Pass 1: every point into its own pixel (Eq. 5), nearest wins. Float is ample for binning
   // (1e-7 relative against a 1-degree pixel), and the translation is removed in double first, so
   // world coordinates far from the origin lose nothing. Per block: gather into structure-of-arrays,
-  // project without branches (vectorised), then scatter into the z-buffer (scalar).
+  // project without branches (vectorised), then scatter into the z-buffer (scalar), keeping the
+  // base-frame coordinates of each pixel's nearest point.
   {
     const Eigen::Vector3d t_WB = T_WB.translation();
     const Eigen::Matrix3f R = R_BW.cast<float>();
@@ -130,14 +131,22 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
       }
       for (int j = 0; j < n; ++j) {
         if (row[j] < 0) continue;
-        std::uint64_t& entry = centre_[pixelIndex(column[j], row[j])];
-        entry = std::min(entry, pack(range[j], static_cast<std::uint32_t>(begin + j)));
+        const int pixel = pixelIndex(column[j], row[j]);
+        const std::uint64_t candidate = pack(range[j], static_cast<std::uint32_t>(begin + j));
+        // Selects, not a branch: whether a point is the nearest so far is unpredictable.
+        const bool nearer = candidate < centre_[pixel];
+        centre_[pixel] = nearer ? candidate : centre_[pixel];
+        const Eigen::Vector3f point(x[j], y[j], z[j]);
+        centre_points_[pixel] = nearer ? point : centre_points_[pixel];
       }
     }
   }
 
   // Pass 2: splat each pixel's nearest point over its footprint (exact thinning, see the header).
   // The footprint sizes are floor(c / range), monotone in the range as the thinning requires.
+  // The splatted entry names the point by its own pixel (range bits, centre pixel): unpacking then
+  // reads the point from a neighbouring pixel instead of gathering it from the whole local map.
+  // (Equal float ranges are thus broken by centre pixel, not by point index.)
   const int pad = splat_pad_;
   const int padded_width = width + 2 * pad;
   const float rows_per_range =
@@ -146,8 +155,9 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
     const std::uint64_t* centre_row = &centre_[pixelIndex(0, v)];
     const float columns_per_range = splat_columns_per_range_[v];
     for (int u = 0; u < width; ++u) {
-      const std::uint64_t entry = centre_row[u];
-      if (entry == kEmpty) continue;
+      if (centre_row[u] == kEmpty) continue;
+      const std::uint64_t entry =
+          (centre_row[u] & ~std::uint64_t{0xffffffffU}) | static_cast<std::uint32_t>(pixelIndex(u, v));
       float range = 0.0F;
       const auto bits = static_cast<std::uint32_t>(entry >> 32);
       std::memcpy(&range, &bits, sizeof range);
@@ -180,11 +190,11 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
         winner_[pixel] = -1;
         continue;
       }
-      const auto index = static_cast<std::int32_t>(entry & 0xffffffffU);
+      const auto centre = static_cast<std::size_t>(entry & 0xffffffffU);
       const auto bits = static_cast<std::uint32_t>(entry >> 32);
       std::memcpy(&depth_[pixel], &bits, sizeof bits);
-      winner_[pixel] = index;
-      points_B_[pixel] = (R_BW * points_W[index] + r_BW).cast<float>();
+      winner_[pixel] = static_cast<std::int32_t>(centre_[centre] & 0xffffffffU);
+      points_B_[pixel] = centre_points_[centre];
       ++occupied_count_;
     }
   }

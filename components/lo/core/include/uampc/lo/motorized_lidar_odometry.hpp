@@ -27,6 +27,10 @@ namespace uampc::lo {
 struct OdometryConfig {
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
   Eigen::Isometry3d initial_pose = Eigen::Isometry3d::Identity();  // T_WB of the first scan
+  // Velocity at the first scan (its deskew uses it). Zero: the robot starts at rest. In simulation
+  // the component may take it from ground truth, as it takes the initial pose.
+  Eigen::Vector3d initial_velocity_W = Eigen::Vector3d::Zero();          // m/s
+  Eigen::Vector3d initial_angular_velocity_B = Eigen::Vector3d::Zero();  // rad/s
 
   double min_range = 0.5;        // m, measured in the LiDAR frame
   double max_range = 100.0;      // m

@@ -91,6 +91,7 @@ class PanoramicDepthMap {
   // and the splatted result, with splat_pad_ extra columns on each side so that a footprint never
   // wraps inside the inner loop (the pads are folded back onto the other edge afterwards).
   std::vector<std::uint64_t> centre_;
+  std::vector<Eigen::Vector3f> centre_points_;  // base-frame coordinates of centre_'s points
   std::vector<std::uint64_t> zbuffer_;
   int splat_pad_ = 0;
   std::vector<float> splat_columns_per_range_;  // per row: azimuth half-width (px) * range

@@ -1,0 +1,278 @@
+#include "experiment_runner.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace uampc::app {
+
+namespace {
+
+std::string duration(double seconds) {
+  if (!(seconds >= 0)) return "?";
+  const long s = std::lround(seconds);
+  char buffer[32];
+  if (s >= 3600)
+    std::snprintf(buffer, sizeof(buffer), "%ldh%02ldm", s / 3600, s / 60 % 60);
+  else if (s >= 60)
+    std::snprintf(buffer, sizeof(buffer), "%ldm%02lds", s / 60, s % 60);
+  else
+    std::snprintf(buffer, sizeof(buffer), "%lds", s);
+  return buffer;
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string lastLine(const std::string& text) {
+  std::size_t end = text.find_last_not_of("\r\n ");
+  if (end == std::string::npos) return "";
+  const std::size_t begin = text.find_last_of('\n', end);
+  return text.substr(begin == std::string::npos ? 0 : begin + 1,
+                     end - (begin == std::string::npos ? 0 : begin + 1) + 1);
+}
+
+// One line rewritten in place on a terminal; on a pipe or file, a line every 30 s and at each
+// finished run, so that CI logs stay readable.
+class Progress {
+ public:
+  Progress(std::size_t total, std::size_t reused)
+      : total_(total), reused_(reused), terminal_(isatty(STDERR_FILENO)), start_(Clock::now()) {}
+
+  void update(std::size_t finished_now, std::size_t running, std::size_t failed, bool force) {
+    const auto now = Clock::now();
+    const double since_last = std::chrono::duration<double>(now - last_).count();
+    if (!force && since_last < (terminal_ ? 1.0 : 30.0)) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const std::size_t remaining = total_ - reused_ - finished_now;
+    // Throughput so far, which already includes the parallelism.
+    const double eta = finished_now ? elapsed / static_cast<double>(finished_now) * static_cast<double>(remaining) : -1;
+    std::string text = "experiment: " + std::to_string(reused_ + finished_now) + "/" + std::to_string(total_) + " done";
+    if (reused_) text += " (" + std::to_string(reused_) + " from before)";
+    text += ", " + std::to_string(running) + " running, " + std::to_string(failed) + " failed, elapsed " +
+            duration(elapsed) + ", ETA " + (remaining == 0 ? "0s" : duration(eta));
+    if (terminal_)
+      std::cerr << "\r\033[K" << text << std::flush;
+    else
+      std::cerr << text << "\n";
+    line_open_ = terminal_;
+  }
+  // Messages between progress lines must not land in the middle of one.
+  void say(const std::string& message) {
+    if (line_open_) std::cerr << "\r\033[K";
+    std::cerr << message << "\n";
+    line_open_ = false;
+    last_ = {};
+  }
+  void finish() {
+    if (line_open_) std::cerr << "\n";
+    line_open_ = false;
+  }
+
+ private:
+  std::size_t total_, reused_;
+  bool terminal_;
+  bool line_open_ = false;
+  Clock::time_point start_, last_{};
+};
+
+struct Running {
+  std::size_t run;
+  int slot;
+  Clock::time_point start;
+};
+
+pid_t startRun(const std::string& executable, const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> argv_text{"uampc"};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid != 0) return pid;  // parent, or -1
+  // Child: only async-signal-safe calls until exec.
+  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const int null = open("/dev/null", O_RDONLY);
+  if (fd >= 0) {
+    dup2(fd, STDOUT_FILENO);
+    dup2(fd, STDERR_FILENO);
+  }
+  if (null >= 0) dup2(null, STDIN_FILENO);
+  execv(executable.c_str(), argv.data());
+  const char message[] = "uampc experiment: cannot execute the uampc binary\n";
+  (void)!write(STDERR_FILENO, message, sizeof(message) - 1);
+  _exit(127);
+}
+
+std::string describeExit(int status) {
+  if (WIFEXITED(status)) return "exit code " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return std::string("killed by signal ") + strsignal(WTERMSIG(status));
+  return "stopped";
+}
+
+}  // namespace
+
+std::vector<PlannedRun> planRuns(const Experiment& experiment, const std::vector<std::string>& extra_overrides) {
+  std::vector<PlannedRun> plan;
+  for (std::size_t s = 0; s < experiment.scenes.size(); ++s) {
+    for (std::size_t c = 0; c < experiment.controllers.size(); ++c) {
+      for (const std::uint64_t seed : experiment.seeds) {
+        PlannedRun run{s, c, seed, "", {}};
+        run.directory =
+            "runs/" + experiment.scenes[s].name + "/" + experiment.controllers[c].name + "/seed" + std::to_string(seed);
+        run.args = {"launch", experiment.scenes[s].scene_file};
+        auto set = [&run](const std::string& text) {
+          run.args.push_back("--set");
+          run.args.push_back(text);
+        };
+        if (experiment.duration_s) {
+          std::ostringstream d;
+          d << *experiment.duration_s;
+          set("clock.duration=" + d.str());
+        }
+        for (const auto& o : experiment.scenes[s].overrides) set(o);
+        for (const auto& o : experiment.controllers[c].overrides) set(o);
+        for (const auto& o : extra_overrides) set(o);
+        set("seed=" + std::to_string(seed));
+        plan.push_back(std::move(run));
+      }
+    }
+  }
+  return plan;
+}
+
+bool isRunComplete(const std::string& run_directory) {
+  return fs::is_regular_file(fs::path(run_directory) / "done") && readRunMetrics(run_directory).has_value();
+}
+
+std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,
+                              const RunnerOptions& options) {
+  std::vector<RunResult> results(plan.size());
+  std::vector<std::size_t> pending;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    RunResult& r = results[i];
+    r.scene = experiment.scenes[plan[i].scene].name;
+    r.controller = experiment.controllers[plan[i].controller].name;
+    r.seed = plan[i].seed;
+    r.directory = plan[i].directory;
+    const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
+    if (isRunComplete(dir.string())) {
+      r.status = RunStatus::kReused;
+      r.exit_code = 0;
+      readRunOutputs(dir.string(), r);
+      continue;
+    }
+    r.retried = fs::exists(dir) && !fs::is_empty(dir);
+    pending.push_back(i);
+  }
+
+  Progress progress(plan.size(), plan.size() - pending.size());
+  for (std::size_t i : pending) {
+    if (!results[i].retried) continue;
+    const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
+    const std::string before = lastLine(readText(dir / "failed"));
+    progress.say("experiment: retrying " + plan[i].directory +
+                 (before.empty() ? " (unfinished before)" : " (failed before: " + before + ")"));
+  }
+  if (pending.empty()) progress.update(0, 0, 0, true);  // nothing to run: say so
+  std::map<pid_t, Running> running;
+  std::vector<bool> slot_busy(static_cast<std::size_t>(std::max(options.jobs, 1)), false);
+  std::size_t next = 0, finished_now = 0, failed = 0;
+  bool stopping = false;
+  while (true) {
+    if (options.interrupted && *options.interrupted && !stopping) {
+      stopping = true;
+      progress.say("experiment: interrupted; stopping " + std::to_string(running.size()) + " run(s)");
+      for (const auto& [pid, _] : running) kill(pid, SIGINT);  // the launcher stops its run cleanly
+    }
+    while (!stopping && next < pending.size()) {
+      int slot = -1;
+      for (std::size_t k = 0; k < slot_busy.size(); ++k) {
+        if (!slot_busy[k]) {
+          slot = static_cast<int>(k);
+          break;
+        }
+      }
+      if (slot < 0) break;
+      const std::size_t i = pending[next++];
+      const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
+      fs::remove_all(dir);  // no stale file of an earlier attempt may pass for this one's
+      fs::create_directories(dir);
+      std::vector<std::string> args = plan[i].args;
+      args.insert(args.end(),
+                  {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options.domain_base + slot)});
+      const pid_t pid = startRun(options.executable, args, dir / "run.log");
+      if (pid < 0) {
+        results[i].status = RunStatus::kFailed;
+        results[i].failure = std::string("cannot start a process: ") + std::strerror(errno);
+        ++failed;
+        ++finished_now;
+        continue;
+      }
+      slot_busy[static_cast<std::size_t>(slot)] = true;
+      running[pid] = {i, slot, Clock::now()};
+    }
+    if (running.empty()) break;
+    progress.update(finished_now, running.size(), failed, false);
+
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid <= 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      continue;
+    }
+    const auto found = running.find(pid);
+    if (found == running.end()) continue;  // not one of ours
+    const Running done = found->second;
+    running.erase(found);
+    slot_busy[static_cast<std::size_t>(done.slot)] = false;
+    ++finished_now;
+    RunResult& r = results[done.run];
+    const fs::path dir = fs::path(options.output_directory) / plan[done.run].directory;
+    const double wall = std::chrono::duration<double>(Clock::now() - done.start).count();
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (r.exit_code == 0 && readRunMetrics(dir.string())) {
+      std::ofstream(dir / "done") << "wall_time_s=" << wall << "\n";
+      r.status = RunStatus::kOk;
+      readRunOutputs(dir.string(), r);
+    } else if (stopping) {
+      r.status = RunStatus::kNotRun;  // stopped by Ctrl-C: not a failure of the run
+      r.failure = "interrupted";
+      std::ofstream(dir / "failed") << r.failure << "\n";
+    } else {
+      r.status = RunStatus::kFailed;
+      r.failure = r.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(status);
+      r.wall_time_s = wall;
+      std::ofstream(dir / "failed") << r.failure << "\n";
+      ++failed;
+      const std::string last = lastLine(readText(dir / "run.log"));
+      progress.say("experiment: " + plan[done.run].directory + " failed (" + r.failure + "): " + last +
+                   "\n            full log: " + (dir / "run.log").string());
+    }
+    progress.update(finished_now, running.size(), failed, true);
+  }
+  progress.finish();
+  return results;
+}
+
+}  // namespace uampc::app

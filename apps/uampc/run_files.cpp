@@ -1,0 +1,98 @@
+#include "run_files.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "uampc/evaluator/voxel_octree.hpp"
+
+namespace uampc::app {
+
+int CsvTable::column(const std::string& name) const {
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (columns[i] == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::vector<double> CsvTable::values(const std::string& name) const {
+  std::vector<double> out;
+  const int c = column(name);
+  if (c < 0) return out;
+  out.reserve(rows.size());
+  for (const auto& row : rows) out.push_back(static_cast<std::size_t>(c) < row.size() ? row[c] : NAN);
+  return out;
+}
+
+CsvTable readCsv(const std::string& path) {
+  CsvTable table;
+  std::ifstream in(path);
+  std::string line;
+  if (!std::getline(in, line)) return table;
+  std::stringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');) table.columns.push_back(cell);
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::vector<double> row;
+    const char* p = line.c_str();
+    while (true) {
+      char* end = nullptr;
+      const double v = std::strtod(p, &end);
+      row.push_back(end == p ? NAN : v);
+      const char* comma = std::strchr(end, ',');
+      if (!comma) break;
+      p = comma + 1;
+    }
+    table.rows.push_back(std::move(row));
+  }
+  return table;
+}
+
+TrajectoryXY readTumPositions(const std::string& path) {
+  TrajectoryXY out;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    double t, x, y;
+    if (s >> t >> x >> y) {
+      out.t.push_back(t);
+      out.x.push_back(x);
+      out.y.push_back(y);
+    }
+  }
+  return out;
+}
+
+Footprint readVoxelFootprint(const std::string& path, double min_cell, int max_cells_across) {
+  Footprint out;
+  if (!std::filesystem::is_regular_file(path)) return out;
+  const evaluator::VoxelOctree octree = evaluator::readVoxelOctree(path);
+  if (octree.voxels.empty() || octree.resolution <= 0) return out;
+  int lo = octree.voxels.front().x(), hi = lo;
+  for (const auto& v : octree.voxels) {
+    lo = std::min({lo, v.x(), v.y()});
+    hi = std::max({hi, v.x(), v.y()});
+  }
+  // Whole voxels per cell, so that every voxel falls into exactly one cell.
+  const double wanted = std::max(min_cell / octree.resolution, static_cast<double>(hi - lo + 1) / max_cells_across);
+  const int merge = std::max(1, static_cast<int>(std::ceil(wanted - 1e-9)));
+  out.cell = merge * octree.resolution;
+  std::map<std::pair<int, int>, int> columns;
+  auto cellOf = [merge](int v) { return static_cast<int>(std::floor(static_cast<double>(v) / merge)); };
+  for (const auto& v : octree.voxels) ++columns[{cellOf(v.x()), cellOf(v.y())}];
+  for (const auto& [key, count] : columns) {
+    out.x.push_back(key.first * out.cell);
+    out.y.push_back(key.second * out.cell);
+    out.count.push_back(count);
+  }
+  return out;
+}
+
+}  // namespace uampc::app

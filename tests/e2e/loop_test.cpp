@@ -1,0 +1,105 @@
+// The whole loop over Fast DDS (map_provider, raycaster, motor_bridge, lo, mpc, evaluator): runs
+// are deterministic in one process and split over three; the controller's modes do what they say;
+// the evaluator writes every file; misbehaving inputs get clear, non-repeated errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "command_runner.hpp"
+#include "csv.hpp"
+
+namespace uampc::test {
+namespace {
+
+std::string runLoop(const std::string& scene, const std::string& name, int domain, const std::string& extra = "") {
+  const std::string out = freshDirectory(name);
+  const CommandResult r = runUampc("launch " + sourcePath(scene) + " --out " + out + " --set domain_id=" +
+                                   std::to_string(domain) + " " + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return out;
+}
+
+TEST(Loop, IdenticalOutputsTwiceAndSplitOverThreeProcesses) {
+  const std::string duration = "--set clock.duration=4";
+  const std::string a = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_a", 51, duration);
+  const std::string b = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_b", 52, duration);
+  const std::string split = runLoop("tests/scenes/loop_split.yaml", "loop_split", 53, duration);
+  // timings.csv holds measured computation times: the one output that is not deterministic.
+  for (const char* file : {"/metrics.json", "/estimate.tum", "/motor.csv", "/uncertainty.csv", "/cmplt_windows.csv"}) {
+    const std::string reference = readFile(a + file);
+    EXPECT_GT(reference.size(), 50u) << file;
+    EXPECT_EQ(reference, readFile(b + file)) << file << " differs between two runs";
+    EXPECT_EQ(reference, readFile(split + file)) << file << " differs between one and three processes";
+  }
+}
+
+TEST(Loop, ControllerModesCommandWhatTheySay) {
+  const std::string base = "--set clock.duration=3 ";
+  for (const auto& [mode, speed] : std::vector<std::pair<std::string, double>>{{"constant", 1.8}, {"zero", 0.0}}) {
+    const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_" + mode, 54,
+                                    base + "--set controller.mode=" + mode + " --set controller.constant_speed=1.8");
+    const auto motor = readCsv(out + "/motor.csv");
+    ASSERT_GT(motor.size(), 400u);
+    EXPECT_NEAR(motor.back()[2], speed, 1e-6) << mode;  // omega, after the motor's lag
+    EXPECT_NEAR(motor.back()[3], speed, 1e-12) << mode;  // command
+  }
+  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_ua_mpc", 55, base);
+  const auto motor = readCsv(out + "/motor.csv");
+  double lo = 1e9, hi = -1e9;
+  for (const auto& row : motor) {
+    if (row[0] < 1.0) continue;  // the first scans: the local map builds up
+    lo = std::min(lo, row[3]);
+    hi = std::max(hi, row[3]);
+  }
+  EXPECT_GE(lo, 0.0);  // within the default bounds [0, 7.2] rad/s
+  EXPECT_LE(hi, 7.2);
+  EXPECT_GT(hi - lo, 0.1) << "UA-MPC never changed the speed";
+  const auto profile = readCsv(out + "/uncertainty.csv");
+  ASSERT_GT(profile.size(), 10u);
+  EXPECT_EQ(profile.back().size(), 4u + 72u);  // time, theta_start, delta, command, 72 samples
+  for (std::size_t i = 4; i < profile.back().size(); ++i) EXPECT_TRUE(std::isfinite(profile.back()[i]));
+}
+
+TEST(Loop, EvaluatorWritesEveryFileAndTheLoStaysOnTrack) {
+  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_eval", 56, "--set clock.duration=10");
+  for (const char* file : {"metrics.json", "estimate.tum", "ground_truth.tum", "ate.csv", "cmplt_windows.csv",
+                           "cmplt_ground_truth_windows.csv", "motor.csv", "timings.csv", "uncertainty.csv",
+                           "scanned_voxels.bt"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  }
+  const auto ate = readCsv(out + "/ate.csv");
+  ASSERT_GT(ate.size(), 90u);  // 10 Hz for 10 s
+  double worst = 0;
+  for (const auto& row : ate) worst = std::max(worst, row[1]);
+  EXPECT_LT(worst, 0.5) << "the LO drifted more than 0.5 m in 10 s on the campus";
+  const std::string metrics = readFile(out + "/metrics.json");
+  EXPECT_NE(metrics.find("\"cmplt_ground_truth\""), std::string::npos);
+}
+
+TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {
+  const std::string out = freshDirectory("lo_bad_no_time");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/lo_bad_scans.yaml") + " --set domain_id=57");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const std::string needle = "cannot use scans on /lidar/points: no per-point time field";
+  const auto first = r.output.find(needle);
+  EXPECT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "said more than once:\n" << r.output;
+  // The controller, without a local map, says so and keeps the preferred speed.
+  EXPECT_NE(r.output.find("commanding omega_pre 3.6 rad/s"), std::string::npos) << r.output;
+}
+
+TEST(Loop, NanPointsAndEmptyScansAreSurvived) {
+  for (const char* mode : {"nan_points", "empty"}) {
+    const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/lo_bad_scans.yaml") +
+                                     " --set domain_id=58 --set driver.mode=" + mode);
+    EXPECT_EQ(r.exit_code, 0) << mode << "\n" << r.output;
+    if (std::string(mode) == "nan_points") {
+      EXPECT_NE(r.output.find("contain non-finite points; they are dropped"), std::string::npos) << r.output;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace uampc::test

@@ -1,0 +1,133 @@
+#include "fake_runs.hpp"
+
+#include <Eigen/Core>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+#include "experiment_runner.hpp"
+#include "uampc/evaluator/voxel_octree.hpp"
+
+namespace fs = std::filesystem;
+
+namespace uampc::test {
+
+namespace {
+
+struct FakeFigures {
+  double ate;
+  double cmplt;  // NaN: written as null
+};
+
+// [scene][controller][seed]
+const std::map<std::tuple<std::string, std::string, int>, FakeFigures> kFigures{
+    {{"alpha", "ua_mpc", 1}, {1.0, 100}},       {{"alpha", "ua_mpc", 2}, {2.0, 110}},
+    {{"alpha", "constant_3.6", 1}, {4.0, 100}}, {{"alpha", "constant_3.6", 2}, {6.0, 100}},
+    {{"alpha", "zero", 1}, {8.0, NAN}},         {{"alpha", "zero", 2}, {9.0, NAN}},
+    {{"beta", "ua_mpc", 1}, {3.0, 50}},         {{"beta", "ua_mpc", 2}, {4.0, 50}},
+    {{"beta", "constant_3.6", 1}, {10.0, 40}},  {{"beta", "constant_3.6", 2}, {20.0, 60}},
+    {{"beta", "zero", 1}, {29.5, 20}},
+};
+
+std::string jsonNumber(double v) {
+  std::ostringstream s;
+  if (std::isfinite(v))
+    s << v;
+  else
+    s << "null";
+  return s.str();
+}
+
+void writeRun(const fs::path& dir, const FakeFigures& f, bool ua_mpc) {
+  writeText((dir / "metrics.json").string(),
+            "{\n  \"sim_time\": 10,\n  \"trajectory\": {\"ate\": {\"unaligned_m\": {\"rmse\": " + jsonNumber(f.ate) +
+                "}, \"aligned_m\": {\"rmse\": " + jsonNumber(f.ate / 2) +
+                "}},\n    \"rpe_10m\": {\"translation_m\": {\"rmse\": 0.5}}, \"rpe_100m\": {\"translation_m\": "
+                "{\"rmse\": null}}},\n  \"cmplt\": {\"cmplt\": " +
+                jsonNumber(f.cmplt) + "},\n  \"cmplt_ground_truth\": {\"cmplt\": " + jsonNumber(f.cmplt * 1.1) +
+                "},\n  \"motor\": {\"mean_speed\": 3.6}\n}\n");
+  std::string ate = "time,ate_m,ate_aligned_m\n", motor = "time,theta,omega,command\n";
+  std::string estimate, truth;
+  for (int i = 0; i <= 100; ++i) {
+    const double t = i * 0.1;
+    const double e = f.ate * t / 10.0;
+    ate += std::to_string(t) + "," + std::to_string(e) + "," + std::to_string(e / 2) + "\n";
+    truth += std::to_string(t) + " " + std::to_string(t) + " " + std::to_string(std::sin(t)) + " 1 0 0 0 1\n";
+    estimate += std::to_string(t) + " " + std::to_string(t + e / 10) + " " + std::to_string(std::sin(t) + e / 10) +
+                " 1 0 0 0 1\n";
+  }
+  for (int i = 0; i <= 2000; ++i) {
+    const double t = i * 0.005;
+    motor += std::to_string(t) + "," + std::to_string(3.6 * t) + "," + std::to_string(3.6 + std::sin(t)) + ",3.6\n";
+  }
+  writeText((dir / "ate.csv").string(), ate);
+  writeText((dir / "motor.csv").string(), motor);
+  writeText((dir / "estimate.tum").string(), estimate);
+  writeText((dir / "ground_truth.tum").string(), truth);
+  if (ua_mpc) {
+    std::string u = "time,theta_start,delta_theta,command,samples...\n";
+    for (int i = 0; i < 100; ++i) {
+      u += std::to_string(i * 0.1) + ",0," + std::to_string(2 * M_PI / 72) + ",3.6";
+      for (int k = 0; k < 72; ++k) u += "," + std::to_string(0.1 + 0.05 * std::sin(k * 0.2 + i * 0.1));
+      u += "\n";
+    }
+    writeText((dir / "uncertainty.csv").string(), u);
+  }
+  std::vector<Eigen::Vector3i> voxels;
+  for (int x = -4; x < 24; ++x) {
+    for (int y = -6; y < 6; ++y) voxels.emplace_back(x, y, (x * y) % 3 == 0 ? 1 : 0);
+  }
+  evaluator::writeVoxelOctree((dir / "scanned_voxels.bt").string(), voxels, 0.5);
+  writeText((dir / "run.log").string(), "uampc: 10 s of sim time in 4 s (2.5x real time)\n");
+}
+
+}  // namespace
+
+void writeText(const std::string& path, const std::string& text) {
+  fs::create_directories(fs::path(path).parent_path());
+  std::ofstream(path) << text;
+}
+
+FakeExperiment makeFakeExperiment(const std::string& directory) {
+  FakeExperiment fake;
+  fake.directory = directory + "/out";
+  writeText(directory + "/scenes/alpha.yaml", "components: {}\n");
+  writeText(directory + "/scenes/beta.yaml", "components: {}\n");
+  writeText(directory + "/fake.yaml",
+            "name: fake\nseeds: [1, 2]\nscenes:\n  - {name: alpha, scene: scenes/alpha.yaml}\n"
+            "  - {name: beta, scene: scenes/beta.yaml}\ncontrollers:\n"
+            "  - {name: ua_mpc, overrides: [controller.mode=ua_mpc]}\n"
+            "  - {name: constant_3.6, overrides: [controller.mode=constant]}\n"
+            "  - {name: zero, overrides: [controller.mode=zero]}\n");
+  fake.experiment = app::loadExperiment(directory + "/fake.yaml", {});
+  for (const auto& run : app::planRuns(fake.experiment, {})) {
+    app::RunResult r;
+    r.scene = fake.experiment.scenes[run.scene].name;
+    r.controller = fake.experiment.controllers[run.controller].name;
+    r.seed = run.seed;
+    r.directory = run.directory;
+    const fs::path dir = fs::path(fake.directory) / run.directory;
+    const auto figures = kFigures.find({r.scene, r.controller, static_cast<int>(r.seed)});
+    if (figures != kFigures.end()) {
+      writeRun(dir, figures->second, r.controller == "ua_mpc");
+      writeText((dir / "done").string(), "wall_time_s=4.5\n");
+    } else {
+      writeText((dir / "run.log").string(), "something broke\n");
+    }
+    if (app::isRunComplete(dir.string())) {
+      r.status = app::RunStatus::kReused;
+      r.exit_code = 0;
+      app::readRunOutputs(dir.string(), r);
+    } else {
+      r.status = app::RunStatus::kFailed;
+      r.failure = "exit code 1";
+    }
+    fake.results.push_back(r);
+  }
+  return fake;
+}
+
+}  // namespace uampc::test

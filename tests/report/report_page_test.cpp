@@ -1,0 +1,59 @@
+// The report built from hand-made run directories, opened in headless Chromium: every figure
+// must load (the page's own script counts <img> elements that decoded into #figure-check).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+
+#include "../e2e/command_runner.hpp"
+#include "fake_runs.hpp"
+#include "report_page.hpp"
+
+namespace uampc::app {
+namespace {
+
+constexpr const char* kChromium = "/usr/bin/chromium";
+
+TEST(ReportPage, WritesEveryFigureAndNotesWhatIsMissing) {
+  const auto fake = test::makeFakeExperiment(test::freshDirectory("report_page_test"));
+  const ReportSummary summary =
+      writeReport(fake.experiment, fake.results, summarize(fake.experiment, fake.results), fake.directory);
+  // Per scene: ATE over time, motor speed, top view, U(theta), ATE against CMPLT.
+  EXPECT_EQ(summary.figures, 10);
+  const std::string html = test::readFile(fake.directory + "/report/index.html");
+  std::size_t images = 0;
+  const std::regex image("<img src=\"([^\"]+)\"");
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), image); it != std::sregex_iterator(); ++it) {
+    ++images;
+    EXPECT_TRUE(std::filesystem::is_regular_file(fake.directory + "/report/" + (*it)[1].str())) << (*it)[1];
+  }
+  EXPECT_EQ(images, 10u);
+  EXPECT_NE(html.find("<td>1.50</td><td>105</td>"), std::string::npos);  // the summary table
+  EXPECT_NE(html.find("panorama snapshots are not shown"), std::string::npos);
+  EXPECT_NE(html.find("id=\"figure-check\""), std::string::npos);
+}
+
+TEST(ReportPage, EveryFigureLoadsInHeadlessChromium) {
+  if (!std::filesystem::exists(kChromium)) GTEST_SKIP() << kChromium << " is missing (apt-get install chromium)";
+  const std::string dir = test::freshDirectory("report_page_chromium_test");
+  const auto fake = test::makeFakeExperiment(dir);
+  const ReportSummary summary =
+      writeReport(fake.experiment, fake.results, summarize(fake.experiment, fake.results), fake.directory);
+  ASSERT_EQ(summary.figures, 10);
+  const std::string profile = dir + "/chromium_profile";  // fresh: nothing cached from another run
+  std::filesystem::create_directories(profile);
+  const auto r = test::runShell(std::string("timeout 120 ") + kChromium +
+                                " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                                " --disable-background-networking --disable-component-update --disable-sync"
+                                " --user-data-dir=" +
+                                profile + " --virtual-time-budget=5000 --dump-dom file://" + fake.directory +
+                                "/report/index.html 2>/dev/null");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex(R"(figures loaded: (\d+) of (\d+))"))) << r.output;
+  EXPECT_EQ(m[1].str(), "10") << m[0];
+  EXPECT_EQ(m[2].str(), "10") << m[0];
+}
+
+}  // namespace
+}  // namespace uampc::app
