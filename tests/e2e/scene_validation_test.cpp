@@ -58,7 +58,13 @@ TEST(SceneValidation, CommandLineOverridesAreValidatedAndNamed) {
   r = runUampc("validate " + scene + " --set nobody.speed=1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("the scene has no component 'nobody'"), std::string::npos) << r.output;
-  r = runUampc("validate " + scene + " --set controller.speed=1.8 --set clock.duration=2");
+  r = runUampc("validate " + scene + " --set controller.speed=1.8");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--set controller.speed=1.8: error: unknown parameter 'speed' for component 'controller' "
+                          "(mpc)"),
+            std::string::npos)
+      << r.output;
+  r = runUampc("validate " + scene + " --set controller.constant_speed=1.8 --set clock.duration=2");
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 

@@ -103,6 +103,12 @@ class SceneValidator {
     for (const auto& [override_node, text] : override_nodes_) {
       if (override_node.is(node)) return {"--set " + text, 0, 0};
     }
+    // Keys created by an override have no position in the file: name the override instead.
+    if (node.Mark().is_null() && node.IsScalar()) {
+      for (const auto& [key, text] : override_keys_) {
+        if (key == node.Scalar()) return {"--set " + text, 0, 0};
+      }
+    }
     return at(node);
   }
 
@@ -146,6 +152,7 @@ class SceneValidator {
   ComponentCatalog& catalog_;
   std::vector<std::string> errors_;
   std::vector<std::pair<YAML::Node, std::string>> override_nodes_;  // value grafted by --set, its text
+  std::vector<std::pair<std::string, std::string>> override_keys_;  // last name of each --set, its text
   std::vector<PendingReference> pending_;
   std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
 };
@@ -174,6 +181,7 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
     }
     if (value.IsNull()) value = YAML::Node(std::string());
     override_nodes_.emplace_back(value, o.text);
+    override_keys_.emplace_back(o.path.back(), o.text);
     // Top-level keys and clock.* apply directly; anything else is component.parameter.
     static const std::set<std::string> top_level = {"name", "domain_id", "seed", "on_crash", "max_restarts",
                                                     "dds_profile"};

@@ -86,11 +86,8 @@ class UncertaintyModel {
  private:
   struct RayTable;
   RayTable rayTable(const PanoramicDepthMap& map) const;
-  // Marks the pixels the rays go through at the given column shifts (one per candidate angle)
-  // and resolves each marked pixel to the Jacobian of the surface it shows.
-  void resolve(const PanoramicDepthMap& map, DepthMapNormals& normals,
-               const std::vector<double>& shifts, RayTable& table) const;
-  Matrix6d accumulate(const RayTable& table, int width, double shift) const;
+  Matrix6d accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals,
+                      const RayTable& table, double theta) const;
 
   Config config_;
   std::vector<Eigen::Vector3d> rays_L_;
