@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <vector>
 
 #include "command_runner.hpp"
@@ -69,6 +70,37 @@ TEST(Lockstep, OverridesApplyAndShowInTheOutput) {
   ASSERT_FALSE(states.empty());
   EXPECT_NEAR(states.back()[0], 2.0 - 0.005, 1e-9);
   EXPECT_NEAR(states.back()[2], 1.8, 1e-12);
+}
+
+TEST(Lockstep, MotorFallsBackToTheSafeSpeedWhenCommandsStopAndSaysSo) {
+  const std::string out = freshDirectory("lockstep_fallback");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_fallback.yaml") + " --out " + out +
+                                   " --set domain_id=16");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("falling back to the safe speed 1 rad/s"), std::string::npos) << r.output;
+  const auto states = readCsv(out + "/recorder_motor_states.csv");
+  ASSERT_GT(states.size(), 300u);
+  for (const auto& s : states) {
+    // Still (no command yet) until the timeout passes, then the safe speed.
+    if (s[0] <= 0.5) EXPECT_EQ(s[2], 0.0) << "t=" << s[0];
+    if (s[0] >= 0.51) EXPECT_DOUBLE_EQ(s[2], 1.0) << "t=" << s[0];
+  }
+}
+
+TEST(Lockstep, ScenesSplitOverProcessesWorkWithTheLargeDataDdsProfile) {
+  const std::string out = freshDirectory("lockstep_profile");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + out +
+                                   " --set domain_id=17 --set clock.duration=2 --set dds_profile=" +
+                                   sourcePath("config/dds/large_data.xml"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_GT(readCsv(out + "/recorder_motor_states.csv").size(), 300u);
+  const std::string broken = freshDirectory("lockstep_profile_broken") + "/broken.xml";
+  std::ofstream(broken) << "<dds><profiles><participant";
+  const CommandResult bad = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") +
+                                     " --set domain_id=18 --set clock.duration=2 --set dds_profile=" + broken);
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("broken.xml: Fast DDS could not load this XML profile file"), std::string::npos)
+      << bad.output;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 
 #include "command_runner.hpp"
@@ -59,6 +60,27 @@ TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
     EXPECT_LE(count, 20000);
   }
   EXPECT_LT(worst, 1e-3) << "a de-rotated point is " << worst << " m off the corridor's planes";
+}
+
+TEST(Simulator, CorruptMapsAndTrajectoriesStopTheRunNamingTheFile) {
+  const std::string dir = freshDirectory("simulator_bad_inputs");
+  const std::string good_tum = dir + "/path.tum";
+  std::ofstream(good_tum) << "0 0 0 1 0 0 0 1\n1 1 0 1 0 0 0 1\n2 2 0 1 0 0 0 1\n";
+  const std::string corrupt_pcd = dir + "/corrupt.pcd";
+  std::ofstream(corrupt_pcd) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                "WIDTH 100\nHEIGHT 1\nPOINTS 100\nDATA ascii\n1 2 3\n";
+  const std::string bad_tum = dir + "/bad.tum";
+  std::ofstream(bad_tum) << "0 0 0 1 0 0 0 1\n1 1 0 1 0 0\n";
+  const std::string scene = sourcePath("tests/scenes/bad_map.yaml");
+  CommandResult r = runUampc("launch " + scene + " --set domain_id=42 --set world.map_file=" + corrupt_pcd +
+                             " --set world.trajectory_file=" + good_tum);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("component 'world' (map_provider) could not start: " + corrupt_pcd), std::string::npos)
+      << r.output;
+  r = runUampc("launch " + scene + " --set domain_id=42 --set world.world=campus --set world.trajectory_file=" +
+               bad_tum);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(bad_tum + ":2:"), std::string::npos) << r.output;
 }
 
 }  // namespace

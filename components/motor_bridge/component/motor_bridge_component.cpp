@@ -40,7 +40,8 @@ class MotorBridge : public Component {
         state_(ctx.publisher<sensor_msgs::msg::JointState>("state")),
         last_update_(ctx.now()),
         last_command_(ctx.now()) {
-    motor_.command(safe_speed_);
+    // At rest until the first command; if none comes within command_timeout, the safe speed.
+    motor_.command(0.0);
     ctx.subscribe<msg::MotorCommand>("command", [this](const msg::MotorCommand& m) { onCommand(m); });
     ctx.timer(1.0 / ctx.paramDouble("encoder_rate"), [this] { publishState(); });
   }
