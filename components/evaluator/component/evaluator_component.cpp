@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <memory>
 
+#include "uampc/adapters/pose_messages.hpp"
+#include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/evaluator/completeness.hpp"
 #include "uampc/evaluator/csv_writer.hpp"
 #include "uampc/evaluator/json_writer.hpp"
@@ -24,18 +26,6 @@
 #include "uampc/runtime/component.hpp"
 
 namespace uampc {
-
-namespace {
-
-Eigen::Isometry3d toIsometry(const geometry_msgs::msg::Pose& p) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  const auto& q = p.orientation();
-  T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-  T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
-  return T;
-}
-
-}  // namespace
 
 class EvaluatorComponent : public Component {
  public:
@@ -56,9 +46,7 @@ class EvaluatorComponent : public Component {
     spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT");
     spec.param("voxel_size", 0.5, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
     spec.param("window", 5.0, "CMPLT window, s (the paper: 5)").between(0.1, 3600.0);
-    spec.param("tilt_deg", 30.0, "LiDAR tilt on the motor, degrees (to place raw scans with ground truth)")
-        .between(-180.0, 180.0);
-    spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame, m");
+    adapters::declareRigParameters(spec);  // to place raw scans with ground truth
     spec.param("report_period", 5.0, "running figures are published every this many s").between(0.1, 3600.0);
   }
 
@@ -68,10 +56,7 @@ class EvaluatorComponent : public Component {
         cmplt_({ctx.paramDouble("voxel_size"), ctx.paramDouble("window")}),
         cmplt_gt_({ctx.paramDouble("voxel_size"), ctx.paramDouble("window")}),
         metrics_pub_(ctx.publisher<msg::Metrics>("metrics")) {
-    const auto offset = ctx.paramDoubleList("lidar_offset");
-    if (offset.size() != 3) throw std::runtime_error("lidar_offset must have three values (x, y, z)");
-    calibration_ = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
-                                                               Eigen::Vector3d(offset[0], offset[1], offset[2]));
+    calibration_ = adapters::rigCalibration(ctx);
     const std::string& out = ctx.outputDirectory();
     if (out.empty()) {
       ctx.log().warn("no output directory (uampc launch --out DIR): figures are logged but no files written");
@@ -83,11 +68,11 @@ class EvaluatorComponent : public Component {
       uncertainty_ = open(out + "/uncertainty.csv", "time,theta_start,delta_theta,command,samples...\n");
     }
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& m) {
-      ground_truth_.add({fromMsg(m.header().stamp()).seconds(), toIsometry(m.pose())});
+      ground_truth_.add({fromMsg(m.header().stamp()).seconds(), adapters::toIsometry(m.pose())});
       flush();
     });
     ctx.subscribe<nav_msgs::msg::Odometry>("odometry", [this](const nav_msgs::msg::Odometry& m) {
-      pending_estimates_.push_back({fromMsg(m.header().stamp()).seconds(), toIsometry(m.pose().pose())});
+      pending_estimates_.push_back({fromMsg(m.header().stamp()).seconds(), adapters::toIsometry(m.pose().pose())});
       flush();
     });
     ctx.subscribe<sensor_msgs::msg::PointCloud2>("registered", [this](const sensor_msgs::msg::PointCloud2& m) {

@@ -7,6 +7,8 @@
 #include <deque>
 #include <map>
 
+#include "uampc/adapters/pose_messages.hpp"
+#include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
@@ -31,8 +33,7 @@ class LoComponent : public Component {
                                                "local map points observed in the last local_map_window s");
     spec.output<msg::Metrics>("metrics", "/lo/metrics", QosPreset::kSensor,
                               "min information eigenvalue, correspondences, iterations, processing time");
-    spec.param("tilt_deg", 30.0, "LiDAR tilt about its x axis on the motor, degrees").between(-180.0, 180.0);
-    spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame, m (r_ML)");
+    adapters::declareRigParameters(spec);
     spec.param("init_from_pose", true, "start at the pose (and velocity) on initial_pose at the first scan; false: identity, at rest");
     spec.param("scan_voxel_size", 0.3, "voxel downsampling of the scan, m").between(0.01, 10.0);
     spec.param("map_voxel_size", 0.3, "voxel size of the local map, m").between(0.01, 10.0);
@@ -79,10 +80,7 @@ class LoComponent : public Component {
  private:
   static lo::OdometryConfig configFrom(const Context& ctx) {
     lo::OdometryConfig c;
-    const auto offset = ctx.paramDoubleList("lidar_offset");
-    if (offset.size() != 3) throw std::runtime_error("lidar_offset must have three values (x, y, z)");
-    c.calibration = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
-                                                                Eigen::Vector3d(offset[0], offset[1], offset[2]));
+    c.calibration = adapters::rigCalibration(ctx);
     c.scan_voxel_size = ctx.paramDouble("scan_voxel_size");
     c.map_voxel_size = ctx.paramDouble("map_voxel_size");
     c.map_radius = ctx.paramDouble("map_radius");
@@ -148,8 +146,8 @@ class LoComponent : public Component {
       const double t = fromMsg(initial_poses_[i].header().stamp()).seconds();
       if (t + 1e-9 < scan_end) continue;
       const double t0 = fromMsg(initial_poses_[i - 1].header().stamp()).seconds();
-      const Eigen::Isometry3d T1 = toIsometry(initial_poses_[i].pose());
-      const Eigen::Isometry3d T0 = toIsometry(initial_poses_[i - 1].pose());
+      const Eigen::Isometry3d T1 = adapters::toIsometry(initial_poses_[i].pose());
+      const Eigen::Isometry3d T0 = adapters::toIsometry(initial_poses_[i - 1].pose());
       config_.initial_pose = T1;
       if (t > t0) {
         config_.initial_velocity_W = (T1.translation() - T0.translation()) / (t - t0);
@@ -165,14 +163,6 @@ class LoComponent : public Component {
       warned_no_pose_ = true;
     }
     return false;
-  }
-
-  static Eigen::Isometry3d toIsometry(const geometry_msgs::msg::Pose& p) {
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    const auto& q = p.orientation();
-    T.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-    T.translation() = Eigen::Vector3d(p.position().x(), p.position().y(), p.position().z());
-    return T;
   }
 
   void process(const lo::Scan& scan) {

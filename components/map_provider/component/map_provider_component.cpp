@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "uampc/adapters/pose_messages.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/world/point_sampling.hpp"
@@ -144,18 +145,10 @@ class MapProvider : public Component {
         warned_end_ = true;
       }
     }
-    const Eigen::Isometry3d T = world_.trajectory.poseAt(at);
-    const Eigen::Quaterniond q(T.linear());
     geometry_msgs::msg::PoseStamped pose;
     pose.header().stamp(toMsg(ctx_.now()));
     pose.header().frame_id("map");
-    pose.pose().position().x(T.translation().x());
-    pose.pose().position().y(T.translation().y());
-    pose.pose().position().z(T.translation().z());
-    pose.pose().orientation().x(q.x());
-    pose.pose().orientation().y(q.y());
-    pose.pose().orientation().z(q.z());
-    pose.pose().orientation().w(q.w());
+    pose.pose(adapters::toPoseMessage(world_.trajectory.poseAt(at)));
     pose_pub_.publish(pose);
   }
 

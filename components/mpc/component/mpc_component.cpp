@@ -4,6 +4,8 @@
 // planned horizon, predicted U), the panoramic depth map as a 32FC1 image, and its timings.
 #include <cstring>
 
+#include "uampc/adapters/pose_messages.hpp"
+#include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/mpc/ua_mpc_controller.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/raycaster/lidar_model.hpp"
@@ -42,7 +44,7 @@ class MpcComponent : public Component {
     spec.param("panorama_height", 180, "panorama rows over pi").between(8, 2048);
     spec.param("lidar_model", "livox_mid360", "field of view of U: livox_mid360, velodyne_vlp16 or livox_avia")
         .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia"});
-    spec.param("tilt_deg", 30.0, "LiDAR tilt about its x axis on the motor, degrees").between(-180.0, 180.0);
+    adapters::declareRigParameters(spec);
     spec.param("stale_after", 1.0, "a local map older than this is stale: command omega_pre, s").between(0.01, 3600.0);
     spec.param("publish_panorama", true, "publish the panoramic depth map image");
   }
@@ -83,7 +85,7 @@ class MpcComponent : public Component {
     c.depth_map.width = static_cast<int>(ctx.paramInt("panorama_width"));
     c.depth_map.height = static_cast<int>(ctx.paramInt("panorama_height"));
     c.uncertainty.azimuth_step = c.uncertainty.elevation_step = ctx.paramDouble("ray_step_deg") * M_PI / 180.0;
-    c.uncertainty.calibration = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0);
+    c.uncertainty.calibration = adapters::rigCalibration(ctx);
     // The field of view of U comes from the same LiDAR model description as the simulator's.
     const raycaster::LidarModel model = raycaster::lidarModelByName(ctx.paramString("lidar_model"));
     constexpr double kDeg = M_PI / 180.0;
@@ -103,16 +105,11 @@ class MpcComponent : public Component {
   }
 
   void onOdometry(const nav_msgs::msg::Odometry& m) {
-    const auto& p = m.pose().pose().position();
-    const auto& q = m.pose().pose().orientation();
-    const Eigen::Quaterniond rotation(q.w(), q.x(), q.y(), q.z());
-    if (!std::isfinite(p.x() + p.y() + p.z()) || !(rotation.norm() > 1e-6)) {
+    if (!adapters::isFinitePose(m.pose().pose())) {
       ctx_.log().warn("ignoring an odometry message with a non-finite pose on ", ctx_.topicOf("odometry"));
       return;
     }
-    T_WB_.setIdentity();
-    T_WB_.linear() = rotation.normalized().toRotationMatrix();
-    T_WB_.translation() = Eigen::Vector3d(p.x(), p.y(), p.z());
+    T_WB_ = adapters::toIsometry(m.pose().pose());
     have_pose_ = true;
   }
 

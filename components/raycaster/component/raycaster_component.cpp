@@ -6,6 +6,8 @@
 #include <deque>
 #include <memory>
 
+#include "uampc/adapters/pose_messages.hpp"
+#include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -31,9 +33,7 @@ class RaycasterComponent : public Component {
     spec.param("frame_rate", 10.0, "model: spinning: frames per second, Hz").between(0.1, 100.0);
     spec.param("min_range", 0.5, "model: spinning: minimum range, m").between(0.0, 1000.0);
     spec.param("max_range", 100.0, "model: spinning: maximum range, m").between(0.1, 10000.0);
-    spec.param("tilt_deg", 30.0, "LiDAR tilt about its own x axis on the motor, degrees (reference rig: 30)")
-        .between(-180.0, 180.0);
-    spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame, m (r_ML)");
+    adapters::declareRigParameters(spec);
     spec.param("range_noise", 0.0, "standard deviation of Gaussian range noise, m").between(0.0, 1.0);
     spec.param("dropout", 0.0, "probability that a return is lost").between(0.0, 1.0);
     spec.param("frame_id", "lidar", "frame_id of the published scans");
@@ -62,10 +62,7 @@ class RaycasterComponent : public Component {
                                              ctx.paramDouble("frame_rate"), ctx.paramDouble("min_range"),
                                              ctx.paramDouble("max_range"))
                   : raycaster::lidarModelByName(model);
-    const auto offset = ctx.paramDoubleList("lidar_offset");
-    if (offset.size() != 3) throw std::runtime_error("lidar_offset must have three values (x, y, z)");
-    c.calibration = frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
-                                                                Eigen::Vector3d(offset[0], offset[1], offset[2]));
+    c.calibration = adapters::rigCalibration(ctx);
     c.range_noise_stddev = ctx.paramDouble("range_noise");
     c.dropout_probability = ctx.paramDouble("dropout");
     c.seed = ctx.seed();
@@ -107,16 +104,14 @@ class RaycasterComponent : public Component {
   }
 
   void onPose(const geometry_msgs::msg::PoseStamped& p) {
-    const auto& q = p.pose().orientation();
-    const auto& x = p.pose().position();
     const double t = fromMsg(p.header().stamp()).seconds();
     if (!poses_.empty() && t <= poses_.back().time) return;  // repeated or stale: nothing new
-    const Eigen::Quaterniond rotation(q.w(), q.x(), q.y(), q.z());
-    if (!std::isfinite(rotation.norm()) || rotation.norm() < 1e-6 || !std::isfinite(x.x() + x.y() + x.z())) {
+    if (!adapters::isFinitePose(p.pose())) {
       throw std::runtime_error("invalid ground-truth pose on " + ctx_.topicOf("ground_truth") + " at t=" +
                                std::to_string(t));
     }
-    poses_.push_back({t, Eigen::Vector3d(x.x(), x.y(), x.z()), rotation.normalized()});
+    const Eigen::Isometry3d T = adapters::toIsometry(p.pose());
+    poses_.push_back({t, T.translation(), Eigen::Quaterniond(T.linear())});
   }
 
   void onMotor(const sensor_msgs::msg::JointState& s) {
