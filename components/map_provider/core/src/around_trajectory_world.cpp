@@ -89,7 +89,13 @@ TriangleMesh makeAroundTrajectory(const std::vector<Eigen::Vector3d>& full_path,
     }
   }
 
-  const double hectares = (hi.x() - lo.x()) * (hi.y() - lo.y()) / 1e4;
+  // Objects stand in the band the LiDAR sees along the path (within `band` of it), not scattered
+  // over the whole bounding box: a long path's box is mostly far from the path, and a world whose
+  // objects are out of range is an open field to the LO wherever the path goes. Densities count
+  // per hectare of that band (path length x 2 band).
+  double length = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).head<2>().norm();
+  const double hectares = std::max(1.0, length * 2.0 * config.band / 1e4);
   std::vector<Footprint> taken;
   auto freeOf = [&](double cx, double cy, double radius) {
     return std::none_of(taken.begin(), taken.end(), [&](const Footprint& f) {
@@ -98,9 +104,14 @@ TriangleMesh makeAroundTrajectory(const std::vector<Eigen::Vector3d>& full_path,
   };
   auto place = [&](double hx, double hy, double yaw, double& cx, double& cy) {
     for (int attempt = 0; attempt < 20; ++attempt) {
-      cx = random.uniform(lo.x(), hi.x());
-      cy = random.uniform(lo.y(), hi.y());
+      // Beside a random point of the path, at least the clearance away (checked below), at most
+      // the band (plus the object's own size).
+      const Eigen::Vector3d& anchor = path[static_cast<std::size_t>(random.integer(0, static_cast<int>(path.size()) - 1))];
       const double radius = std::hypot(hx, hy);
+      const double direction = random.uniform(0.0, 2.0 * M_PI);
+      const double distance = config.clearance + radius + random.uniform(0.0, config.band);
+      cx = anchor.x() + distance * std::cos(direction);
+      cy = anchor.y() + distance * std::sin(direction);
       if (!freeOf(cx, cy, radius)) continue;
       if (closerThan(path, cx, cy, hx, hy, yaw, config.clearance)) continue;
       taken.push_back({cx, cy, radius});

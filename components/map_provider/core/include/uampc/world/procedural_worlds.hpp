@@ -52,9 +52,10 @@ struct MultilevelConfig {
 
 struct AroundTrajectoryConfig {
   double clearance = 4.0;    // m, nothing closer than this to the path (horizontally)
-  double margin = 40.0;      // m of world beyond the path's bounding box
+  double margin = 40.0;      // m of ground beyond the path's bounding box
+  double band = 30.0;        // m: objects stand within this of the path (beyond the clearance)
   double base_height = 1.0;  // m, height of the path above the ground
-  double buildings_per_hectare = 3.0;
+  double buildings_per_hectare = 3.0;  // per hectare of the band along the path
   double trees_per_hectare = 12.0;
   double walls_per_hectare = 2.0;
   double ground_cell = 5.0;  // m, grid of the ground height field
