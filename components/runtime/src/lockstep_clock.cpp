@@ -69,7 +69,10 @@ ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
   std::set<std::string> acked;
   auto waitFor = [&](std::int64_t step, const char* what) -> bool {
     acked.clear();
-    auto deadline = SteadyClock::now() + ack_timeout;
+    const auto timeout = step < 0 ? std::chrono::duration_cast<SteadyClock::duration>(
+                                        std::chrono::duration<double>(scene.clock.startupTimeout()))
+                                  : ack_timeout;
+    auto deadline = SteadyClock::now() + timeout;
     uampc::msg::StepAck ack;
     SampleInfo info;
     while (acked.size() < processes.size()) {
@@ -96,7 +99,8 @@ ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
           if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
         }
         result.error = std::string("no ") + what + " from process(es) " + late + " within " +
-                       std::to_string(scene.clock.ack_timeout_s) + " s of wall time (clock.ack_timeout); " +
+                       std::to_string(std::chrono::duration<double>(timeout).count()) +
+                       " s of wall time (clock.ack_timeout; at least 30 s at the start); " +
                        "a component is hung or far too slow";
         return false;
       }

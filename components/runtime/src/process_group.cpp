@@ -345,7 +345,7 @@ class ProcessRunner {
   }
 
   bool waitForMatches(const std::atomic<bool>& stop) {
-    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.ack_timeout_s);
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.startupTimeout());
     for (;;) {
       std::string missing;
       for (const auto& w : writers_) {
@@ -379,7 +379,7 @@ class ProcessRunner {
       if (missing.empty()) return true;
       if (stop) return false;
       if (SteadyClock::now() > deadline) {
-        log_.error("DDS discovery did not complete within ", scene_.clock.ack_timeout_s, " s; still missing:",
+        log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(), " s; still missing:",
                    missing);
         return false;
       }

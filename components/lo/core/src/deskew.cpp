@@ -24,7 +24,7 @@ std::vector<Eigen::Vector3d> deskewToWorld(const std::vector<TimedPoint>& points
   out.reserve(points.size());
   for (const TimedPoint& point : points) {
     // Eq. 1, outer part, with T_WB at the point's own time.
-    out.push_back(state.R_WB * (expSO3(state.w_B * point.tau) * point.p_B) + state.r_WB +
+    out.push_back(state.R_WB * (ExpSO3(state.w_B * point.tau) * point.p_B) + state.r_WB +
                   state.v_W * point.tau);
   }
   return out;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -54,17 +55,16 @@ std::uint32_t mortonCode(const Voxel& v) {
          (spread(static_cast<std::uint32_t>(v.z())) << 2);
 }
 
-std::vector<const TimedPoint*> spatialOrder(const std::vector<TimedPoint>& points,
-                                            double voxel_size) {
+std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, double voxel_size) {
   std::vector<std::pair<std::uint32_t, const TimedPoint*>> keyed;
   keyed.reserve(points.size());
   for (const TimedPoint& p : points)
     keyed.emplace_back(mortonCode(voxelOf(p.p_B, 1.0 / voxel_size)), &p);
   std::sort(keyed.begin(), keyed.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<const TimedPoint*> out;
+  std::vector<TimedPoint> out;
   out.reserve(points.size());
-  for (const auto& [code, p] : keyed) out.push_back(p);
+  for (const auto& [code, p] : keyed) out.push_back(*p);
   return out;
 }
 
@@ -93,8 +93,15 @@ void IteratedEkf::predict(double dt, double process_noise) {
   covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
 }
 
+// Temporary profiling hooks (removed before hand-back).
+double g_prof_assoc_ms = 0, g_prof_lin_ms = 0, g_prof_acc_ms = 0;
+long g_prof_assoc = 0, g_prof_calls = 0;
+
 UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const LocalMap& map,
                                   const UpdateOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  auto msSince = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+  ++g_prof_calls;
   UpdateSummary summary;
   const BaseState prior = state_;
   const Matrix12d prior_information = covariance_.ldlt().solve(Matrix12d::Identity());
@@ -114,24 +121,26 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   correspondences.reserve(points.size());
   // Query the map in spatial (Morton) order: successive queries then share most of their map
   // blocks, which stay in cache. Same result as scan order, fewer cache misses.
-  const std::vector<const TimedPoint*> ordered = spatialOrder(points, map.voxelSize());
+  const std::vector<TimedPoint> ordered = spatialOrder(points, map.voxelSize());
   bool associate = true;
   bool gated = false;  // the residual gate is applied once the ungated iterations converged
   double gate = std::numeric_limits<double>::infinity();
   double rotation_since_association = 0.0, translation_since_association = 0.0;
-  Eigen::Matrix<double, Eigen::Dynamic, 12> H;  // Jacobian of the residuals, dz/d(error state)
-  Eigen::VectorXd z;                            // point-to-plane residuals
+  // Jacobian of the residuals, dz/d(error state), one row per correspondence; row-major so that
+  // a row is written contiguously.
+  Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor> H;
+  Eigen::VectorXd z;  // point-to-plane residuals
   std::vector<double> magnitudes;
 
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     if (associate) {
+      auto t0 = Clock::now(); ++g_prof_assoc;
       rotation_since_association = translation_since_association = 0.0;
       // Data association at the current iterate x_j: the plane through the k nearest map points.
       correspondences.clear();
-      for (const TimedPoint* point_ptr : ordered) {
-        const TimedPoint& point = *point_ptr;
+      for (const TimedPoint& point : ordered) {
         const Eigen::Vector3d q =
-            x.R_WB * (expSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
+            x.R_WB * (ExpSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
         if (map.nearest(q, options.nearest_neighbours, neighbours) < options.nearest_neighbours) {
           continue;
         }
@@ -140,28 +149,32 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
         if (plane) correspondences.push_back({&point, *plane});
       }
       summary.correspondences = correspondences.size();
+      g_prof_assoc_ms += msSince(t0);
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
     }
 
+    auto t1 = Clock::now();
     // Linearise the measurement model h(x) at x_j: one row of H and one residual per plane.
     H.resize(static_cast<Eigen::Index>(correspondences.size()), 12);
     z.resize(static_cast<Eigen::Index>(correspondences.size()));
+    const Eigen::Matrix3d R_BW = x.R_WB.transpose();
     for (std::size_t i = 0; i < correspondences.size(); ++i) {
       const Correspondence& c = correspondences[i];
       const TimedPoint& point = *c.point;
       const Eigen::Vector3d& n = c.plane.normal;
-      const Eigen::Matrix3d E = expSO3(x.w_B * point.tau);  // deskew rotation, Exp(w tau)
-      const Eigen::Vector3d s = E * point.p_B;              // point in B at the scan end
+      const ExpSO3 E(x.w_B * point.tau);                   // deskew rotation, Exp(w tau)
+      const Eigen::Vector3d s = E * point.p_B;             // point in B at the scan end
       const Eigen::Vector3d q = x.R_WB * s + x.r_WB + x.v_W * point.tau;
-      const Eigen::Vector3d n_B = x.R_WB.transpose() * n;
+      const Eigen::Vector3d n_B = R_BW * n;
       const auto row = static_cast<Eigen::Index>(i);
-      z(row) = n.dot(q) + c.plane.offset;                 // residual
-      H.block<1, 3>(row, 0) = s.cross(n_B).transpose();   // rotation (right)
-      H.block<1, 3>(row, 3) = n.transpose();              // position
-      H.block<1, 3>(row, 6) = point.tau * n.transpose();  // linear velocity
-      H.block<1, 3>(row, 9) =                             // angular velocity
-          point.tau * point.p_B.cross(E.transpose() * n_B).transpose();
+      z(row) = n.dot(q) + c.plane.offset;                  // residual
+      H.block<1, 3>(row, 0) = s.cross(n_B).transpose();    // rotation (right)
+      H.block<1, 3>(row, 3) = n.transpose();               // position
+      H.block<1, 3>(row, 6) = point.tau * n.transpose();   // linear velocity
+      H.block<1, 3>(row, 9) =                              // angular velocity
+          point.tau * point.p_B.cross(E.transposeTimes(n_B)).transpose();
     }
+    g_prof_lin_ms += msSince(t1);
     // Gate: a residual far beyond the typical one is a wrong plane (the point lies on a surface
     // the map has not seen yet, or across an edge), not noise; left in, a few such points at
     // weight 1/sigma^2 bias the pose by millimetres to centimetres. The typical residual is
@@ -187,9 +200,11 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     }
     summary.correspondences = used;
     if (used < options.min_correspondences) break;
+    auto t2 = Clock::now();
     Matrix12d HtH;
     HtH.noalias() = H.transpose() * H;
     const Vector12d Htz = H.transpose() * z;
+    g_prof_acc_ms += msSince(t2);
 
     // Gauss-Newton step of the IEKF (information form, see header).
     const Matrix12d A = prior_information + inverse_variance * HtH;

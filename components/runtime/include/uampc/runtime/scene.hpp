@@ -41,6 +41,9 @@ struct ClockSettings {
   Time step = Time{5'000'000};  // lockstep step, 5 ms: one encoder period at 200 Hz
   double duration_s = 0.0;      // sim (lockstep) or wall (real-time) seconds; 0: until Ctrl-C
   double ack_timeout_s = 60.0;  // wall seconds one lockstep step may take before the run is hung
+  // Wall seconds DDS discovery may take at the start: at least 30 s, whatever ack_timeout says, so
+  // that a short ack_timeout does not fail a start on a busy machine.
+  double startupTimeout() const { return ack_timeout_s > 30.0 ? ack_timeout_s : 30.0; }
   double real_time_factor = 0.0;  // lockstep pacing: 0 = as fast as possible, 1 = real time
 };
 
