@@ -30,6 +30,10 @@ class MapProvider : public Component {
     spec.pathParam("trajectory_file", "", "MCD CSV (num,t,x,y,z,qx,qy,qz,qw) or TUM (t x y z qx qy qz qw)");
     spec.param("attitude", "from_file", "from_file (MCD: z-down frame turned z-up), yaw_only or identity")
         .oneOf({"from_file", "yaw_only", "identity"});
+    spec.param("interpolation", "linear",
+               "between trajectory samples: linear (position) and slerp (attitude), or smooth (C1: cubic "
+               "Hermite and SQUAD through the same samples; file trajectories only)")
+        .oneOf({"linear", "smooth"});
     spec.param("trajectory_start", 0.0, "seconds of a file trajectory skipped at its start").atLeast(0.0);
     spec.param("path_speed", 1.5, "speed of generated paths, m/s").between(0.01, 50.0);
     spec.param("path_laps", 1, "laps of closed generated paths (campus)").between(1, 1000);
@@ -67,6 +71,7 @@ class MapProvider : public Component {
     s.trajectory = ctx.paramString("trajectory");
     s.trajectory_file = ctx.paramString("trajectory_file");
     s.attitude = ctx.paramString("attitude");
+    s.interpolation = ctx.paramString("interpolation");
     s.trajectory_start = ctx.paramDouble("trajectory_start");
     s.path_speed = ctx.paramDouble("path_speed");
     s.path_laps = static_cast<int>(ctx.paramInt("path_laps"));

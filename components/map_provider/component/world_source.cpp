@@ -30,7 +30,7 @@ world::Trajectory readFileTrajectory(const WorldSettings& s) {
     }
     t = world::Trajectory(kept);
   }
-  return t;
+  return world::Trajectory(t.poses(), world::interpolationFromName(s.interpolation));
 }
 
 world::Trajectory generatedPath(const std::vector<Eigen::Vector3d>& waypoints, bool closed, const WorldSettings& s) {

@@ -15,7 +15,40 @@ AttitudeMode attitudeModeFromName(const std::string& name) {
                               "' (expected from_file, yaw_only or identity)");
 }
 
-Trajectory::Trajectory(std::vector<TimedPose> poses) : poses_(std::move(poses)) {
+Interpolation interpolationFromName(const std::string& name) {
+  if (name == "linear") return Interpolation::kLinear;
+  if (name == "smooth") return Interpolation::kSmooth;
+  throw std::invalid_argument("unknown interpolation '" + name + "' (expected linear or smooth)");
+}
+
+namespace {
+
+// Quaternion logarithm and exponential (pure quaternions as 3-vectors): log(q) = axis * angle / 2.
+Eigen::Vector3d quaternionLog(const Eigen::Quaterniond& q) {
+  const Eigen::AngleAxisd aa(q);
+  return aa.axis() * (0.5 * aa.angle());
+}
+Eigen::Quaterniond quaternionExp(const Eigen::Vector3d& v) {
+  const double half_angle = v.norm();
+  if (half_angle < 1e-12) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(2.0 * half_angle, v / half_angle));
+}
+// q2 in the hemisphere of q1, so that interpolation takes the short way.
+Eigen::Quaterniond near(const Eigen::Quaterniond& q1, const Eigen::Quaterniond& q2) {
+  return q1.dot(q2) < 0 ? Eigen::Quaterniond(-q2.coeffs()) : q2;
+}
+// SQUAD's inner control point at q with neighbours before and after.
+Eigen::Quaterniond squadControl(const Eigen::Quaterniond& before, const Eigen::Quaterniond& q,
+                                const Eigen::Quaterniond& after) {
+  const Eigen::Quaterniond inverse = q.conjugate();
+  const Eigen::Vector3d sum = quaternionLog(inverse * near(q, after)) + quaternionLog(inverse * near(q, before));
+  return q * quaternionExp(-0.25 * sum);
+}
+
+}  // namespace
+
+Trajectory::Trajectory(std::vector<TimedPose> poses, Interpolation interpolation)
+    : poses_(std::move(poses)), interpolation_(interpolation) {
   if (poses_.empty()) throw std::invalid_argument("Trajectory: no poses");
   for (std::size_t i = 0; i < poses_.size(); ++i) {
     if (i > 0 && !(poses_[i].time > poses_[i - 1].time)) {
@@ -52,15 +85,35 @@ Eigen::Isometry3d Trajectory::poseAt(double t) const {
   const TimedPose& a = *std::prev(after);
   const TimedPose& b = *after;
   const double s = (t - a.time) / (b.time - a.time);
-  T.linear() = a.orientation.slerp(s, b.orientation).toRotationMatrix();
-  T.translation() = (1.0 - s) * a.position + s * b.position;
+  if (interpolation_ == Interpolation::kLinear) {
+    T.linear() = a.orientation.slerp(s, b.orientation).toRotationMatrix();
+    T.translation() = (1.0 - s) * a.position + s * b.position;
+    return T;
+  }
+  // Smooth: the neighbours before a and after b (the ends repeat themselves).
+  const TimedPose& before = std::prev(after) == poses_.begin() ? a : *std::prev(after, 2);
+  const TimedPose& next = std::next(after) == poses_.end() ? b : *std::next(after);
+  // Cubic Hermite in position with Catmull-Rom tangents (finite differences over the neighbours).
+  const double h = b.time - a.time;
+  const Eigen::Vector3d m_a = (b.position - before.position) / std::max(b.time - before.time, 1e-9);
+  const Eigen::Vector3d m_b = (next.position - a.position) / std::max(next.time - a.time, 1e-9);
+  const double s2 = s * s, s3 = s2 * s;
+  T.translation() = (2 * s3 - 3 * s2 + 1) * a.position + (s3 - 2 * s2 + s) * h * m_a +
+                    (-2 * s3 + 3 * s2) * b.position + (s3 - s2) * h * m_b;
+  // SQUAD in attitude: slerp of slerps through control points built from the neighbours.
+  const Eigen::Quaterniond qa = a.orientation;
+  const Eigen::Quaterniond qb = near(qa, b.orientation);
+  const Eigen::Quaterniond sa = squadControl(before.orientation, qa, qb);
+  const Eigen::Quaterniond sb = squadControl(qa, qb, near(qb, next.orientation));
+  const Eigen::Quaterniond q = qa.slerp(s, qb).slerp(2 * s * (1 - s), sa.slerp(s, near(sa, sb)));
+  T.linear() = q.normalized().toRotationMatrix();
   return T;
 }
 
 Trajectory Trajectory::shiftedInTime(double offset) const {
   std::vector<TimedPose> shifted = poses_;
   for (auto& p : shifted) p.time += offset;
-  return Trajectory(std::move(shifted));
+  return Trajectory(std::move(shifted), interpolation_);
 }
 
 Eigen::Quaterniond yawOnly(const Eigen::Quaterniond& q) {

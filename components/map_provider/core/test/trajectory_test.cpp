@@ -189,5 +189,47 @@ TEST(GeneratedPaths, ClosedLoopAtConstantSpeedFacingForward) {
   EXPECT_THROW(pathThroughWaypoints({{0, 0, 0}}, config), std::invalid_argument);
 }
 
+// Smooth interpolation passes through every sample and keeps the velocity continuous at samples,
+// where linear interpolation's velocity jumps.
+TEST(TrajectorySmooth, PassesThroughSamplesWithContinuousVelocity) {
+  std::vector<TimedPose> poses;
+  for (int i = 0; i < 20; ++i) {
+    const double t = 0.1 * i;
+    const double yaw = 0.3 * std::sin(2.0 * t) + (i % 2 ? 0.02 : -0.02);  // noisy heading
+    poses.push_back({t, Eigen::Vector3d(t * 4.0, std::sin(t), 0.1 * (i % 3)),
+                     Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))});
+  }
+  const Trajectory linear(poses, Interpolation::kLinear);
+  const Trajectory smooth(poses, Interpolation::kSmooth);
+  for (const auto& p : poses) {
+    EXPECT_TRUE(smooth.poseAt(p.time).translation().isApprox(p.position, 1e-9));
+    EXPECT_LT(Eigen::AngleAxisd(Eigen::Quaterniond(smooth.poseAt(p.time).linear()).conjugate() * p.orientation).angle(),
+              1e-9);
+  }
+  auto velocityJump = [](const Trajectory& tr, double t) {
+    const double e = 1e-4;
+    const Eigen::Vector3d before = (tr.poseAt(t).translation() - tr.poseAt(t - e).translation()) / e;
+    const Eigen::Vector3d after = (tr.poseAt(t + e).translation() - tr.poseAt(t).translation()) / e;
+    const Eigen::Matrix3d R0 = tr.poseAt(t - e).linear(), R1 = tr.poseAt(t).linear(), R2 = tr.poseAt(t + e).linear();
+    const double w_before = Eigen::AngleAxisd(R0.transpose() * R1).angle() / e;
+    const double w_after = Eigen::AngleAxisd(R1.transpose() * R2).angle() / e;
+    return std::make_pair((after - before).norm(), std::abs(w_after - w_before));
+  };
+  double linear_worst = 0, linear_worst_turn = 0;
+  for (int i = 2; i < 18; ++i) {
+    const auto lin = velocityJump(linear, 0.1 * i);
+    const auto smo = velocityJump(smooth, 0.1 * i);
+    linear_worst = std::max(linear_worst, lin.first);
+    linear_worst_turn = std::max(linear_worst_turn, lin.second);
+    EXPECT_LT(smo.first, 0.01) << "t=" << 0.1 * i;
+    EXPECT_LT(smo.second, 0.05) << "t=" << 0.1 * i;
+  }
+  // The test is not vacuous: linear interpolation of the same samples does jump.
+  EXPECT_GT(linear_worst, 0.1);
+  EXPECT_GT(linear_worst_turn, 0.3);
+  EXPECT_EQ(interpolationFromName("smooth"), Interpolation::kSmooth);
+  EXPECT_THROW(interpolationFromName("cubic"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace uampc::world

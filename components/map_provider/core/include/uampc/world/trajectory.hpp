@@ -2,6 +2,10 @@
 //
 // Position is interpolated linearly and attitude by slerp between the two samples around t, so a
 // point of a scan gets the pose at its own time, never the pose of the nearest sample.
+// Interpolation::kSmooth passes through the same samples with a continuous velocity instead
+// (cubic Hermite with Catmull-Rom tangents in position, SQUAD in attitude): with linear/slerp a
+// 10 Hz trajectory's velocity and angular velocity jump at every sample, which no rigid body does
+// and which a constant-velocity LO cannot follow within a frame.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -27,12 +31,17 @@ enum class AttitudeMode {
 // the valid values otherwise.
 AttitudeMode attitudeModeFromName(const std::string& name);
 
+enum class Interpolation { kLinear, kSmooth };
+
+// "linear" or "smooth"; throws std::invalid_argument otherwise.
+Interpolation interpolationFromName(const std::string& name);
+
 class Trajectory {
  public:
   Trajectory() = default;
   // Poses must have strictly increasing times and at least one sample; throws
   // std::invalid_argument otherwise. Orientations are normalised.
-  explicit Trajectory(std::vector<TimedPose> poses);
+  explicit Trajectory(std::vector<TimedPose> poses, Interpolation interpolation = Interpolation::kLinear);
 
   // T_WB at time t; throws std::out_of_range when t lies outside [startTime(), endTime()].
   Eigen::Isometry3d poseAt(double t) const;
@@ -49,6 +58,7 @@ class Trajectory {
 
  private:
   std::vector<TimedPose> poses_;
+  Interpolation interpolation_ = Interpolation::kLinear;
 };
 
 // Replaces each orientation according to the mode; correction is applied on the right (in the
