@@ -17,17 +17,13 @@ void DepthMapNormals::reset(const PanoramicDepthMap& map) {
   computed_count_ = 0;
 }
 
-const Eigen::Vector3f* DepthMapNormals::normal(int pixel) {
-  if (map_ == nullptr) throw std::logic_error("DepthMapNormals::normal called before reset");
-  const std::int32_t index = map_->pointIndex(pixel);
-  if (index < 0) return nullptr;
-  // Cached per local-map point, not per pixel: a splatted point covers many pixels.
-  std::uint8_t& state = state_[index];
-  if (state == kUnknown) {
-    ++computed_count_;
-    state = estimate(*map_, pixel, &normals_[index]) ? kValid : kInvalid;
-  }
-  return state == kValid ? &normals_[index] : nullptr;
+void DepthMapNormals::throwNotReset() {
+  throw std::logic_error("DepthMapNormals::normal called before reset");
+}
+
+DepthMapNormals::State DepthMapNormals::compute(int pixel, std::int32_t index) {
+  ++computed_count_;
+  return estimate(*map_, pixel, &normals_[index]) ? kValid : kInvalid;
 }
 
 bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,

@@ -29,8 +29,7 @@ PanoramicDepthMap::PanoramicDepthMap(const Config& config) : config_(config) {
   }
   const std::size_t pixels = static_cast<std::size_t>(config_.width) * config_.height;
   depth_.assign(pixels, 0.0F);
-  winner_.assign(pixels, -1);
-  points_B_.assign(pixels, Eigen::Vector3f::Zero());
+  pixels_.assign(pixels, PixelPoint{Eigen::Vector3f::Zero(), -1});
   centre_.assign(pixels, ~std::uint64_t{0});
   centre_points_.assign(pixels, Eigen::Vector3f::Zero());
   splat_pad_ = std::max(std::min(config_.max_splat_radius_px, config_.width / 2 - 1), 0);
@@ -133,12 +132,20 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
         if (row[j] < 0) continue;
         const int pixel = pixelIndex(column[j], row[j]);
         const std::uint64_t candidate = pack(range[j], static_cast<std::uint32_t>(begin + j));
-        // Selects, not a branch: whether a point is the nearest so far is unpredictable.
-        const bool nearer = candidate < centre_[pixel];
-        centre_[pixel] = nearer ? candidate : centre_[pixel];
-        const Eigen::Vector3f point(x[j], y[j], z[j]);
-        centre_points_[pixel] = nearer ? point : centre_points_[pixel];
+        // A select, not a branch: whether a point is the nearest so far is unpredictable.
+        centre_[pixel] = std::min(centre_[pixel], candidate);
       }
+    }
+    // The base-frame coordinates of each pixel's nearest point, recomputed from its index with
+    // the very expression of the projection loop (same float operations, same bits). Storing them
+    // in the scatter loop above cost a 12-byte random write per point; here it is one gather per
+    // occupied pixel, in raster order.
+    for (std::size_t pixel = 0; pixel < centre_.size(); ++pixel) {
+      if (centre_[pixel] == kEmpty) continue;
+      const Eigen::Vector3f d = (points_W[centre_[pixel] & 0xffffffffU] - t_WB).cast<float>();
+      centre_points_[pixel] = Eigen::Vector3f(R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * d.z(),
+                                              R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * d.z(),
+                                              R(2, 0) * d.x() + R(2, 1) * d.y() + R(2, 2) * d.z());
     }
   }
 
@@ -187,14 +194,14 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
       const std::uint64_t entry = row[pad + u];
       if (entry == kEmpty) {
         depth_[pixel] = 0.0F;
-        winner_[pixel] = -1;
+        pixels_[pixel].winner = -1;
         continue;
       }
       const auto centre = static_cast<std::size_t>(entry & 0xffffffffU);
       const auto bits = static_cast<std::uint32_t>(entry >> 32);
       std::memcpy(&depth_[pixel], &bits, sizeof bits);
-      winner_[pixel] = static_cast<std::int32_t>(centre_[centre] & 0xffffffffU);
-      points_B_[pixel] = centre_points_[centre];
+      pixels_[pixel].winner = static_cast<std::int32_t>(centre_[centre] & 0xffffffffU);
+      pixels_[pixel].point_B = centre_points_[centre];
       ++occupied_count_;
     }
   }

@@ -93,12 +93,13 @@ Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNorm
   // theta in columns, reduced to [0, W): the same column arithmetic for any number of turns.
   double shift = theta * table.columns_per_rad;
   shift -= width * std::floor(shift / width);
-  // sum_k J_k J_k^T as a fixed-size rank-1 update: Eigen evaluates it column by column in SIMD
-  // pairs with J in registers. (Accumulating the 21 upper entries by hand spilled J to the stack
-  // and reloaded it in misaligned pairs, stalling on store forwarding: 1/3 of this loop's time.)
-  // Both triangles hold the same products J_r J_c summed in the same order, so Lambda is exactly
-  // symmetric, bit for bit as before.
-  Matrix6d lambda = Matrix6d::Zero();
+  // Two passes. The first looks the rays up and writes their Jacobians J = [ p x n ; n ] (base
+  // axes, see the header) to a buffer; the second sums J J^T. Summing inside the lookup loop was
+  // a third of U's cost: every call (lookup, normal) clobbers all SSE registers, so J and the
+  // sums went through the stack, and reloading them stalled on store forwarding.
+  thread_local std::vector<double> jacobians;  // 6 per ray that hit a surface with a normal
+  jacobians.resize(6 * table.rows.size());
+  std::size_t hits = 0;
   for (std::size_t k = 0; k < table.rows.size(); ++k) {
     int u = static_cast<int>(table.columns_at_zero[k] + shift);  // in [0, 2W)
     if (u >= width) u -= width;
@@ -106,14 +107,33 @@ Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNorm
     if (pixel < 0) continue;
     const Eigen::Vector3f* n = normals.normal(pixel);
     if (n == nullptr) continue;
-    // J = [ p x n ; n ] in base axes (see the header).
     const Eigen::Vector3f& p = map.point(pixel);
-    Vector6d J;
-    J << double(p.y()) * n->z() - double(p.z()) * n->y(),
-         double(p.z()) * n->x() - double(p.x()) * n->z(),
-         double(p.x()) * n->y() - double(p.y()) * n->x(),
-         n->x(), n->y(), n->z();
-    lambda.noalias() += J * J.transpose();
+    double* J = &jacobians[6 * hits++];
+    J[0] = double(p.y()) * n->z() - double(p.z()) * n->y();
+    J[1] = double(p.z()) * n->x() - double(p.x()) * n->z();
+    J[2] = double(p.x()) * n->y() - double(p.y()) * n->x();
+    J[3] = n->x();
+    J[4] = n->y();
+    J[5] = n->z();
+  }
+  // Upper triangle of Lambda = sum_k J_k J_k^T: 21 products per ray instead of 36, summed in ray
+  // order (the same sums, bit for bit, as accumulating ray by ray).
+  double upper[21] = {};
+  for (std::size_t h = 0; h < hits; ++h) {
+    const double* J = &jacobians[6 * h];
+    int e = 0;
+    for (int r = 0; r < 6; ++r) {
+      for (int c = r; c < 6; ++c) upper[e++] += J[r] * J[c];
+    }
+  }
+  Matrix6d lambda;
+  int e = 0;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = r; c < 6; ++c) {
+      lambda(r, c) = upper[e];
+      lambda(c, r) = upper[e];
+      ++e;
+    }
   }
   return lambda;
 }

@@ -46,7 +46,16 @@ class DepthMapNormals {
   // Unit normal (base axes) of the surface at an occupied pixel, or nullptr when the pixel is
   // empty or no reliable normal can be estimated there. Cached per local-map point (estimated at
   // the first pixel of that point asked for) until the next reset().
-  const Eigen::Vector3f* normal(int pixel);
+  // Inline: called once per ray and candidate angle, and nearly always answered by the cache.
+  const Eigen::Vector3f* normal(int pixel) {
+    if (map_ == nullptr) throwNotReset();
+    const std::int32_t index = map_->pointIndex(pixel);
+    if (index < 0) return nullptr;
+    // Cached per local-map point, not per pixel: a splatted point covers many pixels.
+    std::uint8_t& state = state_[index];
+    if (state == kUnknown) state = compute(pixel, index);
+    return state == kValid ? &normals_[index] : nullptr;
+  }
 
   // The same estimate without the cache; returns false when there is no reliable normal.
   bool estimate(const PanoramicDepthMap& map, int pixel, Eigen::Vector3f* normal_B) const;
@@ -56,6 +65,9 @@ class DepthMapNormals {
 
  private:
   enum State : std::uint8_t { kUnknown = 0, kValid = 1, kInvalid = 2 };
+
+  [[noreturn]] static void throwNotReset();
+  State compute(int pixel, std::int32_t index);  // estimate() into the cache
 
   Config config_;
   const PanoramicDepthMap* map_ = nullptr;
