@@ -1,6 +1,8 @@
 #include "uampc/lo/local_map.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -35,12 +37,8 @@ std::uint64_t LocalMap::blockKey(const Voxel& v) {
          (((static_cast<std::uint64_t>(floorHalf(v.z())) + kBias) & kMask21) << 42);
 }
 
-std::size_t LocalMap::home(std::uint64_t key) const {
-  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
-}
-
 void LocalMap::clear() {
-  keys_.clear();
+  slots_.clear();
   pool_.clear();
   times_.clear();
   free_.clear();
@@ -49,70 +47,65 @@ void LocalMap::clear() {
 }
 
 void LocalMap::rehash(std::size_t capacity) {
-  std::vector<std::uint64_t> old_keys;
-  std::vector<std::uint32_t> old_index;
-  old_keys.swap(keys_);
-  old_index.swap(index_);
-  keys_.assign(capacity, kEmpty);
-  index_.assign(capacity, 0);
+  std::vector<Slot> old;
+  old.swap(slots_);
+  slots_.assign(capacity, Slot{kEmpty, 0});
   shift_ = 64;
   for (std::size_t c = capacity; c > 1; c >>= 1) --shift_;
   blocks_used_ = 0;
   erased_ = 0;
-  for (std::size_t i = 0; i < old_keys.size(); ++i) {
-    if (old_keys[i] < kErased) placeKey(old_keys[i], old_index[i]);
-  }
-}
-
-std::size_t LocalMap::slotOf(std::uint64_t key) const {
-  const std::size_t mask = keys_.size() - 1;
-  for (std::size_t i = home(key);; i = (i + 1) & mask) {
-    if (keys_[i] == key) return i;
-    if (keys_[i] == kEmpty) return kNoSlot;
+  for (const Slot& slot : old) {
+    if (slot.key < kErased) placeKey(slot.key, slot.block);
   }
 }
 
 // Puts an absent key into the first free slot of its probe sequence.
 void LocalMap::placeKey(std::uint64_t key, std::uint32_t block) {
-  const std::size_t mask = keys_.size() - 1;
+  const std::size_t mask = slots_.size() - 1;
   std::size_t i = home(key);
-  while (keys_[i] < kErased) i = (i + 1) & mask;
-  if (keys_[i] == kErased) --erased_;
-  keys_[i] = key;
-  index_[i] = block;
+  while (slots_[i].key < kErased) i = (i + 1) & mask;
+  if (slots_[i].key == kErased) --erased_;
+  slots_[i] = Slot{key, block};
   ++blocks_used_;
 }
 
 void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time) {
+  // Successive points of a scan often fall in the same block: remember the last one.
+  std::uint64_t last_key = kEmpty;
+  std::uint32_t b = 0;
   for (const auto& p : points_W) {
     const Voxel voxel = voxelOf(p, inverse_voxel_size_);
     const std::uint64_t key = blockKey(voxel);
-    const std::size_t slot = slotOf(key);
-    std::uint32_t b;
-    if (slot != kNoSlot) {
-      b = index_[slot];
-    } else {
-      // Keep the table at most half full (live blocks and tombstones), so probes stay short.
-      if (2 * (blocks_used_ + erased_ + 1) > keys_.size()) {
-        rehash(4 * (blocks_used_ + 1) > keys_.size() ? 2 * keys_.size() : keys_.size());
-      }
-      if (!free_.empty()) {
-        b = free_.back();
-        free_.pop_back();
+    if (key != last_key) {
+      const std::size_t slot = slotOf(key);
+      if (slot != kNoSlot) {
+        b = slots_[slot].block;
       } else {
-        b = static_cast<std::uint32_t>(pool_.size());
-        pool_.emplace_back();
-        times_.emplace_back();
+        // Keep the table at most half full (live blocks and tombstones), so probes stay short.
+        if (2 * (blocks_used_ + erased_ + 1) > slots_.size()) {
+          rehash(4 * (blocks_used_ + 1) > slots_.size() ? 2 * slots_.size() : slots_.size());
+        }
+        if (!free_.empty()) {
+          b = free_.back();
+          free_.pop_back();
+        } else {
+          b = static_cast<std::uint32_t>(pool_.size());
+          pool_.emplace_back();
+          times_.emplace_back();
+        }
+        pool_[b].occupied = 0;
+        placeKey(key, b);
       }
-      pool_[b].occupied = 0;
-      placeKey(key, b);
+      last_key = key;
     }
     Block& block = pool_[b];
     const int index = indexInBlock(voxel);
     const auto bit = static_cast<std::uint8_t>(1u << index);
     if (!(block.occupied & bit)) {
       block.occupied |= bit;
-      block.points_W[index] = p.cast<float>();
+      block.x[index] = static_cast<float>(p.x());
+      block.y[index] = static_cast<float>(p.y());
+      block.z[index] = static_cast<float>(p.z());
       ++size_;
     }
     times_[b][index] = time;  // the first point stays; when it was seen is refreshed
@@ -122,19 +115,32 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time)
 void LocalMap::removeFarFrom(const Eigen::Vector3d& origin_W) {
   const Eigen::Vector3f origin = origin_W.cast<float>();
   const auto max_radius2 = static_cast<float>(max_radius_ * max_radius_);
-  for (std::size_t i = 0; i < keys_.size(); ++i) {
-    if (keys_[i] >= kErased) continue;
-    Block& block = pool_[index_[i]];
+  // A block whose whole box (with a millimetre for float rounding) lies within the radius keeps
+  // all its points without looking at them: only the thin shell at the radius is tested point by
+  // point, and the blocks inside are never touched, just their keys.
+  const double block_size = 2.0 * voxel_size_;
+  const double inner = std::max(0.0, max_radius_ - 1e-3);
+  for (Slot& slot : slots_) {
+    if (slot.key >= kErased) continue;
+    double far2 = 0.0;  // squared distance from origin to the farthest corner of the block
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto cell = static_cast<std::int64_t>((slot.key >> (21 * axis)) & kMask21) -
+                        static_cast<std::int64_t>(kBias);
+      const double low = static_cast<double>(cell) * block_size - origin_W[axis];
+      const double far = std::max(std::abs(low), std::abs(low + block_size));
+      far2 += far * far;
+    }
+    if (far2 < inner * inner) continue;
+    Block& block = pool_[slot.block];
     for (int j = 0; j < 8; ++j) {
-      if ((block.occupied & (1u << j)) &&
-          (block.points_W[j] - origin).squaredNorm() > max_radius2) {
+      if ((block.occupied & (1u << j)) && (block.point(j) - origin).squaredNorm() > max_radius2) {
         block.occupied = static_cast<std::uint8_t>(block.occupied & ~(1u << j));
         --size_;
       }
     }
     if (block.occupied == 0) {
-      keys_[i] = kErased;
-      free_.push_back(index_[i]);
+      slot.key = kErased;
+      free_.push_back(slot.block);
       --blocks_used_;
       ++erased_;
     }
@@ -147,58 +153,89 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
   if (k == 0) return 0;
   // The k best so far, sorted by squared distance (k is small: insertion beats sorting).
   constexpr std::size_t kMaxK = 16;
-  std::array<std::pair<float, const Eigen::Vector3f*>, kMaxK> best;
+  std::array<std::pair<float, Eigen::Vector3f>, kMaxK> best;
   k = std::min(k, kMaxK);
   std::size_t n = 0;
+  float worst = std::numeric_limits<float>::infinity();  // k-th best squared distance
   const Eigen::Vector3f qf = q.cast<float>();
   const Voxel center = voxelOf(q, inverse_voxel_size_);
-  // Voxels center-1 .. center+1 span exactly two blocks along each axis. The 8 look-ups are
-  // independent: their keys, then their blocks, are prefetched together so that the cache
-  // misses overlap instead of queueing one behind the other.
-  const Voxel low = center - Voxel::Ones();
+  // Voxels center-1 .. center+1 span exactly two blocks along each axis, one of which holds q.
+  // A block's squared distance to q (0 for q's own block) bounds its points' from below, so a
+  // block is skipped, not even looked up, once k points nearer than it are known: the same k
+  // points as an exhaustive search of the 8 blocks. Visiting them roughly nearest first (q's
+  // block, then across the nearest faces) makes the skips frequent. The bound is loosened by
+  // 1 mm so that float rounding of the stored points cannot skip one the search would take.
+  const double block_size = 2.0 * voxel_size_;
+  std::array<std::array<std::uint64_t, 2>, 3> key_part;  // [axis][own, other] bits of the key
+  std::array<float, 3> gap2;  // squared distance from q to the other block along each axis
+  for (int a = 0; a < 3; ++a) {
+    const int lower = floorHalf(center[a] - 1);  // the lower of the two blocks
+    const double split = (lower + 1) * block_size;  // face between the two blocks
+    const bool upper_is_own = q[a] >= split;
+    const double gap = std::max(0.0, std::abs(q[a] - split) - 1e-3);
+    gap2[a] = static_cast<float>(gap * gap);
+    const std::uint64_t low_bits = ((static_cast<std::uint64_t>(lower) + kBias) & kMask21) << (21 * a);
+    const std::uint64_t high_bits = ((static_cast<std::uint64_t>(lower + 1) + kBias) & kMask21)
+                                    << (21 * a);
+    key_part[a] = upper_is_own ? std::array<std::uint64_t, 2>{high_bits, low_bits}
+                               : std::array<std::uint64_t, 2>{low_bits, high_bits};
+  }
+  // Axes by increasing gap (three compare-exchanges).
+  std::array<int, 3> axis = {0, 1, 2};
+  if (gap2[axis[1]] < gap2[axis[0]]) std::swap(axis[0], axis[1]);
+  if (gap2[axis[2]] < gap2[axis[1]]) std::swap(axis[1], axis[2]);
+  if (gap2[axis[1]] < gap2[axis[0]]) std::swap(axis[0], axis[1]);
+  const int a0 = 1 << axis[0], a1 = 1 << axis[1], a2 = 1 << axis[2];
+  // Which axes each visited block lies across from q's block, roughly nearest first.
+  const std::array<int, 8> across = {0, a0, a1, a2, a0 | a1, a0 | a2, a1 | a2, 7};
   std::array<std::uint64_t, 8> keys;
   for (int c = 0; c < 8; ++c) {
-    keys[c] = blockKey(Voxel(low.x() + 2 * (c & 1), low.y() + (c & 2), low.z() + ((c & 4) >> 1)));
-    __builtin_prefetch(&keys_[home(keys[c])]);
+    keys[c] = key_part[0][across[c] & 1] | key_part[1][(across[c] >> 1) & 1] |
+              key_part[2][(across[c] >> 2) & 1];
+    __builtin_prefetch(&slots_[home(keys[c])]);
   }
-  std::array<const Block*, 8> blocks;
-  std::size_t found = 0;
   for (int c = 0; c < 8; ++c) {
+    const float box2 = ((across[c] & 1) ? gap2[0] : 0.0f) + ((across[c] & 2) ? gap2[1] : 0.0f) +
+                       ((across[c] & 4) ? gap2[2] : 0.0f);
+    if (box2 > worst) continue;
     const std::size_t slot = slotOf(keys[c]);
     if (slot == kNoSlot) continue;
-    blocks[found] = &pool_[index_[slot]];
-    __builtin_prefetch(blocks[found]);
-    __builtin_prefetch(reinterpret_cast<const char*>(blocks[found]) + 64);
-    ++found;
-  }
-  for (std::size_t c = 0; c < found; ++c) {
-    const Block& block = *blocks[c];
-    for (unsigned bits = block.occupied; bits != 0; bits &= bits - 1) {
+    const Block& block = pool_[slots_[slot].block];
+    // Only points nearer than the k-th best go through the insertion: after the first block or
+    // two that is a few of the ~20 candidates, and the test itself does not branch.
+    unsigned nearer = 0;
+    std::array<float, 8> d2;
+    for (int j = 0; j < 8; ++j) {
+      const float dx = block.x[j] - qf.x(), dy = block.y[j] - qf.y(), dz = block.z[j] - qf.z();
+      d2[j] = dx * dx + dy * dy + dz * dz;
+      nearer |= static_cast<unsigned>(d2[j] < worst) << j;
+    }
+    for (unsigned bits = nearer & block.occupied; bits != 0; bits &= bits - 1) {
       const int j = __builtin_ctz(bits);
-      const float d2 = (block.points_W[j] - qf).squaredNorm();
-      if (n == k && d2 >= best[k - 1].first) continue;
+      if (d2[j] >= worst) continue;  // worst shrank since
       std::size_t i = (n < k) ? n++ : k - 1;
-      while (i > 0 && best[i - 1].first > d2) {
+      while (i > 0 && best[i - 1].first > d2[j]) {
         best[i] = best[i - 1];
         --i;
       }
-      best[i] = {d2, &block.points_W[j]};
+      best[i] = {d2[j], block.point(j)};
+      if (n == k) worst = best[k - 1].first;
     }
   }
-  for (std::size_t i = 0; i < n; ++i) neighbours.push_back(best[i].second->cast<double>());
+  for (std::size_t i = 0; i < n; ++i) neighbours.push_back(best[i].second.cast<double>());
   return n;
 }
 
 std::vector<MapPoint> LocalMap::points(double observed_since) const {
   std::vector<MapPoint> out;
   out.reserve(size_);
-  for (std::size_t i = 0; i < keys_.size(); ++i) {
-    if (keys_[i] >= kErased) continue;
-    const Block& block = pool_[index_[i]];
-    const auto& times = times_[index_[i]];
+  for (const Slot& slot : slots_) {
+    if (slot.key >= kErased) continue;
+    const Block& block = pool_[slot.block];
+    const auto& times = times_[slot.block];
     for (int j = 0; j < 8; ++j) {
       if ((block.occupied & (1u << j)) && times[j] >= observed_since) {
-        out.push_back({block.points_W[j].cast<double>(), times[j]});
+        out.push_back({block.point(j).cast<double>(), times[j]});
       }
     }
   }

@@ -7,7 +7,9 @@
 //
 // Neighbour search is the hottest loop of the odometry. Voxels are stored by 2x2x2 blocks in an
 // open-addressing hash table (linear probing, tombstones on erase), so the 3x3x3 voxels around
-// a query are covered by 8 block look-ups instead of 27 voxel look-ups.
+// a query are covered by 8 block look-ups instead of 27 voxel look-ups. The blocks are visited
+// nearest first and skipped once they cannot hold anything nearer than the k-th best point, and
+// a block keeps its points as coordinate arrays so its 8 distances are computed together.
 #pragma once
 
 #include <Eigen/Core>
@@ -49,9 +51,8 @@ class LocalMap {
   std::size_t size() const { return size_; }
   // Heap memory held by the map (table and block pool), bytes.
   std::size_t memoryBytes() const {
-    return keys_.capacity() * sizeof(std::uint64_t) + index_.capacity() * sizeof(std::uint32_t) +
-           pool_.capacity() * sizeof(Block) + times_.capacity() * sizeof(times_[0]) +
-           free_.capacity() * sizeof(std::uint32_t);
+    return slots_.capacity() * sizeof(Slot) + pool_.capacity() * sizeof(Block) +
+           times_.capacity() * sizeof(times_[0]) + free_.capacity() * sizeof(std::uint32_t);
   }
   bool empty() const { return size_ == 0; }
   void clear();
@@ -64,24 +65,39 @@ class LocalMap {
   double max_radius_;
 
   // Eight voxels, 2x2x2; bit i of occupied says whether voxel i holds a point. Points are
-  // float (plenty for 0.3 m voxels within a few km of the origin) so a block is ~100 bytes.
+  // float (plenty for 0.3 m voxels within a few km of the origin) and stored as x, y and z
+  // arrays, so that the squared distances of all 8 to a query vectorise; a block is ~100 bytes.
   struct Block {
+    std::array<float, 8> x, y, z;
     std::uint8_t occupied = 0;
-    std::array<Eigen::Vector3f, 8> points_W;
+    Eigen::Vector3f point(int i) const { return {x[i], y[i], z[i]}; }
+  };
+  // A table slot: the block key and the block's pool index side by side, so that a look-up
+  // touches one cache line.
+  struct Slot {
+    std::uint64_t key;
+    std::uint32_t block;
   };
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
   static constexpr std::uint64_t kErased = kEmpty - 1;
   static constexpr std::size_t kNoSlot = ~std::size_t{0};
   static std::uint64_t blockKey(const Voxel& voxel);
-  std::size_t home(std::uint64_t key) const;
-  std::size_t slotOf(std::uint64_t key) const;
+  std::size_t home(std::uint64_t key) const {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);  // Fibonacci
+  }
+  std::size_t slotOf(std::uint64_t key) const {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = home(key);; i = (i + 1) & mask) {
+      if (slots_[i].key == key) return i;
+      if (slots_[i].key == kEmpty) return kNoSlot;
+    }
+  }
   void placeKey(std::uint64_t key, std::uint32_t block);
   void rehash(std::size_t capacity);
 
   // Open-addressing table from block key to an index into the dense block pool.
-  std::vector<std::uint64_t> keys_;   // capacity a power of two; kEmpty, kErased or a block key
-  std::vector<std::uint32_t> index_;  // pool index of the block in the same slot
-  std::vector<Block> pool_;           // blocks, dense: neighbours in space mostly near in memory
+  std::vector<Slot> slots_;  // capacity a power of two; key kEmpty, kErased or a block key
+  std::vector<Block> pool_;  // blocks, dense
   std::vector<std::array<double, 8>> times_;  // observation times, parallel to pool_
   std::vector<std::uint32_t> free_;           // pool indices of removed blocks, for reuse
   std::size_t size_ = 0;                      // occupied voxels
