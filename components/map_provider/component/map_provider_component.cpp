@@ -34,6 +34,10 @@ class MapProvider : public Component {
                "between trajectory samples: linear (position) and slerp (attitude), or smooth (C1: cubic "
                "Hermite and SQUAD through the same samples; file trajectories only)")
         .oneOf({"linear", "smooth"});
+    spec.param("smoothing", 0.0,
+               "moving-average window over a file trajectory's poses, s (0: none); recorded ground truth "
+               "carries attitude noise no vehicle performs")
+        .between(0.0, 10.0);
     spec.param("trajectory_start", 0.0, "seconds of a file trajectory skipped at its start").atLeast(0.0);
     spec.param("path_speed", 1.5, "speed of generated paths, m/s").between(0.01, 50.0);
     spec.param("path_laps", 1, "laps of closed generated paths (campus)").between(1, 1000);
@@ -72,6 +76,7 @@ class MapProvider : public Component {
     s.trajectory_file = ctx.paramString("trajectory_file");
     s.attitude = ctx.paramString("attitude");
     s.interpolation = ctx.paramString("interpolation");
+    s.smoothing = ctx.paramDouble("smoothing");
     s.trajectory_start = ctx.paramDouble("trajectory_start");
     s.path_speed = ctx.paramDouble("path_speed");
     s.path_laps = static_cast<int>(ctx.paramInt("path_laps"));

@@ -19,6 +19,7 @@ struct WorldSettings {
   std::string trajectory_file;           // MCD CSV (.csv) or TUM
   std::string attitude = "from_file";    // from_file | yaw_only | identity
   std::string interpolation = "linear";  // linear | smooth (see world::Interpolation)
+  double smoothing = 0.0;                // s: moving-average window over file poses (0: none)
   double trajectory_start = 0.0;         // s skipped at the start of a file trajectory
   double path_speed = 1.5;               // m/s, generated paths
   int path_laps = 1;
