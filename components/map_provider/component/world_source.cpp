@@ -10,8 +10,6 @@ namespace uampc::map_provider {
 
 namespace {
 
-world::Trajectory smoothed(const world::Trajectory& t, double window);
-
 world::Trajectory readFileTrajectory(const WorldSettings& s) {
   if (s.trajectory_file.empty()) throw std::runtime_error("trajectory: file needs trajectory_file");
   const bool mcd = s.trajectory_file.size() > 4 && s.trajectory_file.substr(s.trajectory_file.size() - 4) == ".csv";
@@ -32,7 +30,7 @@ world::Trajectory readFileTrajectory(const WorldSettings& s) {
     }
     t = world::Trajectory(kept);
   }
-  if (s.smoothing > 0) t = smoothed(t, s.smoothing);
+  if (s.smoothing > 0) t = world::movingAverage(t, s.smoothing);
   return world::Trajectory(t.poses(), world::interpolationFromName(s.interpolation));
 }
 
@@ -42,32 +40,6 @@ world::Trajectory generatedPath(const std::vector<Eigen::Vector3d>& waypoints, b
   config.closed = closed;
   config.laps = s.path_laps;
   return world::pathThroughWaypoints(waypoints, config);
-}
-
-// A moving average over `window` seconds of the file's poses (positions averaged, quaternions
-// summed in one hemisphere and normalised): recorded ground truth at 10 Hz carries attitude noise
-// (MCD: yaw rate jumping by up to 18 deg/s between samples, roll and pitch wobbling) that no vehicle
-// performs. The averaged trajectory is what the simulation plays and what the evaluator compares
-// against, so all controllers see the same, plausible motion.
-world::Trajectory smoothed(const world::Trajectory& t, double window) {
-  const auto& poses = t.poses();
-  std::vector<world::TimedPose> out;
-  out.reserve(poses.size());
-  std::size_t lo = 0, hi = 0;
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    while (poses[lo].time < poses[i].time - 0.5 * window) ++lo;
-    while (hi + 1 < poses.size() && poses[hi + 1].time <= poses[i].time + 0.5 * window) ++hi;
-    Eigen::Vector3d position = Eigen::Vector3d::Zero();
-    Eigen::Vector4d q = Eigen::Vector4d::Zero();
-    for (std::size_t k = lo; k <= hi; ++k) {
-      position += poses[k].position;
-      const Eigen::Vector4d c = poses[k].orientation.coeffs();
-      q += c.dot(poses[i].orientation.coeffs()) < 0 ? Eigen::Vector4d(-c) : c;
-    }
-    const double n = static_cast<double>(hi - lo + 1);
-    out.push_back({poses[i].time, position / n, Eigen::Quaterniond(q.normalized())});
-  }
-  return world::Trajectory(out);
 }
 
 }  // namespace

@@ -110,6 +110,26 @@ Eigen::Isometry3d Trajectory::poseAt(double t) const {
   return T;
 }
 
+Trajectory movingAverage(const Trajectory& trajectory, double window) {
+  const auto& poses = trajectory.poses();
+  std::vector<TimedPose> out;
+  out.reserve(poses.size());
+  std::size_t lo = 0, hi = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    while (poses[lo].time < poses[i].time - 0.5 * window) ++lo;
+    while (hi + 1 < poses.size() && poses[hi + 1].time <= poses[i].time + 0.5 * window) ++hi;
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    Eigen::Vector4d q = Eigen::Vector4d::Zero();
+    for (std::size_t k = lo; k <= hi; ++k) {
+      position += poses[k].position;
+      const Eigen::Vector4d c = poses[k].orientation.coeffs();
+      q += c.dot(poses[i].orientation.coeffs()) < 0 ? Eigen::Vector4d(-c) : c;
+    }
+    out.push_back({poses[i].time, position / static_cast<double>(hi - lo + 1), Eigen::Quaterniond(q.normalized())});
+  }
+  return Trajectory(std::move(out), trajectory.interpolation());
+}
+
 Trajectory Trajectory::shiftedInTime(double offset) const {
   std::vector<TimedPose> shifted = poses_;
   for (auto& p : shifted) p.time += offset;

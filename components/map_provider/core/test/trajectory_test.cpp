@@ -191,6 +191,24 @@ TEST(GeneratedPaths, ClosedLoopAtConstantSpeedFacingForward) {
 
 // Smooth interpolation passes through every sample and keeps the velocity continuous at samples,
 // where linear interpolation's velocity jumps.
+// The moving average keeps a straight constant-speed path as it is and removes alternating noise.
+TEST(TrajectoryMovingAverage, RemovesAlternatingNoiseAndKeepsStraightMotion) {
+  std::vector<TimedPose> poses;
+  for (int i = 0; i < 50; ++i) {
+    const double yaw = (i % 2 ? 0.05 : -0.05);  // +-3 degrees of alternating heading noise
+    poses.push_back({0.1 * i, Eigen::Vector3d(0.5 * i, 2.0, 1.0),
+                     Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))});
+  }
+  const Trajectory averaged = movingAverage(Trajectory(poses), 0.5);
+  ASSERT_EQ(averaged.poses().size(), poses.size());
+  for (std::size_t i = 5; i + 5 < poses.size(); ++i) {
+    const auto& p = averaged.poses()[i];
+    EXPECT_TRUE(p.position.isApprox(poses[i].position, 1e-12)) << i;  // linear motion is unchanged
+    // Five samples in the window: the +-0.05 rad noise averages to +-0.01 rad.
+    EXPECT_LT(Eigen::AngleAxisd(p.orientation).angle(), 0.0101) << i;
+  }
+}
+
 TEST(TrajectorySmooth, PassesThroughSamplesWithContinuousVelocity) {
   std::vector<TimedPose> poses;
   for (int i = 0; i < 20; ++i) {
