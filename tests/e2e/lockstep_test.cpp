@@ -82,8 +82,12 @@ TEST(Lockstep, MotorFallsBackToTheSafeSpeedWhenCommandsStopAndSaysSo) {
   ASSERT_GT(states.size(), 300u);
   for (const auto& s : states) {
     // Still (no command yet) until the timeout passes, then the safe speed.
-    if (s[0] <= 0.5) EXPECT_EQ(s[2], 0.0) << "t=" << s[0];
-    if (s[0] >= 0.51) EXPECT_DOUBLE_EQ(s[2], 1.0) << "t=" << s[0];
+    if (s[0] <= 0.5) {
+      EXPECT_EQ(s[2], 0.0) << "t=" << s[0];
+    }
+    if (s[0] >= 0.51) {
+      EXPECT_DOUBLE_EQ(s[2], 1.0) << "t=" << s[0];
+    }
   }
 }
 

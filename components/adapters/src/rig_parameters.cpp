@@ -11,11 +11,15 @@ void declareRigParameters(ComponentSpec& spec) {
   spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame (r_ML), m");
 }
 
+Eigen::Vector3d vector3Param(const Context& ctx, const std::string& name) {
+  const auto v = ctx.paramDoubleList(name);
+  if (v.size() != 3) throw std::runtime_error(name + " must have three values (x, y, z)");
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
 frames::MotorLidarCalibration rigCalibration(const Context& ctx) {
-  const auto offset = ctx.paramDoubleList("lidar_offset");
-  if (offset.size() != 3) throw std::runtime_error("lidar_offset must have three values (x, y, z)");
   return frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
-                                                     Eigen::Vector3d(offset[0], offset[1], offset[2]));
+                                                     vector3Param(ctx, "lidar_offset"));
 }
 
 }  // namespace uampc::adapters

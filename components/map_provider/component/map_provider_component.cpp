@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "uampc/adapters/pose_messages.hpp"
+#include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/world/point_sampling.hpp"
@@ -69,9 +70,7 @@ class MapProvider : public Component {
     s.world = ctx.paramString("world");
     s.map_file = ctx.paramString("map_file");
     s.map_voxel_size = ctx.paramDouble("map_voxel_size");
-    const auto offset = ctx.paramDoubleList("map_offset");
-    if (offset.size() != 3) throw std::runtime_error("map_offset must have three values (x, y, z)");
-    s.map_offset = Eigen::Vector3d(offset[0], offset[1], offset[2]).cast<float>();
+    s.map_offset = adapters::vector3Param(ctx, "map_offset").cast<float>();
     s.trajectory = ctx.paramString("trajectory");
     s.trajectory_file = ctx.paramString("trajectory_file");
     s.attitude = ctx.paramString("attitude");

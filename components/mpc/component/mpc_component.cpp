@@ -116,6 +116,8 @@ class MpcComponent : public Component {
   }
 
   void onLocalMap(const sensor_msgs::msg::PointCloud2& m) {
+    // The baselines never look at the map: do not convert 100k points ten times a second for them.
+    if (controller_.config().mode != mpc::Mode::kUaMpc) return;
     const pointcloud::ScanPoints points = pointcloud::readCloud(m);
     local_map_.clear();
     local_map_.reserve(points.positions.size());

@@ -14,4 +14,7 @@ void declareRigParameters(ComponentSpec& spec);
 // The LiDAR-to-motor calibration from those parameters; throws if lidar_offset is not 3 values.
 frames::MotorLidarCalibration rigCalibration(const Context& ctx);
 
+// A double-list parameter that must hold x, y, z; throws naming the parameter otherwise.
+Eigen::Vector3d vector3Param(const Context& ctx, const std::string& name);
+
 }  // namespace uampc::adapters
