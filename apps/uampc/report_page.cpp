@@ -57,6 +57,7 @@ class SceneFigures {
                       &SceneFigures::uncertaintyMap, &SceneFigures::tradeOff}) {
       if (auto f = (this->*make)(); !f.file.empty()) figures.push_back(f);
     }
+    for (Figure& f : panoramaSnapshots()) figures.push_back(std::move(f));
     return figures;
   }
 
@@ -146,11 +147,49 @@ class SceneFigures {
                     experiment_.controllers[reference].name + " run (grey: darker columns hold more voxels).");
   }
 
-  Figure uncertaintyMap() {
-    std::size_t subject = runs_.size();
+  // The controller under test's index in runs_, or runs_.size() if it has no finished run.
+  std::size_t subjectRun() const {
     for (std::size_t c = 0; c < runs_.size(); ++c) {
-      if (runs_[c] && experiment_.controllers[c].name == experiment_.subject) subject = c;
+      if (runs_[c] && experiment_.controllers[c].name == experiment_.subject) return c;
     }
+    return runs_.size();
+  }
+
+  // Up to four of the subject run's panorama snapshots (evaluator: panorama/*.png), evenly spread
+  // over the run, copied next to the page.
+  std::vector<Figure> panoramaSnapshots() {
+    const std::size_t subject = subjectRun();
+    if (subject == runs_.size()) return {};
+    const fs::path directory = runDirectory(subject) / "panorama";
+    std::vector<fs::path> snapshots;
+    std::error_code missing;
+    for (const auto& entry : fs::directory_iterator(directory, missing)) {
+      if (entry.path().extension() == ".png") snapshots.push_back(entry.path());
+    }
+    if (snapshots.empty()) {
+      note("the " + experiment_.subject + " run wrote no panorama snapshots (the evaluator's panorama_period)");
+      return {};
+    }
+    std::sort(snapshots.begin(), snapshots.end());  // names carry the zero-padded sim time
+    constexpr std::size_t kShown = 4;
+    std::vector<Figure> figures;
+    for (std::size_t k = 0; k < std::min(kShown, snapshots.size()); ++k) {
+      const fs::path& source = snapshots[k * (snapshots.size() - 1) / std::max<std::size_t>(1, kShown - 1)];
+      const std::string file = scene_ + "_" + source.filename().string();
+      fs::copy_file(source, report_ / file, fs::copy_options::overwrite_existing);
+      const std::string stem = source.stem().string();
+      figures.push_back({file, "Panoramic depth map (Eq. 5) the " + experiment_.subject + " controller planned on at " +
+                                   stem.substr(stem.find('_') + 1) + " s of sim time (" + seedText(subject) +
+                                   "): columns are azimuth around the base over 2\xcf\x80, rows elevation from the "
+                                   "zenith (top) to the nadir; bright is near, dark blue far, black nothing in the "
+                                   "LO's local map."});
+      if (snapshots.size() == 1) break;
+    }
+    return figures;
+  }
+
+  Figure uncertaintyMap() {
+    const std::size_t subject = subjectRun();
     if (subject == runs_.size()) {
       note("no finished " + experiment_.subject + " run: no U(theta) map");
       return {};
@@ -290,6 +329,7 @@ th:first-child, td:first-child { text-align: left; }
 tr.subject { font-weight: bold; }
 td.failed { color: #b00; } td.not_run { color: #888; }
 figure { margin: 2em 0; } figcaption { color: #555; max-width: 760px; }
+img[src$=".png"] { width: 720px; image-rendering: pixelated; } /* 180 x 90 panoramas, enlarged */
 #figure-check { color: #888; font-size: 12px; }
 </style>
 )";
@@ -315,7 +355,8 @@ ReportSummary writeReport(const Experiment& experiment, const std::vector<RunRes
   const fs::path report = fs::path(output_directory) / "report";
   fs::create_directories(report);
   for (const auto& entry : fs::directory_iterator(report)) {
-    if (entry.path().extension() == ".svg") fs::remove(entry.path());  // figures of an earlier report
+    const auto extension = entry.path().extension();
+    if (extension == ".svg" || extension == ".png") fs::remove(entry.path());  // figures of an earlier report
   }
   std::string body;
   for (std::size_t s = 0; s < experiment.scenes.size(); ++s) {
@@ -326,7 +367,6 @@ ReportSummary writeReport(const Experiment& experiment, const std::vector<RunRes
       ++summary.figures;
     }
   }
-  summary.notes.push_back("panorama snapshots are not shown: runs do not write them as files yet");
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>Experiment " +
                      escapeXml(experiment.name) + "</title>\n" + kStyle + "</head>\n<body>\n<h1>Experiment " +
                      escapeXml(experiment.name) + "</h1>\n<p>From <code>" + escapeXml(experiment.file) + "</code>; " +

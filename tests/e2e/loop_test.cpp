@@ -63,7 +63,8 @@ TEST(Loop, ControllerModesCommandWhatTheySay) {
 }
 
 TEST(Loop, EvaluatorWritesEveryFileAndTheLoStaysOnTrack) {
-  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_eval", 56, "--set clock.duration=10");
+  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_eval", 56,
+                                  "--set clock.duration=10 --set evaluator.panorama_period=4");
   for (const char* file : {"metrics.json", "estimate.tum", "ground_truth.tum", "ate.csv", "cmplt_windows.csv",
                            "cmplt_ground_truth_windows.csv", "motor.csv", "timings.csv", "uncertainty.csv",
                            "scanned_voxels.bt"}) {
@@ -76,6 +77,18 @@ TEST(Loop, EvaluatorWritesEveryFileAndTheLoStaysOnTrack) {
   EXPECT_LT(worst, 0.5) << "the LO drifted more than 0.5 m in 10 s on the campus";
   const std::string metrics = readFile(out + "/metrics.json");
   EXPECT_NE(metrics.find("\"cmplt_ground_truth\""), std::string::npos);
+  // A panorama snapshot every 4 s: at 4 s and 8 s, 180 x 90 RGB pixels stored uncompressed.
+  std::vector<std::string> snapshots;
+  for (const auto& entry : std::filesystem::directory_iterator(out + "/panorama")) {
+    snapshots.push_back(entry.path().filename().string());
+  }
+  std::sort(snapshots.begin(), snapshots.end());
+  ASSERT_EQ(snapshots.size(), 2u);
+  EXPECT_EQ(snapshots[0].rfind("panorama_00004.", 0), 0u) << snapshots[0];
+  EXPECT_EQ(snapshots[1].rfind("panorama_00008.", 0), 0u) << snapshots[1];
+  const std::string png = readFile(out + "/panorama/" + snapshots[0]);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_GT(png.size(), 180u * 90u * 3u);
 }
 
 TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {

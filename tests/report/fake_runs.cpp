@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -9,6 +10,7 @@
 #include <tuple>
 
 #include "experiment_runner.hpp"
+#include "uampc/evaluator/depth_colouring.hpp"
 #include "uampc/evaluator/voxel_octree.hpp"
 
 namespace fs = std::filesystem;
@@ -75,6 +77,15 @@ void writeRun(const fs::path& dir, const FakeFigures& f, bool ua_mpc) {
       u += "\n";
     }
     writeText((dir / "uncertainty.csv").string(), u);
+    // Six panorama snapshots, as the evaluator names them; the report shows four.
+    fs::create_directories(dir / "panorama");
+    for (int k = 0; k < 6; ++k) {
+      std::vector<float> depth(36 * 18);
+      for (std::size_t i = 0; i < depth.size(); ++i) depth[i] = static_cast<float>((i + 7 * k) % 45);
+      char name[64];
+      std::snprintf(name, sizeof(name), "panorama_%07.1f.png", 1.5 * k);
+      evaluator::writePng((dir / "panorama" / name).string(), evaluator::colourDepth(depth, 36, 18, 40.0));
+    }
   }
   std::vector<Eigen::Vector3i> voxels;
   for (int x = -4; x < 24; ++x) {

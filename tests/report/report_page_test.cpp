@@ -18,8 +18,9 @@ TEST(ReportPage, WritesEveryFigureAndNotesWhatIsMissing) {
   const auto fake = test::makeFakeExperiment(test::freshDirectory("report_page_test"));
   const ReportSummary summary =
       writeReport(fake.experiment, fake.results, summarize(fake.experiment, fake.results), fake.directory);
-  // Per scene: ATE over time, motor speed, top view, U(theta), ATE against CMPLT.
-  EXPECT_EQ(summary.figures, 10);
+  // Per scene: ATE over time, motor speed, top view, U(theta), ATE against CMPLT, and four of the
+  // six panorama snapshots of the ua_mpc run.
+  EXPECT_EQ(summary.figures, 18);
   const std::string html = test::readFile(fake.directory + "/report/index.html");
   std::size_t images = 0;
   const std::regex image("<img src=\"([^\"]+)\"");
@@ -27,9 +28,13 @@ TEST(ReportPage, WritesEveryFigureAndNotesWhatIsMissing) {
     ++images;
     EXPECT_TRUE(std::filesystem::is_regular_file(fake.directory + "/report/" + (*it)[1].str())) << (*it)[1];
   }
-  EXPECT_EQ(images, 10u);
+  EXPECT_EQ(images, 18u);
   EXPECT_NE(html.find("<td>1.50</td><td>105</td>"), std::string::npos);  // the summary table
-  EXPECT_NE(html.find("panorama snapshots are not shown"), std::string::npos);
+  // Evenly spread: the first, two in between and the last snapshot.
+  for (const char* shown : {"alpha_panorama_00000.0.png", "alpha_panorama_00001.5.png", "alpha_panorama_00004.5.png",
+                            "alpha_panorama_00007.5.png"}) {
+    EXPECT_NE(html.find(std::string("src=\"") + shown), std::string::npos) << shown;
+  }
   EXPECT_NE(html.find("id=\"figure-check\""), std::string::npos);
 }
 
@@ -39,7 +44,7 @@ TEST(ReportPage, EveryFigureLoadsInHeadlessChromium) {
   const auto fake = test::makeFakeExperiment(dir);
   const ReportSummary summary =
       writeReport(fake.experiment, fake.results, summarize(fake.experiment, fake.results), fake.directory);
-  ASSERT_EQ(summary.figures, 10);
+  ASSERT_EQ(summary.figures, 18);
   const std::string profile = dir + "/chromium_profile";  // fresh: nothing cached from another run
   std::filesystem::create_directories(profile);
   const auto r = test::runShell(std::string("timeout 120 ") + kChromium +
@@ -51,8 +56,8 @@ TEST(ReportPage, EveryFigureLoadsInHeadlessChromium) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(r.output, m, std::regex(R"(figures loaded: (\d+) of (\d+))"))) << r.output;
-  EXPECT_EQ(m[1].str(), "10") << m[0];
-  EXPECT_EQ(m[2].str(), "10") << m[0];
+  EXPECT_EQ(m[1].str(), "18") << m[0];
+  EXPECT_EQ(m[2].str(), "18") << m[0];
 }
 
 }  // namespace

@@ -5,8 +5,10 @@
 //        the raw scans placed with ground truth (Eq. 1), so completeness is not confounded with drift.
 // Publishes running figures; at the end writes into the run's output directory (--out): metrics.json,
 // estimate.tum, ground_truth.tum, ate.csv, cmplt_windows.csv, cmplt_ground_truth_windows.csv,
-// motor.csv, timings.csv, uncertainty.csv and scanned_voxels.bt (OctoMap, opens in octovis).
+// motor.csv, timings.csv, uncertainty.csv and scanned_voxels.bt (OctoMap, opens in octovis); during
+// the run, snapshots of the controller's panorama as panorama/panorama_<sim time>.png.
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <memory>
@@ -15,6 +17,7 @@
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/evaluator/completeness.hpp"
 #include "uampc/evaluator/csv_writer.hpp"
+#include "uampc/evaluator/depth_colouring.hpp"
 #include "uampc/evaluator/json_writer.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/report_files.hpp"
@@ -43,11 +46,17 @@ class EvaluatorComponent : public Component {
     spec.input<msg::UncertaintyProfile>("profile", "/mpc/uncertainty", QosPreset::kSensor, "controller's U profile");
     spec.input<msg::Metrics>("lo_metrics", "/lo/metrics", QosPreset::kSensor, "LO timings and degeneracy");
     spec.input<msg::Metrics>("mpc_timing", "/mpc/timing", QosPreset::kSensor, "controller timings");
+    spec.input<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,
+                                        "controller's panoramic depth map (32FC1), saved as snapshots");
     spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT");
     spec.param("voxel_size", 0.5, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
     spec.param("window", 5.0, "CMPLT window, s (the paper: 5)").between(0.1, 3600.0);
     adapters::declareRigParameters(spec);  // to place raw scans with ground truth
     spec.param("report_period", 5.0, "running figures are published every this many s").between(0.1, 3600.0);
+    spec.param("panorama_period", 20.0, "a panorama snapshot (PNG) every this many s of sim time; 0: none")
+        .between(0.0, 1e6);
+    spec.param("panorama_max_range", 40.0, "range shown darkest in the snapshots, m (the Mid-360's: 40)")
+        .between(0.1, 1e4);
   }
 
   explicit EvaluatorComponent(Context& ctx)
@@ -110,6 +119,12 @@ class EvaluatorComponent : public Component {
     };
     ctx.subscribe<msg::Metrics>("lo_metrics", onMetrics);
     ctx.subscribe<msg::Metrics>("mpc_timing", onMetrics);
+    panorama_period_ = ctx.paramDouble("panorama_period");
+    next_panorama_ = panorama_period_;
+    if (!out.empty() && panorama_period_ > 0.0) {
+      ctx.subscribe<sensor_msgs::msg::Image>("panorama",
+                                             [this](const sensor_msgs::msg::Image& m) { onPanorama(m); });
+    }
     ctx.timer(ctx.paramDouble("report_period"), [this] { publishRunning(); });
   }
 
@@ -152,6 +167,33 @@ class EvaluatorComponent : public Component {
     if (!f) throw std::runtime_error("cannot write " + path);
     std::fputs(header, f.get());
     return f;
+  }
+
+  // Saves one panorama per panorama_period as a PNG; a malformed image is reported once and skipped.
+  void onPanorama(const sensor_msgs::msg::Image& m) {
+    const double t = fromMsg(m.header().stamp()).seconds();
+    if (t < next_panorama_) return;
+    const std::size_t pixels = static_cast<std::size_t>(m.width()) * m.height();
+    if (m.encoding() != "32FC1" || m.is_bigendian() != 0 || pixels == 0 || m.step() != m.width() * 4 ||
+        m.data().size() != pixels * 4) {
+      if (!warned_panorama_) {
+        ctx_.log().warn("ignoring panoramas on ", ctx_.topicOf("panorama"), ": expected little-endian 32FC1 with step ",
+                        "= 4 * width and 4 * width * height bytes, got ", m.encoding(), " ", m.width(), " x ",
+                        m.height(), ", step ", m.step(), ", ", m.data().size(), " bytes");
+        warned_panorama_ = true;
+      }
+      return;
+    }
+    std::vector<float> depth(pixels);
+    std::memcpy(depth.data(), m.data().data(), pixels * 4);
+    const std::filesystem::path directory = std::filesystem::path(ctx_.outputDirectory()) / "panorama";
+    std::filesystem::create_directories(directory);
+    char name[64];
+    std::snprintf(name, sizeof(name), "panorama_%07.1f.png", t);
+    evaluator::writePng((directory / name).string(),
+                        evaluator::colourDepth(depth, static_cast<int>(m.width()), static_cast<int>(m.height()),
+                                               ctx_.paramDouble("panorama_max_range")));
+    while (next_panorama_ <= t) next_panorama_ += panorama_period_;
   }
 
   // Pairs estimates and places raw scans once ground truth (and encoder states) cover them.
@@ -215,6 +257,9 @@ class EvaluatorComponent : public Component {
   File timings_{nullptr, &std::fclose};
   File uncertainty_{nullptr, &std::fclose};
   double command_ = 0.0;
+  double panorama_period_ = 0.0;
+  double next_panorama_ = 0.0;
+  bool warned_panorama_ = false;
   double motor_speed_sum_ = 0.0;
   long motor_samples_ = 0;
 };
