@@ -1,5 +1,6 @@
 #include "components_command.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -75,14 +76,27 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
   for (const auto* library : libraries) {
     const ComponentSpec& spec = library->spec();
     std::cout << spec.type << " - " << spec.summary << "\n  library: " << library->path() << "\n";
-    for (const auto& port : spec.ports()) {
-      std::cout << "  " << directionName(port.direction) << "  " << std::left << std::setw(14) << port.name
-                << std::setw(30) << port.type_name << std::setw(22) << port.default_topic << " [" << toString(port.qos)
-                << "] " << port.doc << "\n";
+    // Columns as wide as their longest entry plus a space, so that long names never run together.
+    auto widest = [](const auto& items, auto text) {
+      int width = 0;
+      for (const auto& item : items) width = std::max(width, static_cast<int>(text(item).size()));
+      return width + 1;
+    };
+    const auto& ports = spec.ports();
+    const int port_name = widest(ports, [](const auto& p) { return p.name; });
+    const int port_type = widest(ports, [](const auto& p) { return p.type_name; });
+    const int port_topic = widest(ports, [](const auto& p) { return p.default_topic; });
+    for (const auto& port : ports) {
+      std::cout << "  " << std::left << std::setw(7) << directionName(port.direction) << std::setw(port_name)
+                << port.name << std::setw(port_type) << port.type_name << std::setw(port_topic) << port.default_topic
+                << "[" << toString(port.qos) << "] " << port.doc << "\n";
     }
-    for (const auto& param : spec.parameters()) {
-      std::cout << "  param  " << std::left << std::setw(20) << param.name << std::setw(8) << toString(param.type)
-                << (param.required() ? "required" : "= " + toString(*param.default_value));
+    const auto& parameters = spec.parameters();
+    const int param_name = widest(parameters, [](const auto& p) { return p.name; });
+    const int param_type = widest(parameters, [](const auto& p) { return std::string(toString(p.type)); });
+    for (const auto& param : parameters) {
+      std::cout << "  param  " << std::left << std::setw(param_name) << param.name << std::setw(param_type)
+                << toString(param.type) << (param.required() ? "required" : "= " + toString(*param.default_value));
       if (param.min || param.max) {
         std::cout << " in [" << (param.min ? formatNumber(*param.min) : "-inf") << ", "
                   << (param.max ? formatNumber(*param.max) : "inf") << "]";

@@ -114,5 +114,13 @@ TEST(ComponentLoader, ListsInstalledComponentsWithPortsAndParametersAsJson) {
   EXPECT_NE(r.output.find("{\"name\": \"mode\", \"type\": \"string\", \"required\": true"), std::string::npos);
 }
 
+TEST(ComponentLoader, TextListingKeepsColumnsApartForLongNames) {
+  const CommandResult r = runUampc("components");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The longest parameter name of the lo component once ran into its type column.
+  EXPECT_NE(r.output.find("param  measurement_variance double"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("output registered   sensor_msgs/msg/PointCloud2"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace uampc::test
