@@ -103,6 +103,20 @@ TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {
   EXPECT_NE(r.output.find("commanding omega_pre 3.6 rad/s"), std::string::npos) << r.output;
 }
 
+TEST(Loop, MalformedPanoramasAreReportedOnceAndNotSaved) {
+  for (const char* mode : {"wrong_encoding", "short_data"}) {
+    const std::string out = freshDirectory(std::string("bad_panorama_") + mode);
+    const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/evaluator_bad_panorama.yaml") + " --out " +
+                                     out + " --set domain_id=60 --set controller.mode=" + mode);
+    EXPECT_EQ(r.exit_code, 0) << mode << "\n" << r.output;
+    const std::string needle = "ignoring panoramas on /mpc/panorama: expected little-endian 32FC1";
+    const auto first = r.output.find(needle);
+    EXPECT_NE(first, std::string::npos) << mode << "\n" << r.output;
+    EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "said more than once:\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(out + "/panorama")) << mode;
+  }
+}
+
 TEST(Loop, NanPointsAndEmptyScansAreSurvived) {
   for (const char* mode : {"nan_points", "empty"}) {
     const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/lo_bad_scans.yaml") +
