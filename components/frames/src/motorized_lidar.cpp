@@ -1,5 +1,7 @@
 #include "uampc/frames/motorized_lidar.hpp"
 
+#include <cmath>
+
 namespace uampc::frames {
 
 MotorLidarCalibration MotorLidarCalibration::tiltedAboutX(double tilt_rad,
@@ -16,12 +18,19 @@ MotorLidarCalibration MotorLidarCalibration::referenceRig() {
 }
 
 Eigen::Matrix3d motorRotation(double theta) {
-  return Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const double c = std::cos(theta), s = std::sin(theta);
+  Eigen::Matrix3d R;
+  R << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+  return R;
 }
 
 Eigen::Vector3d lidarToBase(const Eigen::Vector3d& p_L, double theta,
                             const MotorLidarCalibration& calibration) {
-  return motorRotation(theta) * (calibration.R_ML * p_L + calibration.r_ML);
+  // R_BM(theta) turns about z only: four products instead of a 3x3 matrix (the LO runs this for
+  // every point of every scan).
+  const Eigen::Vector3d p_M = calibration.R_ML * p_L + calibration.r_ML;
+  const double c = std::cos(theta), s = std::sin(theta);
+  return {c * p_M.x() - s * p_M.y(), s * p_M.x() + c * p_M.y(), p_M.z()};
 }
 
 Eigen::Isometry3d lidarPoseInBase(double theta, const MotorLidarCalibration& calibration) {

@@ -20,6 +20,7 @@ DerotatedScan derotate(const Scan& scan, const frames::MotorAngleTrack& motor,
   times.reserve(scan.points_L.size());
   const double min_range2 = min_range * min_range;
   const double max_range2 = max_range * max_range;
+  std::size_t motor_cursor = 0;  // the points come in time order: the encoder interval rarely changes
   for (std::size_t i = 0; i < scan.points_L.size(); ++i) {
     const Eigen::Vector3d p_L = scan.points_L[i].cast<double>();
     const float offset = scan.time_offsets[i];
@@ -33,7 +34,7 @@ DerotatedScan derotate(const Scan& scan, const frames::MotorAngleTrack& motor,
       continue;
     }
     const double t = scan.stamp + static_cast<double>(offset);
-    const std::optional<double> theta = motor.thetaAt(t);
+    const std::optional<double> theta = motor.thetaAt(t, motor_cursor);
     if (!theta) {
       ++out.dropped_outside_motor_track;
       continue;

@@ -161,55 +161,66 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
   const Voxel center = voxelOf(q, inverse_voxel_size_);
   // Voxels center-1 .. center+1 span exactly two blocks along each axis, one of which holds q.
   // A block's squared distance to q (0 for q's own block) bounds its points' from below, so a
-  // block is skipped, not even looked up, once k points nearer than it are known: the same k
-  // points as an exhaustive search of the 8 blocks. Visiting them roughly nearest first (q's
+  // block is skipped once k points nearer than it are known: the same k points as an exhaustive
+  // search of the 8 blocks. Visiting them roughly nearest first (q's
   // block, then across the nearest faces) makes the skips frequent. The bound is loosened by
   // 1 mm so that float rounding of the stored points cannot skip one the search would take.
   const double block_size = 2.0 * voxel_size_;
-  std::array<std::array<std::uint64_t, 2>, 3> key_part;  // [axis][own, other] bits of the key
-  std::array<float, 3> gap2;  // squared distance from q to the other block along each axis
+  // Per axis, the key bits and the squared distance from q of q's own block (0) and of the other
+  // one. Whether the other lies below or above is the parity of q's voxel; the distances of the
+  // 8 blocks are then sums of table entries, not branches on data (mispredicted ones cost more
+  // than the rest of a block's work).
+  std::array<std::array<std::uint64_t, 2>, 3> key_part;  // [axis][own, other]
+  std::array<std::array<float, 2>, 3> gap2;              // [axis][own, other], m^2
   for (int a = 0; a < 3; ++a) {
-    const int lower = floorHalf(center[a] - 1);  // the lower of the two blocks
-    const double split = (lower + 1) * block_size;  // face between the two blocks
-    const bool upper_is_own = q[a] >= split;
+    const int own = floorHalf(center[a]);
+    const int upper_voxel = center[a] & 1;  // q's voxel is the upper one of its block
+    const int other = own - 1 + 2 * upper_voxel;
+    const double split = (own + upper_voxel) * block_size;  // face between the two blocks
     const double gap = std::max(0.0, std::abs(q[a] - split) - 1e-3);
-    gap2[a] = static_cast<float>(gap * gap);
-    const std::uint64_t low_bits = ((static_cast<std::uint64_t>(lower) + kBias) & kMask21) << (21 * a);
-    const std::uint64_t high_bits = ((static_cast<std::uint64_t>(lower + 1) + kBias) & kMask21)
-                                    << (21 * a);
-    key_part[a] = upper_is_own ? std::array<std::uint64_t, 2>{high_bits, low_bits}
-                               : std::array<std::uint64_t, 2>{low_bits, high_bits};
+    gap2[a] = {0.0f, static_cast<float>(gap * gap)};
+    key_part[a] = {((static_cast<std::uint64_t>(own) + kBias) & kMask21) << (21 * a),
+                   ((static_cast<std::uint64_t>(other) + kBias) & kMask21) << (21 * a)};
   }
   // Axes by increasing gap (three compare-exchanges).
   std::array<int, 3> axis = {0, 1, 2};
-  if (gap2[axis[1]] < gap2[axis[0]]) std::swap(axis[0], axis[1]);
-  if (gap2[axis[2]] < gap2[axis[1]]) std::swap(axis[1], axis[2]);
-  if (gap2[axis[1]] < gap2[axis[0]]) std::swap(axis[0], axis[1]);
+  if (gap2[axis[1]][1] < gap2[axis[0]][1]) std::swap(axis[0], axis[1]);
+  if (gap2[axis[2]][1] < gap2[axis[1]][1]) std::swap(axis[1], axis[2]);
+  if (gap2[axis[1]][1] < gap2[axis[0]][1]) std::swap(axis[0], axis[1]);
   const int a0 = 1 << axis[0], a1 = 1 << axis[1], a2 = 1 << axis[2];
   // Which axes each visited block lies across from q's block, roughly nearest first.
   const std::array<int, 8> across = {0, a0, a1, a2, a0 | a1, a0 | a2, a1 | a2, 7};
   std::array<std::uint64_t, 8> keys;
+  std::array<float, 8> box2;  // squared distance from q to block c, a lower bound for its points
   for (int c = 0; c < 8; ++c) {
-    keys[c] = key_part[0][across[c] & 1] | key_part[1][(across[c] >> 1) & 1] |
-              key_part[2][(across[c] >> 2) & 1];
+    const int x = across[c] & 1, y = (across[c] >> 1) & 1, z = across[c] >> 2;
+    keys[c] = key_part[0][x] | key_part[1][y] | key_part[2][z];
+    box2[c] = gap2[0][x] + gap2[1][y] + gap2[2][z];
     __builtin_prefetch(&slots_[home(keys[c])]);
   }
+  // All 8 blocks are looked up before any is searched, so that their cache misses overlap
+  // instead of following one another; the search skips blocks, not look-ups.
+  std::array<const Block*, 8> blocks;
   for (int c = 0; c < 8; ++c) {
-    const float box2 = ((across[c] & 1) ? gap2[0] : 0.0f) + ((across[c] & 2) ? gap2[1] : 0.0f) +
-                       ((across[c] & 4) ? gap2[2] : 0.0f);
-    if (box2 > worst) continue;
     const std::size_t slot = slotOf(keys[c]);
-    if (slot == kNoSlot) continue;
-    const Block& block = pool_[slots_[slot].block];
-    // Only points nearer than the k-th best go through the insertion: after the first block or
-    // two that is a few of the ~20 candidates, and the test itself does not branch.
-    unsigned nearer = 0;
-    std::array<float, 8> d2;
-    for (int j = 0; j < 8; ++j) {
-      const float dx = block.x[j] - qf.x(), dy = block.y[j] - qf.y(), dz = block.z[j] - qf.z();
-      d2[j] = dx * dx + dy * dy + dz * dz;
-      nearer |= static_cast<unsigned>(d2[j] < worst) << j;
+    blocks[c] = slot == kNoSlot ? nullptr : &pool_[slots_[slot].block];
+    if (blocks[c] != nullptr) {
+      __builtin_prefetch(blocks[c]);
+      __builtin_prefetch(reinterpret_cast<const char*>(blocks[c]) + sizeof(Block) - 1);
     }
+  }
+  for (int c = 0; c < 8; ++c) {
+    if (box2[c] > worst || blocks[c] == nullptr) continue;
+    const Block& block = *blocks[c];
+    // The 8 squared distances together (SIMD); only points nearer than the k-th best go through
+    // the insertion: after the first block or two that is a few of the ~20 candidates, and the
+    // test itself does not branch.
+    using Array8f = Eigen::Array<float, 8, 1>;
+    const Array8f d2 = (Eigen::Map<const Array8f>(block.x.data()) - qf.x()).square() +
+                       (Eigen::Map<const Array8f>(block.y.data()) - qf.y()).square() +
+                       (Eigen::Map<const Array8f>(block.z.data()) - qf.z()).square();
+    unsigned nearer = 0;
+    for (int j = 0; j < 8; ++j) nearer |= static_cast<unsigned>(d2[j] < worst) << j;
     for (unsigned bits = nearer & block.occupied; bits != 0; bits &= bits - 1) {
       const int j = __builtin_ctz(bits);
       if (d2[j] >= worst) continue;  // worst shrank since

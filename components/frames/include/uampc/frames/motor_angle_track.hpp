@@ -27,6 +27,10 @@ class MotorAngleTrack {
 
   // theta at time t, or nothing when t lies outside the stored readings.
   std::optional<double> thetaAt(double t) const;
+  // The same, for many times in (nearly) increasing order, as the points of a scan come: cursor
+  // keeps the index of the reading found last time (any value to start), and a time between the
+  // same two readings needs no search. A scan has ~1000 points per encoder interval.
+  std::optional<double> thetaAt(double t, std::size_t& cursor) const;
 
   // True when the readings span [t0, t1].
   bool covers(double t0, double t1) const;
