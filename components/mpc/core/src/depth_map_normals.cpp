@@ -12,8 +12,8 @@ DepthMapNormals::DepthMapNormals(const Config& config) : config_(config) {}
 
 void DepthMapNormals::reset(const PanoramicDepthMap& map) {
   map_ = &map;
-  state_.assign(map.sourceSize(), kUnknown);
-  normals_.resize(map.sourceSize());
+  cache_.assign(static_cast<std::size_t>(map.width()) * map.height(),
+                CachedNormal{Eigen::Vector3f::Zero(), kUnknown});
   computed_count_ = 0;
 }
 
@@ -21,9 +21,9 @@ void DepthMapNormals::throwNotReset() {
   throw std::logic_error("DepthMapNormals::normal called before reset");
 }
 
-DepthMapNormals::State DepthMapNormals::compute(int pixel, std::int32_t index) {
+DepthMapNormals::State DepthMapNormals::compute(int pixel, Eigen::Vector3f* normal) {
   ++computed_count_;
-  return estimate(*map_, pixel, &normals_[index]) ? kValid : kInvalid;
+  return estimate(*map_, pixel, normal) ? kValid : kInvalid;
 }
 
 bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
@@ -35,7 +35,7 @@ bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
   const int v = pixel / width;
   const Eigen::Vector3f& centre = map.point(pixel);
   const float range = map.range(pixel);
-  const std::int32_t centre_index = map.pointIndex(pixel);
+  const std::int32_t centre_pixel = map.centrePixel(pixel);  // names the centre point
   const float max_jump = static_cast<float>(config_.max_range_jump_ratio) * range;
 
   // The 8 ring directions in angular order around the pixel.
@@ -45,18 +45,26 @@ bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
   int ring_position[8];
   int found = 0;
   for (int k = 0; k < 8; ++k) {
+    // Rows clamp: the walk ends at the zenith or nadir row.
+    const int rows_left =
+        kDv[k] < 0 ? v : (kDv[k] > 0 ? height - 1 - v : config_.neighbour_reach_px);
+    const int reach = std::min(config_.neighbour_reach_px, rows_left);
     int uu = u;
-    int vv = v;
-    for (int step = 1; step <= config_.neighbour_reach_px; ++step) {
-      vv += kDv[k];
-      if (vv < 0 || vv >= height) break;
-      // Columns wrap; stepping by one column needs no integer division (which cost most of the
+    int q = pixel;
+    for (int step = 1; step <= reach; ++step) {
+      // Columns wrap; stepping by one pixel needs no integer division (which cost most of the
       // time here when written as a modulo).
       uu += kDu[k];
-      uu = uu < 0 ? uu + width : (uu >= width ? uu - width : uu);
-      const int q = map.pixelIndex(uu, vv);
+      q += kDv[k] * width + kDu[k];
+      if (uu < 0) {
+        uu += width;
+        q += width;
+      } else if (uu >= width) {
+        uu -= width;
+        q -= width;
+      }
       // A hole, or the centre point's own splat: look one pixel further.
-      if (!map.occupied(q) || map.pointIndex(q) == centre_index) continue;
+      if (!map.occupied(q) || map.centrePixel(q) == centre_pixel) continue;
       if (std::abs(map.range(q) - range) > max_jump) break;  // another surface
       offsets[found] = map.point(q) - centre;
       ring_position[found] = k;
@@ -70,9 +78,8 @@ bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
   int triangles = 0;
   for (int i = 0; i < found; ++i) {
-    const int j = (i + 1) % found;
-    if (j == i) break;
-    const int gap = (ring_position[j] - ring_position[i] + 8) % 8;
+    const int j = i + 1 < found ? i + 1 : 0;  // wraps without a division, as above
+    const int gap = (ring_position[j] - ring_position[i]) & 7;  // ring distance, 0 .. 7
     if (gap == 0 || gap > 3) continue;
     sum += offsets[i].cross(offsets[j]);
     ++triangles;

@@ -83,7 +83,6 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
   }
   std::fill(centre_.begin(), centre_.end(), kEmpty);
   std::fill(zbuffer_.begin(), zbuffer_.end(), kEmpty);
-  source_size_ = points_W.size();
 
   const Eigen::Matrix3d R_BW = T_WB.linear().transpose();
   const int width = config_.width;
@@ -194,13 +193,13 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
       const std::uint64_t entry = row[pad + u];
       if (entry == kEmpty) {
         depth_[pixel] = 0.0F;
-        pixels_[pixel].winner = -1;
+        pixels_[pixel].centre = -1;
         continue;
       }
-      const auto centre = static_cast<std::size_t>(entry & 0xffffffffU);
+      const auto centre = static_cast<std::int32_t>(entry & 0xffffffffU);
       const auto bits = static_cast<std::uint32_t>(entry >> 32);
       std::memcpy(&depth_[pixel], &bits, sizeof bits);
-      pixels_[pixel].winner = static_cast<std::int32_t>(centre_[centre] & 0xffffffffU);
+      pixels_[pixel].centre = centre;
       pixels_[pixel].point_B = centre_points_[centre];
       ++occupied_count_;
     }

@@ -1,5 +1,6 @@
 #include "uampc/mpc/uncertainty_model.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -64,11 +65,6 @@ Vector6d UncertaintyModel::pointToPlaneJacobian(const Eigen::Vector3d& p,
 
 // The ray lookup of one control step, prepared once for all candidate angles: each ray's row and
 // its column offset at theta = 0 (in columns, within [0, W)).
-//
-// Measured and rejected (mpc_bench, 100k points): resolving the pixels the rays go through first,
-// in raster order, with Jacobians cached per point, was about 15% slower than this ray-by-ray loop
-// once DepthMapNormals lost its integer divisions: the normals are cached per point anyway, and
-// the extra passes over the panorama cost more than the cache misses they avoid.
 struct UncertaintyModel::RayTable {
   std::vector<int> rows;
   std::vector<double> columns_at_zero;
@@ -87,40 +83,70 @@ UncertaintyModel::RayTable UncertaintyModel::rayTable(const PanoramicDepthMap& m
   return table;
 }
 
+// What a ray through a pixel contributes, resolved on the first ray through it and reused by all
+// later rays and candidate angles of the same call: the 72 x 864 rays of a control step pass
+// through a few thousand distinct pixels, and resolving one (neighbourhood lookup, per-point normal
+// cache, Jacobian) costs cache misses in arrays as large as the local map. Pixels are resolved in
+// the order the rays reach them, so every normal is still estimated at the pixel that asked first,
+// and every Lambda is the same sum, in the same order, as without the memo. (Measured and rejected
+// earlier: resolving all those pixels up front, in raster order, cost more in extra passes over the
+// panorama than it saved.)
+struct UncertaintyModel::PixelJacobians {
+  static constexpr std::int32_t kUnresolved = -2;
+  static constexpr std::int32_t kNoHit = -1;  // no surface, or no reliable normal
+
+  std::vector<std::int32_t> of_pixel;  // kUnresolved, kNoHit or an index into jacobians
+  std::vector<Vector6d> jacobians;     // J = [ p x n ; n ] (base axes, see the header)
+  std::vector<std::int32_t> ray_hits;  // scratch of accumulate(): the Jacobian of each hit ray
+
+  // Kept per thread: the buffers are reused, so a control step allocates nothing once they grew.
+  static PixelJacobians& forMap(const PanoramicDepthMap& map) {
+    thread_local PixelJacobians pixels;
+    pixels.of_pixel.assign(static_cast<std::size_t>(map.width()) * map.height(), kUnresolved);
+    pixels.jacobians.clear();
+    return pixels;
+  }
+};
+
+std::int32_t UncertaintyModel::resolve(const PanoramicDepthMap& map, DepthMapNormals& normals,
+                                       int u, int v, PixelJacobians& pixels) const {
+  const int pixel = map.lookup(u, v, config_.lookup_radius_px);
+  if (pixel < 0) return PixelJacobians::kNoHit;
+  const Eigen::Vector3f* n = normals.normal(pixel);
+  if (n == nullptr) return PixelJacobians::kNoHit;
+  const Eigen::Vector3f& p = map.point(pixel);
+  Vector6d J;
+  J << double(p.y()) * n->z() - double(p.z()) * n->y(),
+      double(p.z()) * n->x() - double(p.x()) * n->z(),
+      double(p.x()) * n->y() - double(p.y()) * n->x(), n->x(), n->y(), n->z();
+  pixels.jacobians.push_back(J);
+  return static_cast<std::int32_t>(pixels.jacobians.size() - 1);
+}
+
 Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals,
-                                      const RayTable& table, double theta) const {
+                                      const RayTable& table, PixelJacobians& pixels,
+                                      double theta) const {
   const int width = map.width();
   // theta in columns, reduced to [0, W): the same column arithmetic for any number of turns.
   double shift = theta * table.columns_per_rad;
   shift -= width * std::floor(shift / width);
-  // Two passes. The first looks the rays up and writes their Jacobians J = [ p x n ; n ] (base
-  // axes, see the header) to a buffer; the second sums J J^T. Summing inside the lookup loop was
-  // a third of U's cost: every call (lookup, normal) clobbers all SSE registers, so J and the
-  // sums went through the stack, and reloading them stalled on store forwarding.
-  thread_local std::vector<double> jacobians;  // 6 per ray that hit a surface with a normal
-  jacobians.resize(6 * table.rows.size());
+  // Two passes. The first finds the Jacobian of each ray that hits a surface with a normal, the
+  // second sums J J^T. Summing inside the first loop was slower: a call (resolve) clobbers all SSE
+  // registers, so the sums went through the stack, and reloading them stalled on store forwarding.
+  pixels.ray_hits.resize(table.rows.size());
   std::size_t hits = 0;
   for (std::size_t k = 0; k < table.rows.size(); ++k) {
     int u = static_cast<int>(table.columns_at_zero[k] + shift);  // in [0, 2W)
     if (u >= width) u -= width;
-    const int pixel = map.lookup(u, table.rows[k], config_.lookup_radius_px);
-    if (pixel < 0) continue;
-    const Eigen::Vector3f* n = normals.normal(pixel);
-    if (n == nullptr) continue;
-    const Eigen::Vector3f& p = map.point(pixel);
-    double* J = &jacobians[6 * hits++];
-    J[0] = double(p.y()) * n->z() - double(p.z()) * n->y();
-    J[1] = double(p.z()) * n->x() - double(p.x()) * n->z();
-    J[2] = double(p.x()) * n->y() - double(p.y()) * n->x();
-    J[3] = n->x();
-    J[4] = n->y();
-    J[5] = n->z();
+    std::int32_t& hit = pixels.of_pixel[map.pixelIndex(u, table.rows[k])];
+    if (hit == PixelJacobians::kUnresolved) hit = resolve(map, normals, u, table.rows[k], pixels);
+    if (hit != PixelJacobians::kNoHit) pixels.ray_hits[hits++] = hit;
   }
   // Upper triangle of Lambda = sum_k J_k J_k^T: 21 products per ray instead of 36, summed in ray
   // order (the same sums, bit for bit, as accumulating ray by ray).
   double upper[21] = {};
   for (std::size_t h = 0; h < hits; ++h) {
-    const double* J = &jacobians[6 * h];
+    const double* J = pixels.jacobians[pixels.ray_hits[h]].data();
     int e = 0;
     for (int r = 0; r < 6; ++r) {
       for (int c = r; c < 6; ++c) upper[e++] += J[r] * J[c];
@@ -140,11 +166,21 @@ Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNorm
 
 Matrix6d UncertaintyModel::information(const PanoramicDepthMap& map, DepthMapNormals& normals,
                                        double theta) const {
-  return accumulate(map, normals, rayTable(map), theta);
+  return accumulate(map, normals, rayTable(map), PixelJacobians::forMap(map), theta);
 }
 
 double UncertaintyModel::aOptimality(const Matrix6d& information) const {
   if (!information.allFinite()) return maxUncertainty();
+  // Usual case first, with two Cholesky factorisations instead of an eigen-decomposition: if
+  // Lambda - floor I is positive definite, every eigenvalue is above the floor, the clamp changes
+  // nothing, and trace(Lambda^-1) = ||L^-1||_F^2 for Lambda = L L^T. (The min only guards the
+  // documented bound against rounding when all eigenvalues sit at the floor.)
+  const Matrix6d above_floor = information - config_.eigenvalue_floor * Matrix6d::Identity();
+  if (Eigen::LLT<Matrix6d>(above_floor).info() == Eigen::Success) {
+    const Eigen::LLT<Matrix6d> cholesky(information);
+    const double trace = cholesky.matrixL().solve(Matrix6d::Identity()).squaredNorm();
+    return std::min(trace, maxUncertainty());
+  }
   const Eigen::SelfAdjointEigenSolver<Matrix6d> solver(information, Eigen::EigenvaluesOnly);
   if (solver.info() != Eigen::Success) return maxUncertainty();
   double trace = 0.0;
@@ -163,9 +199,10 @@ std::vector<double> UncertaintyModel::sample(const PanoramicDepthMap& map,
                                              DepthMapNormals& normals, double theta_start,
                                              double step, int count) const {
   const RayTable table = rayTable(map);
+  PixelJacobians& pixels = PixelJacobians::forMap(map);
   std::vector<double> samples(static_cast<std::size_t>(std::max(count, 0)));
   for (int s = 0; s < count; ++s) {
-    samples[s] = aOptimality(accumulate(map, normals, table, theta_start + s * step));
+    samples[s] = aOptimality(accumulate(map, normals, table, pixels, theta_start + s * step));
   }
   return samples;
 }

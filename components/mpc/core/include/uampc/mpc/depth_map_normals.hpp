@@ -49,12 +49,14 @@ class DepthMapNormals {
   // Inline: called once per ray and candidate angle, and nearly always answered by the cache.
   const Eigen::Vector3f* normal(int pixel) {
     if (map_ == nullptr) throwNotReset();
-    const std::int32_t index = map_->pointIndex(pixel);
-    if (index < 0) return nullptr;
-    // Cached per local-map point, not per pixel: a splatted point covers many pixels.
-    std::uint8_t& state = state_[index];
-    if (state == kUnknown) state = compute(pixel, index);
-    return state == kValid ? &normals_[index] : nullptr;
+    // Cached per local-map point, not per pixel: a splatted point covers many pixels. The point
+    // is named by its centre pixel, so the cache is as large as the panorama, not as the local
+    // map, and the rays that sweep the panorama find it in nearby memory.
+    const std::int32_t centre = map_->centrePixel(pixel);
+    if (centre < 0) return nullptr;
+    CachedNormal& cached = cache_[centre];
+    if (cached.state == kUnknown) cached.state = compute(pixel, &cached.normal);
+    return cached.state == kValid ? &cached.normal : nullptr;
   }
 
   // The same estimate without the cache; returns false when there is no reliable normal.
@@ -66,13 +68,18 @@ class DepthMapNormals {
  private:
   enum State : std::uint8_t { kUnknown = 0, kValid = 1, kInvalid = 2 };
 
+  // Normal and state side by side: one cache line per look-up.
+  struct CachedNormal {
+    Eigen::Vector3f normal;
+    State state;
+  };
+
   [[noreturn]] static void throwNotReset();
-  State compute(int pixel, std::int32_t index);  // estimate() into the cache
+  State compute(int pixel, Eigen::Vector3f* normal);  // estimate() into the cache
 
   Config config_;
   const PanoramicDepthMap* map_ = nullptr;
-  std::vector<std::uint8_t> state_;         // per local-map point
-  std::vector<Eigen::Vector3f> normals_;    // per local-map point
+  std::vector<CachedNormal> cache_;  // per local-map point, indexed by its centre pixel
   int computed_count_ = 0;
 };
 

@@ -67,14 +67,18 @@ class PanoramicDepthMap {
   // Pixel that a base-frame direction falls in (the direction need not be unit length).
   int pixelOf(const Eigen::Vector3d& direction_B) const;
 
-  bool occupied(int pixel) const { return pixels_[pixel].winner >= 0; }
-  float range(int pixel) const { return depth_[pixel]; }         // m, 0 when empty
-  std::int32_t pointIndex(int pixel) const { return pixels_[pixel].winner; }  // -1 when empty
+  bool occupied(int pixel) const { return pixels_[pixel].centre >= 0; }
+  float range(int pixel) const { return depth_[pixel]; }  // m, 0 when empty
+  std::int32_t pointIndex(int pixel) const {              // -1 when empty
+    const std::int32_t centre = pixels_[pixel].centre;
+    return centre < 0 ? -1 : static_cast<std::int32_t>(centre_[centre] & 0xffffffffU);
+  }
+  // The winning point's own pixel (where Eq. 5 puts it, and where it is the nearest point): one
+  // per winning point, so it names the point within the panorama. -1 when empty.
+  std::int32_t centrePixel(int pixel) const { return pixels_[pixel].centre; }
   // Winning point in the base frame (base axes, relative to the base origin); valid if occupied.
   const Eigen::Vector3f& point(int pixel) const { return pixels_[pixel].point_B; }
   std::size_t occupiedCount() const { return occupied_count_; }
-  // Size of the cloud given to the last render(): point indices are below it.
-  std::size_t sourceSize() const { return source_size_; }
 
   // The occupied pixel a ray through (u, v) hits: (u, v) itself if occupied, otherwise the nearest
   // (smallest range) occupied pixel within search_radius pixels (columns wrap, rows clamp), so a
@@ -100,11 +104,10 @@ class PanoramicDepthMap {
   // reading both, and one cache line per visited pixel instead of two halves its misses.
   struct PixelPoint {
     Eigen::Vector3f point_B;
-    std::int32_t winner;  // -1 when empty
+    std::int32_t centre;  // centrePixel(), -1 when empty
   };
   std::vector<PixelPoint> pixels_;
   std::size_t occupied_count_ = 0;
-  std::size_t source_size_ = 0;
 };
 
 }  // namespace uampc::mpc

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "uampc/frames/motorized_lidar.hpp"
@@ -85,9 +86,12 @@ class UncertaintyModel {
 
  private:
   struct RayTable;
+  struct PixelJacobians;
   RayTable rayTable(const PanoramicDepthMap& map) const;
   Matrix6d accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals,
-                      const RayTable& table, double theta) const;
+                      const RayTable& table, PixelJacobians& pixels, double theta) const;
+  std::int32_t resolve(const PanoramicDepthMap& map, DepthMapNormals& normals, int u, int v,
+                       PixelJacobians& pixels) const;
 
   Config config_;
   std::vector<Eigen::Vector3d> rays_L_;
