@@ -103,6 +103,16 @@ TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {
   EXPECT_NE(r.output.find("commanding omega_pre 3.6 rad/s"), std::string::npos) << r.output;
 }
 
+TEST(Loop, EveryShippedSceneStartsAndSteps) {
+  // Without --out, as a user's first try would be; the MCD scenes read ../shared/data.
+  for (const auto& entry : std::filesystem::directory_iterator(sourcePath("config/scenes"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    const CommandResult r =
+        runUampc("launch " + entry.path().string() + " --set domain_id=60 --set clock.duration=0.2");
+    EXPECT_EQ(r.exit_code, 0) << entry.path() << "\n" << r.output;
+  }
+}
+
 TEST(Loop, MalformedPanoramasAreReportedOnceAndNotSaved) {
   for (const char* mode : {"wrong_encoding", "short_data"}) {
     const std::string out = freshDirectory(std::string("bad_panorama_") + mode);
@@ -115,6 +125,17 @@ TEST(Loop, MalformedPanoramasAreReportedOnceAndNotSaved) {
     EXPECT_EQ(r.output.find(needle, first + 1), std::string::npos) << "said more than once:\n" << r.output;
     EXPECT_FALSE(std::filesystem::exists(out + "/panorama")) << mode;
   }
+}
+
+TEST(Loop, DeclaredPortNeverOpenedIsAnErrorNotAStall) {
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/evaluator_bad_panorama.yaml") +
+                                   " --set domain_id=60 --set controller.mode=never_opened");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("component 'controller' (bad_panorama_publisher) declares port 'panorama' but did not "
+                          "open it in its constructor"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("no ready message"), std::string::npos) << "waited for the stalled start:\n" << r.output;
 }
 
 TEST(Loop, NanPointsAndEmptyScansAreSurvived) {

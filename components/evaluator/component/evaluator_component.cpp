@@ -121,10 +121,10 @@ class EvaluatorComponent : public Component {
     ctx.subscribe<msg::Metrics>("mpc_timing", onMetrics);
     panorama_period_ = ctx.paramDouble("panorama_period");
     next_panorama_ = panorama_period_;
-    if (!out.empty() && panorama_period_ > 0.0) {
-      ctx.subscribe<sensor_msgs::msg::Image>("panorama",
-                                             [this](const sensor_msgs::msg::Image& m) { onPanorama(m); });
-    }
+    // Subscribed even when no snapshot is wanted: every declared port must be opened.
+    ctx.subscribe<sensor_msgs::msg::Image>("panorama", [this](const sensor_msgs::msg::Image& m) {
+      if (!ctx_.outputDirectory().empty() && panorama_period_ > 0.0) onPanorama(m);
+    });
     ctx.timer(ctx.paramDouble("report_period"), [this] { publishRunning(); });
   }
 

@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <deque>
 #include <map>
+#include <set>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -160,10 +161,21 @@ class ContextImpl : public Context {
     return it->second;
   }
 
+  // Declared ports the component opened neither a publisher nor a subscription on. The start of a
+  // run waits until every declared port is matched, so such a port would stall it.
+  std::vector<std::string> unopenedPorts() const {
+    std::vector<std::string> unopened;
+    for (const PortSpec& spec : instance_.library->spec().ports()) {
+      if (!opened_ports_.count(spec.name)) unopened.push_back(spec.name);
+    }
+    return unopened;
+  }
+
  protected:
   std::shared_ptr<detail::Writer> makeWriter(const std::string& port, const char* type_name,
                                              detail::TypeSupportFactory type_support) override {
     const PortSpec& spec = checkPort(port, PortDirection::kOutput, type_name);
+    opened_ports_.insert(port);
     const std::string topic = topicOf(port);
     auto writer = std::make_shared<DdsWriter>(dds_.createWriter(topic, type_name, type_support, spec.qos), topic,
                                               spec.qos, state_);
@@ -174,6 +186,7 @@ class ContextImpl : public Context {
   void addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory type_support,
                  std::function<void(const void*)> callback) override {
     const PortSpec& spec = checkPort(port, PortDirection::kInput, type_name);
+    opened_ports_.insert(port);
     auto r = std::make_unique<ReaderPort>();
     r->component = instance_.name;
     r->port = port;
@@ -212,6 +225,7 @@ class ContextImpl : public Context {
   DdsNode& dds_;
   ProcessState& state_;
   std::vector<std::shared_ptr<DdsWriter>>& writers_;
+  std::set<std::string> opened_ports_;
   Logger logger_;
 };
 
@@ -263,6 +277,12 @@ class ProcessRunner {
         components_.emplace_back(instance.name, instance.library->create(*contexts_.back()));
       } catch (const std::exception& e) {
         log_.error("component '", instance.name, "' (", instance.type, ") could not start: ", e.what());
+        return false;
+      }
+      for (const std::string& port : contexts_.back()->unopenedPorts()) {
+        log_.error("component '", instance.name, "' (", instance.type, ") declares port '", port,
+                   "' but did not open it in its constructor: every declared port must get a publisher or a "
+                   "subscription (ignore the samples if they are not needed), or the run waits for it forever");
         return false;
       }
     }
