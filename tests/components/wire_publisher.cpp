@@ -22,6 +22,8 @@ class WirePublisher : public Component {
   }
 
  private:
+  // Built here from wire_sample.hpp's values, not with uampc_pointcloud: the sample's every byte
+  // must be known to the other vendor's subscriber, whatever that library's layout becomes.
   static sensor_msgs::msg::PointField field(const char* name, std::uint32_t offset, std::uint8_t type) {
     sensor_msgs::msg::PointField f;
     f.name(name);

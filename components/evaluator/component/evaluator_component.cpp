@@ -120,10 +120,12 @@ class EvaluatorComponent : public Component {
     ctx.subscribe<msg::Metrics>("lo_metrics", onMetrics);
     ctx.subscribe<msg::Metrics>("mpc_timing", onMetrics);
     panorama_period_ = ctx.paramDouble("panorama_period");
+    panorama_max_range_ = ctx.paramDouble("panorama_max_range");
     next_panorama_ = panorama_period_;
+    const bool save_panoramas = !out.empty() && panorama_period_ > 0.0;
     // Subscribed even when no snapshot is wanted: every declared port must be opened.
-    ctx.subscribe<sensor_msgs::msg::Image>("panorama", [this](const sensor_msgs::msg::Image& m) {
-      if (!ctx_.outputDirectory().empty() && panorama_period_ > 0.0) onPanorama(m);
+    ctx.subscribe<sensor_msgs::msg::Image>("panorama", [this, save_panoramas](const sensor_msgs::msg::Image& m) {
+      if (save_panoramas) onPanorama(m);
     });
     ctx.timer(ctx.paramDouble("report_period"), [this] { publishRunning(); });
   }
@@ -192,7 +194,7 @@ class EvaluatorComponent : public Component {
     std::snprintf(name, sizeof(name), "panorama_%07.1f.png", t);
     evaluator::writePng((directory / name).string(),
                         evaluator::colourDepth(depth, static_cast<int>(m.width()), static_cast<int>(m.height()),
-                                               ctx_.paramDouble("panorama_max_range")));
+                                               panorama_max_range_));
     while (next_panorama_ <= t) next_panorama_ += panorama_period_;
   }
 
@@ -258,6 +260,7 @@ class EvaluatorComponent : public Component {
   File uncertainty_{nullptr, &std::fclose};
   double command_ = 0.0;
   double panorama_period_ = 0.0;
+  double panorama_max_range_ = 0.0;
   double next_panorama_ = 0.0;
   bool warned_panorama_ = false;
   double motor_speed_sum_ = 0.0;
