@@ -191,6 +191,30 @@ inline Trajectory weavingTrajectory(const Eigen::Vector3d& start, double speed, 
   };
 }
 
+// Stands at `position` and turns about z the way a hand-held rig does: at rest for `rest` s, the
+// yaw rate rises to peak_rate (rad/s) within `ramp` s, holds for `hold` s, falls back to zero
+// within `ramp` s and stays there. Cosine ramps, so the rate is continuous but the angular
+// acceleration is large (72 deg/s reached or lost within 0.2 s, as in the MCD KTH sequence).
+inline Trajectory handheldTurn(const Eigen::Vector3d& position, double peak_rate, double rest = 0.5,
+                               double ramp = 0.2, double hold = 0.8) {
+  // Integral of 0.5 (1 - cos(pi u / ramp)) over [0, u].
+  const auto rising = [ramp](double u) { return 0.5 * (u - ramp / M_PI * std::sin(M_PI * u / ramp)); };
+  return [=](double time) {
+    const double t = time - rest;
+    double yaw = 0.0;  // in units of peak_rate * s
+    if (t > 0.0) yaw += rising(std::min(t, ramp));
+    if (t > ramp) yaw += std::min(t - ramp, hold);
+    if (t > ramp + hold) {  // the falling ramp 0.5 (1 + cos(pi u / ramp)) integrates to u - rising(u)
+      const double u = std::min(t - ramp - hold, ramp);
+      yaw += u - rising(u);
+    }
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(peak_rate * yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = position;
+    return T;
+  };
+}
+
 struct LidarModel {
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
   int points_per_frame = 20000;

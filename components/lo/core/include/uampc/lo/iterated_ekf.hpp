@@ -5,8 +5,9 @@
 //
 // Prediction (constant velocity over dt):
 //   R- = R Exp(w dt),  r- = r + v dt,  v- = v,  w- = w            (state prediction x- = f(x))
-//   P- = F P F^T + Q,  Q = q dt on the v and w blocks             (covariance prediction)
-// where q (process_noise) is the spectral density of a velocity random walk.
+//   P- = F P F^T + Q                                               (covariance prediction)
+// where q (process_noise) is the spectral density of a velocity random walk, integrated over dt:
+//   Q = q [dt^3/3  dt^2/2; dt^2/2  dt] on each (pose, velocity) pair: (dtheta, dw) and (dr, dv).
 //
 // Update: residual of a point i (base frame p_i at time offset tau_i) against its map plane
 //   z_i = n^T ( R Exp(w tau_i) p_i + r + v tau_i ) + d              (measurement model h(x))
