@@ -1,5 +1,7 @@
 #include "experiment_runner.hpp"
 
+#include "experiment_eta.hpp"
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -58,19 +60,21 @@ class Progress {
   Progress(std::size_t total, std::size_t reused)
       : total_(total), reused_(reused), terminal_(isatty(STDERR_FILENO)), start_(Clock::now()) {}
 
-  void update(std::size_t finished_now, std::size_t running, std::size_t failed, bool force) {
+  // Whether a line is due: every second on a terminal, every 30 s otherwise, or when forced.
+  bool due(bool force) const {
+    const double since_last = std::chrono::duration<double>(Clock::now() - last_).count();
+    return force || since_last >= (terminal_ ? 1.0 : 30.0);
+  }
+  // eta_s: wall seconds left (estimateRemainingSeconds), negative when not known yet.
+  void print(std::size_t finished_now, std::size_t running, std::size_t failed, double eta_s) {
     const auto now = Clock::now();
-    const double since_last = std::chrono::duration<double>(now - last_).count();
-    if (!force && since_last < (terminal_ ? 1.0 : 30.0)) return;
     last_ = now;
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     const std::size_t remaining = total_ - reused_ - finished_now;
-    // Throughput so far, which already includes the parallelism.
-    const double eta = finished_now ? elapsed / static_cast<double>(finished_now) * static_cast<double>(remaining) : -1;
     std::string text = "experiment: " + std::to_string(reused_ + finished_now) + "/" + std::to_string(total_) + " done";
     if (reused_) text += " (" + std::to_string(reused_) + " from before)";
     text += ", " + std::to_string(running) + " running, " + std::to_string(failed) + " failed, elapsed " +
-            duration(elapsed) + ", ETA " + (remaining == 0 ? "0s" : duration(eta));
+            duration(elapsed) + ", ETA " + (remaining == 0 ? "0s" : duration(eta_s));
     if (terminal_)
       std::cerr << "\r\033[K" << text << std::flush;
     else
@@ -194,10 +198,32 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
     progress.say("experiment: retrying " + plan[i].directory +
                  (before.empty() ? " (unfinished before)" : " (failed before: " + before + ")"));
   }
-  if (pending.empty()) progress.update(0, 0, 0, true);  // nothing to run: say so
+  if (pending.empty()) progress.print(0, 0, 0, 0.0);  // nothing to run: say so
   std::map<pid_t, Running> running;
   std::vector<bool> slot_busy(static_cast<std::size_t>(std::max(options.jobs, 1)), false);
   std::size_t next = 0, finished_now = 0, failed = 0;
+  // For the ETA: the runs finished in this invocation, and each scene's length once a run of it
+  // has said (every controller and seed of a scene simulates the same time).
+  std::vector<StartedRun> finished_work;
+  std::map<std::size_t, double> scene_length_s;
+  auto logProgress = [&](std::size_t run) {
+    const fs::path log = fs::path(options.output_directory) / plan[run].directory / "run.log";
+    const std::optional<SimProgress> p = lastSimProgress(readText(log));
+    if (p && p->total_s > 0) scene_length_s[plan[run].scene] = p->total_s;
+    return p.value_or(SimProgress{});
+  };
+  auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto report = [&](bool force) {
+    if (!progress.due(force)) return;
+    std::vector<StartedRun> work = finished_work;
+    for (const auto& [pid, r] : running) work.push_back({logProgress(r.run), secondsSince(r.start)});
+    std::vector<double> pending_lengths;
+    for (std::size_t k = next; k < pending.size(); ++k) {
+      const auto known = scene_length_s.find(plan[pending[k]].scene);
+      pending_lengths.push_back(known == scene_length_s.end() ? -1.0 : known->second);
+    }
+    progress.print(finished_now, running.size(), failed, estimateRemainingSeconds(work, pending_lengths, options.jobs));
+  };
   bool stopping = false;
   while (true) {
     if (options.interrupted && *options.interrupted && !stopping) {
@@ -233,7 +259,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
       running[pid] = {i, slot, Clock::now()};
     }
     if (running.empty()) break;
-    progress.update(finished_now, running.size(), failed, false);
+    report(false);
 
     int status = 0;
     const pid_t pid = waitpid(-1, &status, WNOHANG);
@@ -249,7 +275,8 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
     ++finished_now;
     RunResult& r = results[done.run];
     const fs::path dir = fs::path(options.output_directory) / plan[done.run].directory;
-    const double wall = std::chrono::duration<double>(Clock::now() - done.start).count();
+    const double wall = secondsSince(done.start);
+    finished_work.push_back({logProgress(done.run), wall});
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (r.exit_code == 0 && readRunMetrics(dir.string())) {
       std::ofstream(dir / "done") << "wall_time_s=" << wall << "\n";
@@ -269,7 +296,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
       progress.say("experiment: " + plan[done.run].directory + " failed (" + r.failure + "): " + last +
                    "\n            full log: " + (dir / "run.log").string());
     }
-    progress.update(finished_now, running.size(), failed, true);
+    report(true);
   }
   progress.finish();
   return results;

@@ -78,6 +78,8 @@ class RayCaster {
   std::uint64_t cached_frame_ = ~std::uint64_t{0};
   std::vector<PatternPoint> cached_pattern_;
   std::vector<Ray> rays_;  // reused between frames
+  std::vector<Eigen::Vector3d> knot_origins_;       // T_WL at the pose knots of the frame
+  std::vector<Eigen::Quaterniond> knot_rotations_;
   std::vector<Hit> hits_;
   const std::vector<PatternPoint>& pattern(std::uint64_t frame_index);
 };
