@@ -25,6 +25,7 @@
 #include "uampc/evaluator/tum_trajectory.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/frames/pose_knots.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 
@@ -208,18 +209,32 @@ class EvaluatorComponent : public Component {
     }
     while (!pending_scans_.empty()) {
       const PendingScan& scan = pending_scans_.front();
-      double end = scan.stamp;
-      for (float t : scan.points.time_offsets) end = std::max(end, scan.stamp + t);
+      double start = scan.stamp, end = scan.stamp;
+      for (float t : scan.points.time_offsets) {
+        start = std::min(start, scan.stamp + t);
+        end = std::max(end, scan.stamp + t);
+      }
       if (end > covered || motor_.empty() || motor_.newest().time < end) return;
       std::vector<Eigen::Vector3f> world;
       world.reserve(scan.points.positions.size());
-      for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
-        const double t = scan.stamp + scan.points.time_offsets[i];
-        const auto theta = motor_.thetaAt(t);
-        const auto T_WB = ground_truth_(t);
-        if (!theta || !T_WB) continue;  // before the first state: nothing to place it with
-        world.push_back(
-            frames::lidarToWorld(scan.points.positions[i].cast<double>(), *theta, calibration_, *T_WB).cast<float>());
+      if (motor_.thetaAt(start) && ground_truth_(start)) {
+        // Eq. 1 with T_WL = T_WB * T_BL(theta) at each point's time, from knots (pose_knots.hpp).
+        lidar_pose_.build(start, end, [&](double t) {
+          return *ground_truth_(t) * frames::lidarPoseInBase(*motor_.thetaAt(t), calibration_);
+        });
+        for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
+          const double t = scan.stamp + scan.points.time_offsets[i];
+          world.push_back((lidar_pose_(t) * scan.points.positions[i].cast<double>()).cast<float>());
+        }
+      } else {  // the scan began before the first state: place what can be placed, point by point
+        for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
+          const double t = scan.stamp + scan.points.time_offsets[i];
+          const auto theta = motor_.thetaAt(t);
+          const auto T_WB = ground_truth_(t);
+          if (!theta || !T_WB) continue;  // before the first state: nothing to place it with
+          world.push_back(
+              frames::lidarToWorld(scan.points.positions[i].cast<double>(), *theta, calibration_, *T_WB).cast<float>());
+        }
       }
       cmplt_gt_.addScan(scan.stamp, world);
       pending_scans_.pop_front();
@@ -247,6 +262,7 @@ class EvaluatorComponent : public Component {
 
   Context& ctx_;
   frames::MotorLidarCalibration calibration_;
+  frames::PoseKnots lidar_pose_;  // T_WL over the raw scan being placed
   evaluator::PoseInterpolator ground_truth_;
   evaluator::TrajectoryEvaluator trajectory_;
   evaluator::Completeness cmplt_;

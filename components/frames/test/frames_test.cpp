@@ -2,6 +2,7 @@
 
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/frames/pose_knots.hpp"
 
 namespace uampc::frames {
 namespace {
@@ -48,6 +49,45 @@ TEST(MotorAngleTrack, DropsReadingsOlderThanTheWindow) {
   for (int i = 0; i <= 300; ++i) track.add({i * 0.01, i * 0.036, 3.6});
   EXPECT_NEAR(track.oldest().time, 2.0, 1e-9);
   EXPECT_NEAR(track.newest().time, 3.0, 1e-9);
+}
+
+
+// The LiDAR of a fast rig (motor 7.2 rad/s, base turning at 1.3 rad/s and accelerating) over one
+// 0.1 s frame: the knots reproduce the exact pose far below a float's precision, and ask for poses
+// inside the frame only.
+TEST(PoseKnots, InterpolatesAFastRigFarBelowFloatPrecision) {
+  const MotorLidarCalibration calibration = MotorLidarCalibration::referenceRig();
+  double asked_min = 1e9, asked_max = -1e9;
+  const double t0 = 100.0, t1 = 100.0999;
+  const auto exact = [&](double time) {
+    asked_min = std::min(asked_min, time);
+    asked_max = std::max(asked_max, time);
+    const double t = time - t0 + 0.3;
+    Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+    T_WB.linear() = (Eigen::AngleAxisd(1.3 * t + 0.8 * t * t, Eigen::Vector3d::UnitZ()) *
+                     Eigen::AngleAxisd(0.2 * std::sin(3.0 * t), Eigen::Vector3d::UnitX()))
+                        .toRotationMatrix();
+    T_WB.translation() = Eigen::Vector3d(5.0 * t + 1.5 * t * t, std::sin(t), 0.1 * t);
+    return T_WB * lidarPoseInBase(7.2 * t, calibration);
+  };
+  PoseKnots knots;
+  knots.build(t0, t1, exact);
+  EXPECT_EQ(knots.size(), 401u);
+  EXPECT_GE(asked_min, t0);
+  EXPECT_LE(asked_max, t1);
+  double worst_translation = 0.0, worst_rotation = 0.0;
+  for (int i = 0; i <= 1000; ++i) {
+    const double t = t0 + (t1 - t0) * i / 1000.0;
+    const Eigen::Isometry3d a = knots(t), b = exact(t);
+    worst_translation = std::max(worst_translation, (a.translation() - b.translation()).norm());
+    worst_rotation = std::max(worst_rotation, Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle());
+  }
+  // ~2e-8 m and ~2e-8 rad here; a float coordinate at 40 m resolves 2.4e-6 m.
+  EXPECT_LT(worst_translation, 1e-7);
+  EXPECT_LT(worst_rotation, 1e-7);
+  // A frame of one instant: every time gets that pose.
+  knots.build(t0, t0, exact);
+  EXPECT_LT((knots(t0).translation() - exact(t0).translation()).norm(), 1e-12);
 }
 
 }  // namespace

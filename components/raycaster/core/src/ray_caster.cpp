@@ -37,42 +37,18 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
   const auto min_range = static_cast<float>(config_.model.min_range);
 
   // Eq. 1 per point: the LiDAR's pose in the world at the point's own time,
-  //   T_WL(t) = T_WB(t) * T_BL(theta(t)).
-  // It is evaluated exactly at knots kKnotSpacing apart and interpolated linearly in between
-  // (origin lerp, rotation nlerp): over <= 0.25 ms the LiDAR turns by at most ~2 mrad (motor at
-  // 7.2 rad/s plus a fast base), so the interpolation is off by < 1e-8 m and < 1e-9 rad, far below
-  // the float precision of the output, and a frame needs ~400 exact poses instead of one per ray
-  // (trajectory interpolation, encoder look-up and the motor transform were ~15 % of a run).
-  // The knots span exactly [frame_start, last point's time]: the pose sources need not cover more.
-  constexpr double kMaxKnotSpacing = 2.5e-4;  // s
+  //   T_WL(t) = T_WB(t) * T_BL(theta(t)),
+  // exact at knots 0.25 ms apart and interpolated in between (frames/pose_knots.hpp).
   double last_offset = 0.0;
   for (const PatternPoint& p : points) last_offset = std::max(last_offset, static_cast<double>(p.time_offset));
-  const auto intervals = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(last_offset / kMaxKnotSpacing)));
-  const double spacing = last_offset > 0.0 ? last_offset / static_cast<double>(intervals) : 1.0;
-  const std::size_t knots = intervals + 1;
-  knot_origins_.resize(knots);
-  knot_rotations_.resize(knots);
-  for (std::size_t j = 0; j < knots; ++j) {
-    const double t = frame_start + std::min(static_cast<double>(j) * spacing, last_offset);
-    const Eigen::Isometry3d T_WL = base_pose_at(t) * frames::lidarPoseInBase(motor_angle_at(t), config_.calibration);
-    knot_origins_[j] = T_WL.translation();
-    knot_rotations_[j] = Eigen::Quaterniond(T_WL.linear());
-    // Same hemisphere as the previous knot, so that the blend takes the short way.
-    if (j > 0 && knot_rotations_[j].coeffs().dot(knot_rotations_[j - 1].coeffs()) < 0.0) {
-      knot_rotations_[j].coeffs() *= -1.0;
-    }
-  }
+  lidar_pose_.build(frame_start, frame_start + last_offset, [&](double t) {
+    return base_pose_at(t) * frames::lidarPoseInBase(motor_angle_at(t), config_.calibration);
+  });
   rays_.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const double u = static_cast<double>(points[k].time_offset) / spacing;
-    const auto j = std::min(static_cast<std::size_t>(std::max(u, 0.0)), knots - 2);
-    const double a = u - static_cast<double>(j);
-    const Eigen::Vector3d origin = (1.0 - a) * knot_origins_[j] + a * knot_origins_[j + 1];
-    Eigen::Quaterniond q;
-    q.coeffs() = (1.0 - a) * knot_rotations_[j].coeffs() + a * knot_rotations_[j + 1].coeffs();
-    q.normalize();
-    rays_[k].origin = origin.cast<float>();
-    rays_[k].direction = (q * points[k].direction.cast<double>()).normalized().cast<float>();
+    const Eigen::Isometry3d T_WL = lidar_pose_(frame_start + static_cast<double>(points[k].time_offset));
+    rays_[k].origin = T_WL.translation().cast<float>();
+    rays_[k].direction = (T_WL.linear() * points[k].direction.cast<double>()).normalized().cast<float>();
     rays_[k].max_distance = max_range;
   }
   if (config_.use_packets) {

@@ -14,6 +14,7 @@
 
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/frames/pose_knots.hpp"
 #include "uampc/raycaster/lidar_model.hpp"
 #include "uampc/raycaster/ray_cast_scene.hpp"
 #include "uampc/raycaster/scan_pattern.hpp"
@@ -78,8 +79,7 @@ class RayCaster {
   std::uint64_t cached_frame_ = ~std::uint64_t{0};
   std::vector<PatternPoint> cached_pattern_;
   std::vector<Ray> rays_;  // reused between frames
-  std::vector<Eigen::Vector3d> knot_origins_;       // T_WL at the pose knots of the frame
-  std::vector<Eigen::Quaterniond> knot_rotations_;
+  frames::PoseKnots lidar_pose_;  // T_WL over the frame being cast
   std::vector<Hit> hits_;
   const std::vector<PatternPoint>& pattern(std::uint64_t frame_index);
 };
