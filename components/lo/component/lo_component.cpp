@@ -183,9 +183,8 @@ class LoComponent : public Component {
     auto registered = pointcloud::makeXyzCloud(r.registered_points_W, "map");
     registered.header().stamp(toMsg(stamp));
     registered_pub_.publish(registered);
-    std::vector<Eigen::Vector3f> local;
-    for (const auto& p : odometry_->localMapPoints(r.time - window_)) local.push_back(p.p_W.cast<float>());
-    auto local_map = pointcloud::makeXyzCloud(local, "map");
+    odometry_->localMap().pointsSince(r.time - window_, local_points_);
+    auto local_map = pointcloud::makeXyzCloud(local_points_, "map");
     local_map.header().stamp(toMsg(stamp));
     local_map_pub_.publish(local_map);
     publishMetrics(r, stamp, seconds);
@@ -267,6 +266,7 @@ class LoComponent : public Component {
   Publisher<nav_msgs::msg::Odometry> odometry_pub_;
   Publisher<sensor_msgs::msg::PointCloud2> registered_pub_;
   Publisher<sensor_msgs::msg::PointCloud2> local_map_pub_;
+  std::vector<Eigen::Vector3f> local_points_;  // the published local map, reused frame to frame
   Publisher<msg::Metrics> metrics_pub_;
   std::unique_ptr<lo::MotorizedLidarOdometry> odometry_;
   frames::MotorAngleTrack motor_{2.0};

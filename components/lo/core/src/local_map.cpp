@@ -237,20 +237,30 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
   return n;
 }
 
+// Both walk the block pool in memory order: freed blocks hold no occupied voxel, so they add
+// nothing, and the hash table's random order would cost a cache miss per block.
 std::vector<MapPoint> LocalMap::points(double observed_since) const {
   std::vector<MapPoint> out;
   out.reserve(size_);
-  for (const Slot& slot : slots_) {
-    if (slot.key >= kErased) continue;
-    const Block& block = pool_[slot.block];
-    const auto& times = times_[slot.block];
+  for (std::size_t b = 0; b < pool_.size(); ++b) {
+    const Block& block = pool_[b];
     for (int j = 0; j < 8; ++j) {
-      if ((block.occupied & (1u << j)) && times[j] >= observed_since) {
-        out.push_back({block.point(j).cast<double>(), times[j]});
+      if ((block.occupied & (1u << j)) && times_[b][j] >= observed_since) {
+        out.push_back({block.point(j).cast<double>(), times_[b][j]});
       }
     }
   }
   return out;
+}
+
+void LocalMap::pointsSince(double observed_since, std::vector<Eigen::Vector3f>& out) const {
+  out.clear();
+  for (std::size_t b = 0; b < pool_.size(); ++b) {
+    const Block& block = pool_[b];
+    for (int j = 0; j < 8; ++j) {
+      if ((block.occupied & (1u << j)) && times_[b][j] >= observed_since) out.push_back(block.point(j));
+    }
+  }
 }
 
 }  // namespace uampc::lo

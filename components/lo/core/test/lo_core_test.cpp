@@ -84,6 +84,15 @@ TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
   EXPECT_LT((map.points(1.5)[0].p_W - Eigen::Vector3d(0.15, 0.15, 0.0)).norm(), 1e-6);
   map.removeFarFrom(Eigen::Vector3d::Zero());
   EXPECT_EQ(map.size(), points.size() - 1);
+  // The removed voxel is gone from both listings (its freed block is skipped), the rest is there.
+  std::vector<Eigen::Vector3f> coordinates;
+  map.pointsSince(-1.0, coordinates);
+  EXPECT_EQ(coordinates.size(), map.size());
+  EXPECT_EQ(map.points().size(), map.size());
+  for (const auto& c : coordinates) EXPECT_LT(c.norm(), 10.0f);
+  map.pointsSince(1.5, coordinates);
+  ASSERT_EQ(coordinates.size(), 1u);
+  EXPECT_LT((coordinates[0] - Eigen::Vector3f(0.15f, 0.15f, 0.0f)).norm(), 1e-6f);
 }
 
 TEST(Derotation, SpinningMotorIsTakenOutExactlyPerPoint) {

@@ -47,6 +47,9 @@ class LocalMap {
   // Points observed at or after observed_since (s); all points by default.
   std::vector<MapPoint> points(
       double observed_since = -std::numeric_limits<double>::infinity()) const;
+  // The same points' coordinates only, into out (cleared first; its capacity is reused): what
+  // the LO publishes as its local map every frame.
+  void pointsSince(double observed_since, std::vector<Eigen::Vector3f>& out) const;
 
   std::size_t size() const { return size_; }
   // Heap memory held by the map (table and block pool), bytes.
