@@ -3,7 +3,7 @@
 //
 //   lo_replay TRAJECTORY [--start S] [--duration S] [--motor RAD_PER_S] [--seed N]
 //             [--attitude from_file|yaw_only|identity] [--every N]
-//             [--process-noise Q] [--iterations N] [--scan-voxel M]
+//             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
 //
 // Builds the around-trajectory world of that trajectory (as map_provider does for the MCD scenes:
 // attitude turned z-up, 0.5 s smoothing, smooth interpolation), spins the motor at a constant
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
 int replay(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0) {
     std::fprintf(stderr, "usage: lo_replay TRAJECTORY [--start S] [--duration S] [--motor RAD_PER_S] "
-                         "[--seed N] [--attitude MODE] [--every N] [--process-noise Q] [--iterations N] "
+                         "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
                          "[--scan-voxel M]\n");
     return 2;
   }
@@ -65,7 +65,8 @@ int replay(int argc, char** argv) {
     else if (flag == "--seed") seed = std::strtoul(value, nullptr, 10);
     else if (flag == "--attitude") attitude = value;
     else if (flag == "--every") every = std::atoi(value);
-    else if (flag == "--process-noise") config.process_noise = std::atof(value);
+    else if (flag == "--linear-noise") config.linear_process_noise = std::atof(value);
+    else if (flag == "--angular-noise") config.angular_process_noise = std::atof(value);
     else if (flag == "--iterations") config.max_iterations = std::atoi(value);
     else if (flag == "--scan-voxel") config.scan_voxel_size = std::atof(value);
     else {

@@ -40,7 +40,8 @@ class LoComponent : public Component {
     spec.param("map_radius", 60.0, "local-map points farther than this from the base are dropped, m")
         .between(1.0, 10000.0);
     spec.param("measurement_variance", 0.001, "point-to-plane measurement variance, m^2").between(1e-9, 100.0);
-    spec.param("process_noise", 0.1, "velocity random walk density of the constant-velocity model, (m/s)^2/s and (rad/s)^2/s").between(0.0, 100.0);
+    spec.param("linear_process_noise", 0.1, "linear velocity random walk density of the constant-velocity model, (m/s)^2/s").between(0.0, 100.0);
+    spec.param("angular_process_noise", 0.1, "angular velocity random walk density of the constant-velocity model, (rad/s)^2/s").between(0.0, 100.0);
     spec.param("max_iterations", 10, "iterated EKF: at most this many re-linearisations").between(1, 100);
     spec.param("min_range", 0.5, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
     spec.param("max_range", 100.0, "points farther than this are dropped, m").between(0.1, 10000.0);
@@ -85,7 +86,8 @@ class LoComponent : public Component {
     c.map_voxel_size = ctx.paramDouble("map_voxel_size");
     c.map_radius = ctx.paramDouble("map_radius");
     c.measurement_variance = ctx.paramDouble("measurement_variance");
-    c.process_noise = ctx.paramDouble("process_noise");
+    c.linear_process_noise = ctx.paramDouble("linear_process_noise");
+    c.angular_process_noise = ctx.paramDouble("angular_process_noise");
     c.max_iterations = static_cast<int>(ctx.paramInt("max_iterations"));
     c.min_range = ctx.paramDouble("min_range");
     c.max_range = ctx.paramDouble("max_range");

@@ -79,7 +79,7 @@ bool finite(const BaseState& x) {
 IteratedEkf::IteratedEkf(const BaseState& initial, const Matrix12d& covariance)
     : state_(initial), covariance_(covariance) {}
 
-void IteratedEkf::predict(double dt, double process_noise) {
+void IteratedEkf::predict(double dt, double linear_process_noise, double angular_process_noise) {
   const Eigen::Vector3d phi = state_.w_B * dt;
   // State prediction x- = f(x): constant velocity.
   state_.R_WB = state_.R_WB * expSO3(phi);
@@ -94,10 +94,10 @@ void IteratedEkf::predict(double dt, double process_noise) {
   // Leaving out the pose blocks made the predicted rotation ten times too certain: the filter
   // then could not follow an angular acceleration (a handheld turn stopping within 0.3 s).
   Matrix12d Q = Matrix12d::Zero();
-  const double q = process_noise;
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   for (const int pose_block : {0, 3}) {  // rotation with angular velocity, position with velocity
     const int velocity_block = pose_block + 6;
+    const double q = pose_block == 0 ? angular_process_noise : linear_process_noise;
     Q.block<3, 3>(pose_block, pose_block) = q * dt * dt * dt / 3.0 * I;
     Q.block<3, 3>(pose_block, velocity_block) = q * dt * dt / 2.0 * I;
     Q.block<3, 3>(velocity_block, pose_block) = q * dt * dt / 2.0 * I;

@@ -105,7 +105,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     fill(*filter_);
     return result;
   }
-  filter_->predict(dt, config_.process_noise);
+  filter_->predict(dt, config_.linear_process_noise, config_.angular_process_noise);
   last_time_ = end_time;
 
   const std::vector<TimedPoint> keypoints =

@@ -6,8 +6,9 @@
 // Prediction (constant velocity over dt):
 //   R- = R Exp(w dt),  r- = r + v dt,  v- = v,  w- = w            (state prediction x- = f(x))
 //   P- = F P F^T + Q                                               (covariance prediction)
-// where q (process_noise) is the spectral density of a velocity random walk, integrated over dt:
-//   Q = q [dt^3/3  dt^2/2; dt^2/2  dt] on each (pose, velocity) pair: (dtheta, dw) and (dr, dv).
+// where q is the spectral density of a velocity random walk, integrated over dt:
+//   Q = q [dt^3/3  dt^2/2; dt^2/2  dt] on each (pose, velocity) pair: (dtheta, dw) with the
+// angular q, (dr, dv) with the linear q.
 //
 // Update: residual of a point i (base frame p_i at time offset tau_i) against its map plane
 //   z_i = n^T ( R Exp(w tau_i) p_i + r + v tau_i ) + d              (measurement model h(x))
@@ -73,7 +74,8 @@ class IteratedEkf {
  public:
   IteratedEkf(const BaseState& initial, const Matrix12d& covariance);
 
-  void predict(double dt, double process_noise);
+  // Process noise densities: linear (m/s)^2/s, angular (rad/s)^2/s.
+  void predict(double dt, double linear_process_noise, double angular_process_noise);
   UpdateSummary update(const std::vector<TimedPoint>& points, const LocalMap& map,
                        const UpdateOptions& options);
 
