@@ -173,6 +173,9 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
                               const RunnerOptions& options) {
   std::vector<RunResult> results(plan.size());
   std::vector<std::size_t> pending;
+  // For the ETA: each scene's length in sim seconds once known (every controller and seed of a
+  // scene simulates the same time), from runs of before or from a running one's progress line.
+  std::map<std::size_t, double> scene_length_s;
   for (std::size_t i = 0; i < plan.size(); ++i) {
     RunResult& r = results[i];
     r.scene = experiment.scenes[plan[i].scene].name;
@@ -184,6 +187,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
       r.status = RunStatus::kReused;
       r.exit_code = 0;
       readRunOutputs(dir.string(), r);
+      if (r.metrics.sim_time_s > 0) scene_length_s[plan[i].scene] = r.metrics.sim_time_s;
       continue;
     }
     r.retried = fs::exists(dir) && !fs::is_empty(dir);
@@ -202,10 +206,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
   std::map<pid_t, Running> running;
   std::vector<bool> slot_busy(static_cast<std::size_t>(std::max(options.jobs, 1)), false);
   std::size_t next = 0, finished_now = 0, failed = 0;
-  // For the ETA: the runs finished in this invocation, and each scene's length once a run of it
-  // has said (every controller and seed of a scene simulates the same time).
-  std::vector<StartedRun> finished_work;
-  std::map<std::size_t, double> scene_length_s;
+  std::vector<StartedRun> finished_work;  // for the ETA: the runs finished in this invocation
   auto logProgress = [&](std::size_t run) {
     const fs::path log = fs::path(options.output_directory) / plan[run].directory / "run.log";
     const std::optional<SimProgress> p = lastSimProgress(readText(log));
