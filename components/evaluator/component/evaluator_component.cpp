@@ -7,6 +7,7 @@
 // estimate.tum, ground_truth.tum, ate.csv, cmplt_windows.csv, cmplt_ground_truth_windows.csv,
 // motor.csv, timings.csv, uncertainty.csv and scanned_voxels.bt (OctoMap, opens in octovis); during
 // the run, snapshots of the controller's panorama as panorama/panorama_<sim time>.png.
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -217,23 +218,18 @@ class EvaluatorComponent : public Component {
       if (end > covered || motor_.empty() || motor_.newest().time < end) return;
       std::vector<Eigen::Vector3f> world;
       world.reserve(scan.points.positions.size());
-      if (motor_.thetaAt(start) && ground_truth_(start)) {
-        // Eq. 1 with T_WL = T_WB * T_BL(theta) at each point's time, from knots (pose_knots.hpp).
-        lidar_pose_.build(start, end, [&](double t) {
+      // Points from before the first ground-truth pose or encoder reading cannot be placed (the
+      // first scan of a run); the rest get Eq. 1 with T_WL = T_WB * T_BL(theta) at their own
+      // time, from knots (pose_knots.hpp).
+      const double placeable = std::max({start, ground_truth_.startTime(), motor_.oldest().time});
+      if (placeable <= end) {
+        lidar_pose_.build(placeable, end, [&](double t) {
           return *ground_truth_(t) * frames::lidarPoseInBase(*motor_.thetaAt(t), calibration_);
         });
         for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
           const double t = scan.stamp + scan.points.time_offsets[i];
+          if (t < placeable) continue;
           world.push_back((lidar_pose_(t) * scan.points.positions[i].cast<double>()).cast<float>());
-        }
-      } else {  // the scan began before the first state: place what can be placed, point by point
-        for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
-          const double t = scan.stamp + scan.points.time_offsets[i];
-          const auto theta = motor_.thetaAt(t);
-          const auto T_WB = ground_truth_(t);
-          if (!theta || !T_WB) continue;  // before the first state: nothing to place it with
-          world.push_back(
-              frames::lidarToWorld(scan.points.positions[i].cast<double>(), *theta, calibration_, *T_WB).cast<float>());
         }
       }
       cmplt_gt_.addScan(scan.stamp, world);

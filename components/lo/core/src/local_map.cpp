@@ -237,30 +237,29 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
   return n;
 }
 
-// Both walk the block pool in memory order: freed blocks hold no occupied voxel, so they add
+// The block pool is walked in memory order: freed blocks hold no occupied voxel, so they add
 // nothing, and the hash table's random order would cost a cache miss per block.
-std::vector<MapPoint> LocalMap::points(double observed_since) const {
-  std::vector<MapPoint> out;
-  out.reserve(size_);
+template <class Visit>
+void LocalMap::forEachPointSince(double observed_since, Visit&& visit) const {
   for (std::size_t b = 0; b < pool_.size(); ++b) {
     const Block& block = pool_[b];
     for (int j = 0; j < 8; ++j) {
-      if ((block.occupied & (1u << j)) && times_[b][j] >= observed_since) {
-        out.push_back({block.point(j).cast<double>(), times_[b][j]});
-      }
+      if ((block.occupied & (1u << j)) && times_[b][j] >= observed_since) visit(block.point(j), times_[b][j]);
     }
   }
+}
+
+std::vector<MapPoint> LocalMap::points(double observed_since) const {
+  std::vector<MapPoint> out;
+  out.reserve(size_);
+  forEachPointSince(observed_since,
+                    [&out](const Eigen::Vector3f& p, double time) { out.push_back({p.cast<double>(), time}); });
   return out;
 }
 
 void LocalMap::pointsSince(double observed_since, std::vector<Eigen::Vector3f>& out) const {
   out.clear();
-  for (std::size_t b = 0; b < pool_.size(); ++b) {
-    const Block& block = pool_[b];
-    for (int j = 0; j < 8; ++j) {
-      if ((block.occupied & (1u << j)) && times_[b][j] >= observed_since) out.push_back(block.point(j));
-    }
-  }
+  forEachPointSince(observed_since, [&out](const Eigen::Vector3f& p, double) { out.push_back(p); });
 }
 
 }  // namespace uampc::lo

@@ -21,6 +21,17 @@ RayCaster::RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::V
   }
 }
 
+namespace {
+
+// The latest time offset of a pattern (s): its points need not come in time order.
+double lastTimeOffset(const std::vector<PatternPoint>& points) {
+  double last = 0.0;
+  for (const PatternPoint& p : points) last = std::max(last, static_cast<double>(p.time_offset));
+  return last;
+}
+
+}  // namespace
+
 const std::vector<PatternPoint>& RayCaster::pattern(std::uint64_t frame_index) {
   const bool repeats = config_.model.kind == ScanPatternKind::kSpinning;
   if (cached_pattern_.empty() || (!repeats && frame_index != cached_frame_)) {
@@ -39,9 +50,7 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
   // Eq. 1 per point: the LiDAR's pose in the world at the point's own time,
   //   T_WL(t) = T_WB(t) * T_BL(theta(t)),
   // exact at knots 0.25 ms apart and interpolated in between (frames/pose_knots.hpp).
-  double last_offset = 0.0;
-  for (const PatternPoint& p : points) last_offset = std::max(last_offset, static_cast<double>(p.time_offset));
-  lidar_pose_.build(frame_start, frame_start + last_offset, [&](double t) {
+  lidar_pose_.build(frame_start, frame_start + lastTimeOffset(points), [&](double t) {
     return base_pose_at(t) * frames::lidarPoseInBase(motor_angle_at(t), config_.calibration);
   });
   rays_.resize(points.size());
@@ -89,8 +98,7 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
                           const world::Trajectory& trajectory,
                           const frames::MotorAngleTrack& motor) {
   const std::vector<PatternPoint>& points = pattern(frame_index);
-  const double frame_end =
-      frame_start + (points.empty() ? 0.0 : static_cast<double>(points.back().time_offset));
+  const double frame_end = frame_start + lastTimeOffset(points);
   std::ostringstream msg;
   msg.precision(17);
   if (!trajectory.contains(frame_start) || !trajectory.contains(frame_end)) {

@@ -96,6 +96,9 @@ class LocalMap {
     }
   }
   void placeKey(std::uint64_t key, std::uint32_t block);
+  // visit(point, observation time) for every occupied voxel observed at or after observed_since.
+  template <class Visit>
+  void forEachPointSince(double observed_since, Visit&& visit) const;
   void rehash(std::size_t capacity);
 
   // Open-addressing table from block key to an index into the dense block pool.
