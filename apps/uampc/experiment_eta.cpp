@@ -1,15 +1,17 @@
 #include "experiment_eta.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <regex>
 
 namespace uampc::app {
 
 std::optional<SimProgress> lastSimProgress(const std::string& log_text) {
-  static const std::regex kLine(R"(uampc: sim ([0-9.]+) / ([0-9.]+) s)");
+  static const std::regex kLine(R"(uampc: sim ([0-9]+(\.[0-9]*)?) / ([0-9]+(\.[0-9]*)?) s)");
   std::optional<SimProgress> last;
   for (auto it = std::sregex_iterator(log_text.begin(), log_text.end(), kLine); it != std::sregex_iterator(); ++it) {
-    last = SimProgress{std::stod((*it)[1]), std::stod((*it)[2])};
+    // The pattern admits only plain decimals, which std::strtod always reads.
+    last = SimProgress{std::strtod((*it)[1].str().c_str(), nullptr), std::strtod((*it)[3].str().c_str(), nullptr)};
   }
   return last;
 }

@@ -18,6 +18,8 @@ TEST(ExperimentEta, ReadsTheLastProgressLineOfALaunchLog) {
   EXPECT_DOUBLE_EQ(p->total_s, 890.0);
   EXPECT_FALSE(lastSimProgress("uampc: scene 'x'\n[1.0] [lo] INFO sim 3 / 4 s\n"));
   EXPECT_FALSE(lastSimProgress(""));
+  // A garbled line is not a progress line (and does not throw).
+  EXPECT_FALSE(lastSimProgress("uampc: sim . / .. s\n"));
 }
 
 TEST(ExperimentEta, ExtrapolatesSimSecondsPerSlot) {
