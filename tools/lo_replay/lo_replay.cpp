@@ -1,15 +1,17 @@
 // lo_replay: the simulated motorized LiDAR and the LO in one process, without DDS, to study the
 // LO on a trajectory quickly (a development tool: the scenes run the real components over DDS).
 //
-//   lo_replay TRAJECTORY [--start S] [--duration S] [--motor RAD_PER_S] [--seed N]
-//             [--attitude from_file|yaw_only|identity] [--every N]
+//   lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S]
+//             [--motor RAD_PER_S] [--seed N] [--attitude from_file|yaw_only|identity] [--every N]
 //             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
+//             [--door-spacing M]
 //
-// Builds the around-trajectory world of that trajectory (as map_provider does for the MCD scenes:
-// attitude turned z-up, 0.5 s smoothing, smooth interpolation), spins the motor at a constant
+// Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
+// generated around it (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD
+// scenes); for a procedural world its generated path at 1.5 m/s. Spins the motor at a constant
 // speed, casts Mid-360 frames at 10 Hz, registers them, and prints per frame the rotation and
-// position error against ground truth, the estimated and true yaw rate, and the LO's figures;
-// then a summary line.
+// position error against ground truth, the estimated and true yaw rate, and the LO's figures
+// (`pts`: points the LO kept after its downsampling); then a summary line.
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
@@ -20,8 +22,7 @@
 
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
-#include "uampc/world/procedural_worlds.hpp"
-#include "uampc/world/trajectory_io.hpp"
+#include "uampc/world/world_source.hpp"
 
 using namespace uampc;
 
@@ -46,14 +47,23 @@ int main(int argc, char** argv) {
 
 int replay(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0) {
-    std::fprintf(stderr, "usage: lo_replay TRAJECTORY [--start S] [--duration S] [--motor RAD_PER_S] "
+    std::fprintf(stderr, "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor RAD_PER_S] "
                          "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
-                         "[--scan-voxel M]\n");
+                         "[--scan-voxel M] [--door-spacing M]\n");
     return 2;
   }
-  std::string path = argv[1], attitude = "from_file";
+  const std::string source = argv[1];
+  world::WorldSettings settings;
+  if (source == "corridor" || source == "multilevel" || source == "campus") {
+    settings.world = source;
+  } else {
+    settings.world = "around_trajectory";
+    settings.trajectory = "file";
+    settings.trajectory_file = source;
+    settings.interpolation = "smooth";
+    settings.smoothing = 0.5;
+  }
   double start = 0.0, duration = 30.0, motor_speed = 3.6;
-  unsigned long seed = 1;
   int every = 1;
   lo::OdometryConfig config;
   for (int i = 2; i + 1 < argc; i += 2) {
@@ -62,8 +72,9 @@ int replay(int argc, char** argv) {
     if (flag == "--start") start = std::atof(value);
     else if (flag == "--duration") duration = std::atof(value);
     else if (flag == "--motor") motor_speed = std::atof(value);
-    else if (flag == "--seed") seed = std::strtoul(value, nullptr, 10);
-    else if (flag == "--attitude") attitude = value;
+    else if (flag == "--seed") settings.seed = std::strtoul(value, nullptr, 10);
+    else if (flag == "--attitude") settings.attitude = value;
+    else if (flag == "--door-spacing") settings.corridor_door_spacing = std::atof(value);
     else if (flag == "--every") every = std::atoi(value);
     else if (flag == "--linear-noise") config.linear_process_noise = std::atof(value);
     else if (flag == "--angular-noise") config.angular_process_noise = std::atof(value);
@@ -75,15 +86,9 @@ int replay(int argc, char** argv) {
     }
   }
 
-  world::TrajectoryReadOptions options = world::TrajectoryReadOptions::forMcd();
-  options.attitude = world::attitudeModeFromName(attitude);
-  options.start_at_zero = true;
-  world::Trajectory raw = world::movingAverage(world::readTrajectory(path, options), 0.5);
-  const world::Trajectory truth(raw.poses(), world::Interpolation::kSmooth);
-  std::vector<Eigen::Vector3d> waypoints;
-  for (const auto& p : truth.poses()) waypoints.push_back(p.position);
-  const world::TriangleMesh mesh = world::makeAroundTrajectory(waypoints, world::AroundTrajectoryConfig{}, seed);
-  raycaster::RayCaster caster(mesh);
+  const world::World world = world::buildWorld(settings);
+  const world::Trajectory& truth = world.trajectory;
+  raycaster::RayCaster caster(world.mesh);
 
   const double frame = caster.frameDuration();
   const double end = std::min(truth.endTime() - 0.2, start + duration);
@@ -94,7 +99,7 @@ int replay(int argc, char** argv) {
   bool started = false;
   double worst_position = 0.0, worst_rotation = 0.0, lost_at = -1.0;
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
-  std::printf("#    t  rot_err  pos_err  w_est  w_true  corr  min_eig  it  status\n");
+  std::printf("#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  status\n");
   std::uint64_t k = static_cast<std::uint64_t>(std::llround(start / frame));
   for (double t0 = k * frame; t0 + frame <= end; t0 = (++k) * frame) {
     const raycaster::Scan cast = caster.castFrame(k, t0, truth, motor);
@@ -128,11 +133,11 @@ int replay(int argc, char** argv) {
     worst_rotation = std::max(worst_rotation, rot_err);
     if (lost_at < 0 && (rot_err > 5.0 || pos_err > 2.0)) lost_at = r.time;
     if (k % static_cast<std::uint64_t>(every) == 0 || rot_err > 1.0) {
-      std::printf("%6.2f %7.2f %8.3f %6.1f %6.1f %5zu %8.1f %3d  %s\n", r.time, rot_err, pos_err, w_est, w_true,
-                  r.correspondences, r.min_information_eigenvalue, r.iterations, lo::toString(r.status));
+      std::printf("%6.2f %7.2f %8.3f %6.1f %6.1f %6zu %5zu %8.1f %3d  %s\n", r.time, rot_err, pos_err, w_est,
+                  w_true, r.points_used, r.correspondences, r.min_information_eigenvalue, r.iterations, lo::toString(r.status));
     }
   }
-  std::printf("summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, lost at %s\n", path.c_str(),
+  std::printf("summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, lost at %s\n", source.c_str(),
               start, end, worst_rotation, worst_position, lost_at < 0 ? "never" : std::to_string(lost_at).c_str());
   return 0;
 }

@@ -9,7 +9,7 @@
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/world/point_sampling.hpp"
-#include "world_source.hpp"
+#include "uampc/world/world_source.hpp"
 
 namespace uampc {
 
@@ -45,6 +45,10 @@ class MapProvider : public Component {
     spec.param("base_height", 1.0, "height of generated paths above the ground, m").between(0.0, 100.0);
     spec.param("campus_poor_rows", 1, "world: campus: rows of blocks with poor geometry (0: all rich)")
         .between(0, 3);
+    spec.param("corridor_door_spacing", 0.0,
+               "world: corridor: a 1 m door recessed 0.3 m every this many metres, alternating sides (0: plain "
+               "walls, nothing fixes the position along the axis between the end walls)")
+        .between(0.0, 1000.0);
     spec.param("pose_rate", 200.0, "ground-truth pose rate, Hz").between(1.0, 10000.0);
     spec.param("map_point_spacing", 0.5, "voxel size of the published map sample, m").between(0.05, 10.0);
     spec.param("chunk_triangles", 10000, "triangles per world chunk (keeps samples under ~0.5 MB)")
@@ -53,7 +57,7 @@ class MapProvider : public Component {
 
   explicit MapProvider(Context& ctx)
       : ctx_(ctx),
-        world_(map_provider::buildWorld(settingsFrom(ctx))),
+        world_(world::buildWorld(settingsFrom(ctx))),
         world_pub_(ctx.publisher<msg::WorldMesh>("world")),
         map_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("map")),
         pose_pub_(ctx.publisher<geometry_msgs::msg::PoseStamped>("ground_truth")) {
@@ -65,8 +69,8 @@ class MapProvider : public Component {
   }
 
  private:
-  static map_provider::WorldSettings settingsFrom(const Context& ctx) {
-    map_provider::WorldSettings s;
+  static world::WorldSettings settingsFrom(const Context& ctx) {
+    world::WorldSettings s;
     s.world = ctx.paramString("world");
     s.map_file = ctx.paramString("map_file");
     s.map_voxel_size = ctx.paramDouble("map_voxel_size");
@@ -81,6 +85,7 @@ class MapProvider : public Component {
     s.path_laps = static_cast<int>(ctx.paramInt("path_laps"));
     s.base_height = ctx.paramDouble("base_height");
     s.campus_poor_rows = static_cast<int>(ctx.paramInt("campus_poor_rows"));
+    s.corridor_door_spacing = ctx.paramDouble("corridor_door_spacing");
     s.seed = ctx.seed();
     return s;
   }
@@ -162,7 +167,7 @@ class MapProvider : public Component {
   }
 
   Context& ctx_;
-  map_provider::World world_;
+  world::World world_;
   Publisher<msg::WorldMesh> world_pub_;
   Publisher<sensor_msgs::msg::PointCloud2> map_pub_;
   Publisher<geometry_msgs::msg::PoseStamped> pose_pub_;

@@ -17,6 +17,21 @@ namespace {
 
 using Vector12d = Eigen::Matrix<double, 12, 1>;
 
+// Whether the plane's map points were mostly seen from the other side than the sensor at
+// viewpoint sees the point q from (views: unit directions from each neighbour to the sensor that
+// saw it). Views nearly along the plane (within ~6 degrees) do not vote.
+bool seenFromOtherSide(const Plane& plane, const std::vector<Eigen::Vector3f>& views, const Eigen::Vector3d& q,
+                       const Eigen::Vector3d& viewpoint) {
+  const double side = plane.normal.dot(viewpoint - q);
+  int same = 0, other = 0;
+  for (const auto& v : views) {
+    const double s = plane.normal.dot(v.cast<double>());
+    if (std::abs(s) < 0.1) continue;
+    ((s > 0.0) == (side > 0.0) ? same : other) += 1;
+  }
+  return other > same;
+}
+
 // x (-) x_prior, in the error-state order [dtheta, dr, dv, dw].
 Vector12d boxMinus(const BaseState& x, const BaseState& prior) {
   Vector12d d;
@@ -119,7 +134,9 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   BaseState x = prior;
   Matrix12d posterior_information = prior_information;
   std::vector<Eigen::Vector3d> neighbours;
+  std::vector<Eigen::Vector3f> views;
   neighbours.reserve(options.nearest_neighbours);
+  views.reserve(options.nearest_neighbours);
   struct Correspondence {
     const TimedPoint* point;
     Plane plane;
@@ -147,12 +164,16 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
       for (const TimedPoint& point : ordered) {
         const Eigen::Vector3d q =
             x.R_WB * (ExpSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
-        if (map.nearest(q, options.nearest_neighbours, neighbours) < options.nearest_neighbours) {
+        if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) {
           continue;
         }
         if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
         const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance);
-        if (plane) correspondences.push_back({&point, *plane});
+        if (!plane) continue;
+        // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
+        // within centimetres of it, and nothing that near is seen), at the point's time.
+        if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, x.r_WB + x.v_W * point.tau)) continue;
+        correspondences.push_back({&point, *plane});
       }
       summary.correspondences = correspondences.size();
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate

@@ -41,6 +41,7 @@ void LocalMap::clear() {
   slots_.clear();
   pool_.clear();
   times_.clear();
+  views_.clear();
   free_.clear();
   size_ = 0;
   rehash(kInitialCapacity);
@@ -69,7 +70,7 @@ void LocalMap::placeKey(std::uint64_t key, std::uint32_t block) {
   ++blocks_used_;
 }
 
-void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time) {
+void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time, const Eigen::Vector3d& viewpoint_W) {
   // Successive points of a scan often fall in the same block: remember the last one.
   std::uint64_t last_key = kEmpty;
   std::uint32_t b = 0;
@@ -92,6 +93,7 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time)
           b = static_cast<std::uint32_t>(pool_.size());
           pool_.emplace_back();
           times_.emplace_back();
+          views_.emplace_back();
         }
         pool_[b].occupied = 0;
         placeKey(key, b);
@@ -106,6 +108,8 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time)
       block.x[index] = static_cast<float>(p.x());
       block.y[index] = static_cast<float>(p.y());
       block.z[index] = static_cast<float>(p.z());
+      const Eigen::Vector3d view = (viewpoint_W - p).normalized() * 127.0;
+      for (int a = 0; a < 3; ++a) views_[b][index][a] = static_cast<std::int8_t>(std::lround(view[a]));
       ++size_;
     }
     times_[b][index] = time;  // the first point stays; when it was seen is refreshed
@@ -147,13 +151,19 @@ void LocalMap::removeFarFrom(const Eigen::Vector3d& origin_W) {
   }
 }
 
-std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
-                              std::vector<Eigen::Vector3d>& neighbours) const {
+std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
+                              std::vector<Eigen::Vector3f>* views) const {
   neighbours.clear();
+  if (views != nullptr) views->clear();
   if (k == 0) return 0;
   // The k best so far, sorted by squared distance (k is small: insertion beats sorting).
   constexpr std::size_t kMaxK = 16;
-  std::array<std::pair<float, Eigen::Vector3f>, kMaxK> best;
+  struct Candidate {
+    float d2;
+    Eigen::Vector3f point;
+    const View* view;
+  };
+  std::array<Candidate, kMaxK> best;
   k = std::min(k, kMaxK);
   std::size_t n = 0;
   float worst = std::numeric_limits<float>::infinity();  // k-th best squared distance
@@ -201,9 +211,11 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
   // All 8 blocks are looked up before any is searched, so that their cache misses overlap
   // instead of following one another; the search skips blocks, not look-ups.
   std::array<const Block*, 8> blocks;
+  std::array<const std::array<View, 8>*, 8> block_views;
   for (int c = 0; c < 8; ++c) {
     const std::size_t slot = slotOf(keys[c]);
     blocks[c] = slot == kNoSlot ? nullptr : &pool_[slots_[slot].block];
+    block_views[c] = slot == kNoSlot ? nullptr : &views_[slots_[slot].block];
     if (blocks[c] != nullptr) {
       __builtin_prefetch(blocks[c]);
       __builtin_prefetch(reinterpret_cast<const char*>(blocks[c]) + sizeof(Block) - 1);
@@ -225,15 +237,21 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k,
       const int j = __builtin_ctz(bits);
       if (d2[j] >= worst) continue;  // worst shrank since
       std::size_t i = (n < k) ? n++ : k - 1;
-      while (i > 0 && best[i - 1].first > d2[j]) {
+      while (i > 0 && best[i - 1].d2 > d2[j]) {
         best[i] = best[i - 1];
         --i;
       }
-      best[i] = {d2[j], block.point(j)};
-      if (n == k) worst = best[k - 1].first;
+      best[i] = {d2[j], block.point(j), &(*block_views[c])[j]};
+      if (n == k) worst = best[k - 1].d2;
     }
   }
-  for (std::size_t i = 0; i < n; ++i) neighbours.push_back(best[i].second.cast<double>());
+  for (std::size_t i = 0; i < n; ++i) neighbours.push_back(best[i].point.cast<double>());
+  if (views != nullptr) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const View& v = *best[i].view;
+      views->push_back(Eigen::Vector3f(v[0], v[1], v[2]) / 127.0f);
+    }
+  }
   return n;
 }
 

@@ -85,7 +85,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     filter_.emplace(x, P);
     last_time_ = derotated.end_time;
     const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
-    map_.insert(points_W, last_time_);
+    map_.insert(points_W, last_time_, x.r_WB);
     map_.removeFarFrom(x.r_WB);
     result.status = OdometryStatus::kInitialised;
     result.points_used = derotated.points.size();
@@ -166,9 +166,11 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
   }
 
   // The map grows with the registered scan, at full resolution (the map voxel grid downsamples).
+  // Each point keeps the side it was seen from, taken from the base origin at the frame's end
+  // (the LiDAR turns on the motor axis there; see the seen-side test in iterated_ekf.hpp).
   const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, filter_->state());
   if (summary.applied) {
-    map_.insert(points_W, last_time_);
+    map_.insert(points_W, last_time_, filter_->state().r_WB);
     map_.removeFarFrom(filter_->state().r_WB);
   }
   result.registered_points_W.reserve(points_W.size());

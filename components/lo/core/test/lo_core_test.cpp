@@ -8,6 +8,7 @@
 
 #include "synthetic_world.hpp"
 #include "uampc/lo/derotation.hpp"
+#include "uampc/lo/iterated_ekf.hpp"
 #include "uampc/lo/local_map.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/lo/plane_fit.hpp"
@@ -69,7 +70,8 @@ TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
     for (int j = -5; j <= 5; ++j) points.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
   }
   points.emplace_back(50.0, 0.0, 0.0);
-  map.insert(points, 1.0);
+  const Eigen::Vector3d above(0.0, 0.0, 2.0);
+  map.insert(points, 1.0, above);
   EXPECT_EQ(map.size(), points.size());
   std::vector<Eigen::Vector3d> neighbours;
   ASSERT_EQ(map.nearest(Eigen::Vector3d(0.16, 0.14, 0.1), 5, neighbours), 5u);
@@ -78,10 +80,20 @@ TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
     EXPECT_LE((neighbours[i - 1] - Eigen::Vector3d(0.16, 0.14, 0.1)).norm(),
               (neighbours[i] - Eigen::Vector3d(0.16, 0.14, 0.1)).norm() + 1e-6);
   }
-  // A later observation refreshes the voxel time but keeps its first point.
-  map.insert({Eigen::Vector3d(0.2, 0.2, 0.01)}, 2.0);
+  // Each neighbour comes with the direction towards the sensor that saw it (to ~1/127).
+  std::vector<Eigen::Vector3f> views;
+  ASSERT_EQ(map.nearest(Eigen::Vector3d(0.16, 0.14, 0.1), 5, neighbours, &views), 5u);
+  ASSERT_EQ(views.size(), 5u);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const Eigen::Vector3d expected = (above - neighbours[i]).normalized();
+    EXPECT_LT((views[i].cast<double>() - expected).norm(), 0.02) << i;
+  }
+  // A later observation refreshes the voxel time but keeps its first point and its view.
+  map.insert({Eigen::Vector3d(0.2, 0.2, 0.01)}, 2.0, Eigen::Vector3d(0.0, 0.0, -2.0));
   EXPECT_EQ(map.points(1.5).size(), 1u);
   EXPECT_LT((map.points(1.5)[0].p_W - Eigen::Vector3d(0.15, 0.15, 0.0)).norm(), 1e-6);
+  map.nearest(Eigen::Vector3d(0.15, 0.15, 0.0), 1, neighbours, &views);
+  EXPECT_GT(views[0].z(), 0.9f);
   map.removeFarFrom(Eigen::Vector3d::Zero());
   EXPECT_EQ(map.size(), points.size() - 1);
   // The removed voxel is gone from both listings (its freed block is skipped), the rest is there.
@@ -93,6 +105,35 @@ TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
   map.pointsSince(1.5, coordinates);
   ASSERT_EQ(coordinates.size(), 1u);
   EXPECT_LT((coordinates[0] - Eigen::Vector3f(0.15f, 0.15f, 0.0f)).norm(), 1e-6f);
+}
+
+// A slab seen only from below, then a sensor above it: the points of the slab's top face, 0.3 m
+// above the underside the map holds, must not be matched to the underside (they turned the pose
+// by 14 degrees in one frame on the multilevel world). Seen from below, the same face matches.
+TEST(IteratedEkf, MatchesAPlaneOnlyFromTheSideItWasSeenFrom) {
+  LocalMap map(0.3, 100.0);
+  std::vector<Eigen::Vector3d> underside;
+  for (int i = -10; i <= 10; ++i) {
+    for (int j = -10; j <= 10; ++j) underside.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
+  }
+  map.insert(underside, 0.0, Eigen::Vector3d(0.0, 0.0, -2.0));
+  const auto correspondencesFrom = [&](double sensor_height, double face_height, bool seen_side_only) {
+    BaseState x;
+    x.r_WB = Eigen::Vector3d(0.0, 0.0, sensor_height);
+    Matrix12d P = Matrix12d::Identity() * 1e-4;
+    IteratedEkf filter(x, P);
+    std::vector<TimedPoint> scan;
+    for (int i = -8; i <= 8; ++i) {
+      for (int j = -8; j <= 8; ++j) scan.push_back({Eigen::Vector3d(0.3 * i, 0.3 * j, face_height - sensor_height), 0.0});
+    }
+    UpdateOptions options;
+    options.match_seen_side_only = seen_side_only;
+    options.max_iterations = 1;
+    return filter.update(scan, map, options).correspondences;
+  };
+  EXPECT_EQ(correspondencesFrom(1.0, 0.3, true), 0u);     // top face from above: no match
+  EXPECT_GT(correspondencesFrom(1.0, 0.3, false), 250u);  // without the test: all wrongly matched
+  EXPECT_GT(correspondencesFrom(-1.0, 0.0, true), 250u);  // underside from below: matched
 }
 
 TEST(Derotation, SpinningMotorIsTakenOutExactlyPerPoint) {

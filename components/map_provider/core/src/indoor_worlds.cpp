@@ -1,9 +1,37 @@
 // Indoor worlds: the long corridor and the multi-storey building with a stairwell.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "uampc/world/procedural_worlds.hpp"
 
 namespace uampc::world {
+
+namespace {
+
+// One long side wall of the corridor at y = face (its inner face), thickness `thick` outwards
+// (sign = -1: towards -y), with a door recess centred at every x in doors: a gap in the wall up to
+// the door's height, closed at the back by the door leaf. The gap's sides are the wall's ends:
+// surfaces facing along the corridor, which is what fixes the position along it.
+void addSideWall(TriangleMesh& mesh, const CorridorConfig& c, float face, float sign, const std::vector<float>& doors) {
+  const float L = static_cast<float>(c.length), h = static_cast<float>(c.height), t = 0.2f;
+  const float depth = static_cast<float>(c.door_depth), half = 0.5f * static_cast<float>(c.door_width);
+  const float door_h = static_cast<float>(c.door_height);
+  const float thick = doors.empty() ? t : depth;  // a plain wall keeps the plain thickness
+  const auto slab = [&](float x0, float x1, float y_in, float y_out, float z0, float z1) {
+    mesh.addBox({x0, std::min(y_in, y_out), z0}, {x1, std::max(y_in, y_out), z1});
+  };
+  float x = -t;
+  for (float d : doors) {
+    slab(x, d - half, face, face + sign * thick, 0.0f, h);                       // wall up to the door
+    slab(d - half, d + half, face, face + sign * thick, door_h, h);              // lintel
+    slab(d - half, d + half, face + sign * thick, face + sign * (thick + t), 0.0f, door_h);  // door leaf
+    x = d + half;
+  }
+  slab(x, L + t, face, face + sign * thick, 0.0f, h);
+}
+
+}  // namespace
 
 TriangleMesh makeCorridor(const CorridorConfig& config) {
   TriangleMesh mesh;
@@ -13,21 +41,18 @@ TriangleMesh makeCorridor(const CorridorConfig& config) {
   const float t = 0.2f;                                 // wall thickness
   mesh.addBox({-t, -w - t, -t}, {L + t, w + t, 0.0f});  // floor
   mesh.addBox({-t, -w - t, h}, {L + t, w + t, h + t});  // ceiling
-  mesh.addBox({-t, -w - t, 0.0f}, {L + t, -w, h});      // right wall
-  mesh.addBox({-t, w, 0.0f}, {L + t, w + t, h});        // left wall
   mesh.addBox({-t, -w, 0.0f}, {0.0f, w, h});            // start wall
   mesh.addBox({L, -w, 0.0f}, {L + t, w, h});            // end wall
+  // Doors every door_spacing metres on alternating sides, none within 2 m of the ends.
+  std::vector<float> right, left;
   if (config.door_spacing > 0.0) {
-    // Door frames standing 0.1 m out of the walls, alternating sides.
     int k = 0;
-    for (double x = config.door_spacing; x < config.length - 1.0; x += config.door_spacing, ++k) {
-      const float xf = static_cast<float>(x);
-      const float y0 = (k % 2 == 0) ? -w : w - 0.1f;
-      mesh.addBox({xf - 0.6f, y0, 0.0f}, {xf - 0.5f, y0 + 0.1f, 2.2f});
-      mesh.addBox({xf + 0.5f, y0, 0.0f}, {xf + 0.6f, y0 + 0.1f, 2.2f});
-      mesh.addBox({xf - 0.6f, y0, 2.1f}, {xf + 0.6f, y0 + 0.1f, 2.2f});
+    for (double x = config.door_spacing; x < config.length - 2.0; x += config.door_spacing, ++k) {
+      (k % 2 == 0 ? right : left).push_back(static_cast<float>(x));
     }
   }
+  addSideWall(mesh, config, -w, -1.0f, right);
+  addSideWall(mesh, config, w, 1.0f, left);
   return mesh;
 }
 
@@ -90,18 +115,22 @@ TriangleMesh makeMultilevel(const MultilevelConfig& config) {
       }
     }
   }
-  // Switch-back stairs: half a storey along +x in y in [0, sw/2], a landing, half along -x.
+  // Switch-back stairs: half a storey along +x in y in [0, sw/2], a landing, half along -x. Each
+  // flight is a sloped slab with the steps on top (waist 0.3 m below each tread), open beneath, as
+  // concrete stairs are: solid blocks down to the floor walled the lower flight in on every side
+  // within the LiDAR's minimum range and left it blind for two seconds.
   const int steps = static_cast<int>(std::ceil(0.5f * fh / 0.18f));
   const float rise = 0.5f * fh / static_cast<float>(steps);
   const float run = (s.xb - s.xa) / static_cast<float>(steps);
+  const float waist = 0.3f;
   for (int k = 0; k + 1 < config.floors; ++k) {
     const float z0 = fh * static_cast<float>(k);
     for (int i = 0; i < steps; ++i) {
       const float up = z0 + rise * static_cast<float>(i + 1);
-      mesh.addBox({s.xa + run * static_cast<float>(i), 0.0f, z0},
+      mesh.addBox({s.xa + run * static_cast<float>(i), 0.0f, std::max(z0, up - waist)},
                   {s.xa + run * static_cast<float>(i + 1), 0.5f * s.sw, up});
       const float up2 = z0 + 0.5f * fh + rise * static_cast<float>(i + 1);
-      mesh.addBox({s.xb - run * static_cast<float>(i + 1), 0.5f * s.sw, z0},
+      mesh.addBox({s.xb - run * static_cast<float>(i + 1), 0.5f * s.sw, up2 - waist},
                   {s.xb - run * static_cast<float>(i), s.sw, up2});
     }
     mesh.addBox({s.xb, 0.0f, z0 + 0.5f * fh - slab}, {L, s.sw, z0 + 0.5f * fh});

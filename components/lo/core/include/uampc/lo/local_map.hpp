@@ -10,6 +10,10 @@
 // a query are covered by 8 block look-ups instead of 27 voxel look-ups. The blocks are visited
 // nearest first and skipped once they cannot hold anything nearer than the k-th best point, and
 // a block keeps its points as coordinate arrays so its 8 distances are computed together.
+//
+// Each voxel also keeps the direction from its point towards the sensor that first saw it (the
+// side of the surface that was seen): a scan point seen from the other side of a thin slab or wall
+// must not be matched to the face that the map holds (see IteratedEkf::update).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,17 +36,18 @@ class LocalMap {
  public:
   LocalMap(double voxel_size, double max_radius);
 
-  // Adds world points observed at time (s).
-  void insert(const std::vector<Eigen::Vector3d>& points_W, double time);
+  // Adds world points observed at time (s) by a sensor at viewpoint_W.
+  void insert(const std::vector<Eigen::Vector3d>& points_W, double time, const Eigen::Vector3d& viewpoint_W);
 
   // Drops voxels whose point is farther than max_radius from origin_W.
   void removeFarFrom(const Eigen::Vector3d& origin_W);
 
   // Up to k map points nearest to q, nearest first, written to neighbours (cleared first); the
   // candidates are the points of the 8 blocks covering the 3x3x3 voxels around q's voxel (at
-  // least 1 voxel of margin in every direction). Returns how many were found.
-  std::size_t nearest(const Eigen::Vector3d& q, std::size_t k,
-                      std::vector<Eigen::Vector3d>& neighbours) const;
+  // least 1 voxel of margin in every direction). Returns how many were found. With views, also
+  // writes each neighbour's unit direction towards the sensor that saw it, in the same order.
+  std::size_t nearest(const Eigen::Vector3d& q, std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
+                      std::vector<Eigen::Vector3f>* views = nullptr) const;
 
   // Points observed at or after observed_since (s); all points by default.
   std::vector<MapPoint> points(
@@ -55,7 +60,8 @@ class LocalMap {
   // Heap memory held by the map (table and block pool), bytes.
   std::size_t memoryBytes() const {
     return slots_.capacity() * sizeof(Slot) + pool_.capacity() * sizeof(Block) +
-           times_.capacity() * sizeof(times_[0]) + free_.capacity() * sizeof(std::uint32_t);
+           times_.capacity() * sizeof(times_[0]) + views_.capacity() * sizeof(views_[0]) +
+           free_.capacity() * sizeof(std::uint32_t);
   }
   bool empty() const { return size_ == 0; }
   void clear();
@@ -105,6 +111,10 @@ class LocalMap {
   std::vector<Slot> slots_;  // capacity a power of two; key kEmpty, kErased or a block key
   std::vector<Block> pool_;  // blocks, dense
   std::vector<std::array<double, 8>> times_;  // observation times, parallel to pool_
+  // Unit direction from the point towards the sensor that first saw it, times 127 (a sign test
+  // needs no more), parallel to pool_; apart from the blocks so the neighbour search stays lean.
+  using View = std::array<std::int8_t, 3>;
+  std::vector<std::array<View, 8>> views_;
   std::vector<std::uint32_t> free_;           // pool indices of removed blocks, for reuse
   std::size_t size_ = 0;                      // occupied voxels
   std::size_t blocks_used_ = 0;               // live blocks

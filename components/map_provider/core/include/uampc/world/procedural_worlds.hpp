@@ -35,7 +35,12 @@ struct CorridorConfig {
   double width = 3.0;     // m, centred on y = 0
   double height = 3.0;    // m
   // Door recesses every door_spacing metres on alternating sides; 0 keeps the walls plain.
+  // A plain corridor constrains nothing along its axis between its end walls; the recesses'
+  // sides are the only surfaces facing along it (as doors are in a real office corridor).
   double door_spacing = 0.0;
+  double door_width = 1.0;   // m
+  double door_height = 2.1;  // m
+  double door_depth = 0.3;   // m, from the wall's face to the door leaf
 };
 
 struct MultilevelConfig {

@@ -1,4 +1,5 @@
-// Which world and which ground-truth trajectory a map_provider serves, from its parameters.
+// Which world and which ground-truth trajectory a scene serves, from map_provider's parameters
+// (here, outside the component, so that development tools build the very same worlds without DDS).
 #pragma once
 
 #include <cstdint>
@@ -8,7 +9,7 @@
 #include "uampc/world/trajectory.hpp"
 #include "uampc/world/triangle_mesh.hpp"
 
-namespace uampc::map_provider {
+namespace uampc::world {
 
 struct WorldSettings {
   std::string world = "campus";  // campus | corridor | multilevel | around_trajectory | file
@@ -25,13 +26,14 @@ struct WorldSettings {
   int path_laps = 1;
   double base_height = 1.0;              // m above the ground, generated paths
   int campus_poor_rows = 1;              // campus: rows of blocks with poor geometry (0: all rich)
+  double corridor_door_spacing = 0.0;    // corridor: m between door recesses (0: plain walls)
   std::uint64_t seed = 1;
 };
 
 struct World {
-  world::TriangleMesh mesh;
+  TriangleMesh mesh;
   std::vector<Eigen::Vector3f> points;  // point maps only
-  world::Trajectory trajectory;         // starts at time 0 (sim time)
+  Trajectory trajectory;         // starts at time 0 (sim time)
   std::string description;
   std::vector<std::string> warnings;
 };
@@ -39,4 +41,4 @@ struct World {
 // Builds the world and the trajectory; throws std::runtime_error with a message a user can act on.
 World buildWorld(const WorldSettings& settings);
 
-}  // namespace uampc::map_provider
+}  // namespace uampc::world
