@@ -4,7 +4,7 @@
 //   lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S]
 //             [--motor RAD_PER_S] [--seed N] [--attitude from_file|yaw_only|identity] [--every N]
 //             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
-//             [--door-spacing M]
+//             [--map-voxel M] [--door-spacing M]
 //
 // Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
 // generated around it (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD
@@ -49,7 +49,7 @@ int replay(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0) {
     std::fprintf(stderr, "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor RAD_PER_S] "
                          "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
-                         "[--scan-voxel M] [--door-spacing M]\n");
+                         "[--scan-voxel M] [--map-voxel M] [--door-spacing M]\n");
     return 2;
   }
   const std::string source = argv[1];
@@ -80,6 +80,7 @@ int replay(int argc, char** argv) {
     else if (flag == "--angular-noise") config.angular_process_noise = std::atof(value);
     else if (flag == "--iterations") config.max_iterations = std::atoi(value);
     else if (flag == "--scan-voxel") config.scan_voxel_size = std::atof(value);
+    else if (flag == "--map-voxel") config.map_voxel_size = std::atof(value);
     else {
       std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
       return 2;
