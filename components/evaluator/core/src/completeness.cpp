@@ -15,10 +15,10 @@ constexpr int kKeyBits = 21;
 constexpr double kKeyOffset = 1 << (kKeyBits - 1);  // 2^20 voxels each way
 constexpr std::uint64_t kKeyMask = (std::uint64_t{1} << kKeyBits) - 1;
 
-// floor(coordinate / voxel_size) shifted to [0, 2^21); false when out of range.
-bool keyComponent(float coordinate, double inverse_voxel_size, std::uint64_t& component) {
+// floor((coordinate - grid_offset) / voxel_size) shifted to [0, 2^21); false when out of range.
+bool keyComponent(float coordinate, double grid_offset, double inverse_voxel_size, std::uint64_t& component) {
   const double shifted =
-      std::floor(static_cast<double>(coordinate) * inverse_voxel_size) + kKeyOffset;
+      std::floor((static_cast<double>(coordinate) - grid_offset) * inverse_voxel_size) + kKeyOffset;
   if (!(shifted >= 0.0) || !(shifted < 2.0 * kKeyOffset)) return false;
   component = static_cast<std::uint64_t>(shifted);
   return true;
@@ -35,6 +35,9 @@ Completeness::Completeness(CompletenessConfig config)
   if (!(config_.voxel_size > 0.0) || !std::isfinite(config_.voxel_size)) {
     throw std::invalid_argument("Completeness: voxel_size must be > 0 m, got " +
                                 std::to_string(config_.voxel_size));
+  }
+  if (!std::isfinite(config_.grid_offset)) {
+    throw std::invalid_argument("Completeness: grid_offset must be finite (m)");
   }
   if (!(config_.window_duration > 0.0) || !std::isfinite(config_.window_duration)) {
     throw std::invalid_argument("Completeness: window_duration must be > 0 s, got " +
@@ -80,9 +83,9 @@ void Completeness::addScan(double stamp, const std::vector<Eigen::Vector3f>& poi
       continue;
     }
     std::uint64_t x = 0, y = 0, z = 0;
-    if (!keyComponent(p.x(), inverse_voxel_size_, x) ||
-        !keyComponent(p.y(), inverse_voxel_size_, y) ||
-        !keyComponent(p.z(), inverse_voxel_size_, z)) {
+    const double o = config_.grid_offset;
+    if (!keyComponent(p.x(), o, inverse_voxel_size_, x) || !keyComponent(p.y(), o, inverse_voxel_size_, y) ||
+        !keyComponent(p.z(), o, inverse_voxel_size_, z)) {
       ++out_of_range_points_;
       continue;
     }

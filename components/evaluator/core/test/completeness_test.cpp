@@ -52,6 +52,26 @@ TEST(Completeness, VoxelBoundariesAndNegativeCoordinates) {
   EXPECT_EQ(report.windows[0].points, 8u);
 }
 
+// A wall exactly on a voxel face, posed exactly: rounding puts its points on both sides, and it
+// counts as two layers of voxels. The grid offset moves the faces off it: one layer.
+TEST(Completeness, AWallOnAVoxelFaceCountsOnceWithTheGridOffset) {
+  std::vector<Eigen::Vector3f> wall;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> along(0.0f, 10.0f), rounding(-1e-6f, 1e-6f);
+  for (int i = 0; i < 20000; ++i) wall.emplace_back(along(rng), 1.5f + rounding(rng), 0.5f * along(rng) / 2.0f);
+  Completeness aligned;  // faces at multiples of 0.5 m: y = 1.5 is one
+  aligned.addScan(0.0, wall);
+  CompletenessConfig shifted_config;
+  shifted_config.grid_offset = 0.1234;
+  Completeness shifted(shifted_config);
+  shifted.addScan(0.0, wall);
+  // 10 m by 2.5 m of wall: 20 x 5 voxels per layer (21 x 6 where the shifted grid cuts the edges).
+  EXPECT_EQ(aligned.totalVoxels(), 2u * 20u * 5u);
+  EXPECT_LE(shifted.totalVoxels(), 21u * 6u);
+  EXPECT_GE(shifted.totalVoxels(), 20u * 5u);
+  EXPECT_THROW(Completeness(CompletenessConfig{0.5, 5.0, std::nan("")}), std::invalid_argument);
+}
+
 TEST(Completeness, CountsDistinctVoxelsPerWindowAndAveragesCompleteOnes) {
   Completeness cmplt;
   // Window 0 = [100, 105): voxels A, B, C, D (A twice).

@@ -108,7 +108,9 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
       block.x[index] = static_cast<float>(p.x());
       block.y[index] = static_cast<float>(p.y());
       block.z[index] = static_cast<float>(p.z());
-      const Eigen::Vector3d view = (viewpoint_W - p).normalized() * 127.0;
+      // A point at the viewpoint itself (never, past the LO's minimum range) gets no view: it
+      // then votes for neither side.
+      const Eigen::Vector3d view = (viewpoint_W - p).stableNormalized() * 127.0;
       for (int a = 0; a < 3; ++a) views_[b][index][a] = static_cast<std::int8_t>(std::lround(view[a]));
       ++size_;
     }

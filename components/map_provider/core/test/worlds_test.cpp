@@ -113,8 +113,23 @@ TEST(Corridor, LongPlainBox) {
   }
   const auto path = corridorWaypoints(config, 1.0);
   EXPECT_NEAR((path.back() - path.front()).norm(), 296.0, 1e-9);
-  config.door_spacing = 20.0;
-  EXPECT_GT(makeCorridor(config).size(), mesh.size());
+  // Doors every 8 m: the first one (x = 8, right side) is a 1 m gap in the wall up to 2.1 m,
+  // closed 0.3 m behind the wall's face by the door leaf. Surface samples show it: none on the
+  // wall's face in the gap below the lintel, some on the leaf, and the plain wall elsewhere.
+  config.door_spacing = 8.0;
+  const TriangleMesh doors = makeCorridor(config);
+  std::size_t in_gap = 0, on_leaf = 0, on_wall_beside = 0;
+  for (const auto& p : sampleSurface(doors, 50.0, 3)) {
+    const bool face = std::abs(p.y() + 1.5f) < 1e-3f, leaf = std::abs(p.y() + 1.8f) < 1e-3f;
+    if (p.z() < 2.0f && std::abs(p.x() - 8.0f) < 0.45f) {
+      in_gap += face;
+      on_leaf += leaf;
+    }
+    if (p.z() < 2.0f && std::abs(p.x() - 12.0f) < 0.45f) on_wall_beside += face;
+  }
+  EXPECT_EQ(in_gap, 0u);
+  EXPECT_GT(on_leaf, 20u);
+  EXPECT_GT(on_wall_beside, 20u);
 }
 
 TEST(Multilevel, StoreysAndAPathThroughThem) {
