@@ -1,5 +1,5 @@
 // Test component: a misbehaving LiDAR driver. Publishes scans on /lidar/points that the LO must
-// survive: without a per-point time field, with NaN points, or empty.
+// survive: without a per-point time field, with NaN points, with non-finite point times, or empty.
 #include <limits>
 
 #include "uampc/pointcloud/scan_cloud.hpp"
@@ -12,8 +12,8 @@ class BadScanPublisher : public Component {
   static void describe(ComponentSpec& spec) {
     spec.summary = "Test: publishes malformed scans";
     spec.output<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor, "malformed scans");
-    spec.requiredParam("mode", ParameterType::kString, "no_time, nan_points or empty")
-        .oneOf({"no_time", "nan_points", "empty"});
+    spec.requiredParam("mode", ParameterType::kString, "no_time, nan_points, bad_times or empty")
+        .oneOf({"no_time", "nan_points", "bad_times", "empty"});
   }
 
   explicit BadScanPublisher(Context& ctx)
@@ -34,6 +34,10 @@ class BadScanPublisher : public Component {
       }
       if (mode_ == "nan_points") {
         for (int i = 0; i < 2000; i += 7) points.positions[i].x() = std::numeric_limits<float>::quiet_NaN();
+      }
+      if (mode_ == "bad_times") {
+        for (int i = 0; i < 2000; i += 7) points.time_offsets[i] = std::numeric_limits<float>::quiet_NaN();
+        for (int i = 3; i < 2000; i += 11) points.time_offsets[i] = std::numeric_limits<float>::infinity();
       }
     }
     sensor_msgs::msg::PointCloud2 cloud = mode_ == "no_time" ? pointcloud::makeXyzCloud(points.positions, "lidar")

@@ -103,6 +103,23 @@ TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {
   EXPECT_NE(r.output.find("commanding omega_pre 3.6 rad/s"), std::string::npos) << r.output;
 }
 
+// Raw scans with NaN and infinite point times: those points are skipped, the rest placed with
+// ground truth. An infinite time used to hold the scan back for good (it never became
+// "covered"), and every later scan behind it: no ground-truth CMPLT at all.
+TEST(Loop, EvaluatorSkipsPointsWithNonFiniteTimes) {
+  const std::string out = freshDirectory("evaluator_bad_scans");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/evaluator_bad_scans.yaml") + " --out " + out +
+                                   " --set domain_id=61");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string metrics = readFile(out + "/metrics.json");
+  const auto gt = metrics.find("\"cmplt_ground_truth\"");
+  ASSERT_NE(gt, std::string::npos) << metrics;
+  const auto scans = metrics.find("\"scans\":", gt);
+  ASSERT_NE(scans, std::string::npos) << metrics;
+  EXPECT_GE(std::stoi(metrics.substr(scans + 8)), 50) << metrics;  // ~60 scans in 6 s, all placed
+  EXPECT_NE(r.output.find("have points with non-finite times"), std::string::npos) << r.output;
+}
+
 TEST(Loop, EveryShippedSceneStartsAndSteps) {
   // Without --out, as a user's first try would be; the MCD scenes read ../shared/data.
   for (const auto& entry : std::filesystem::directory_iterator(sourcePath("config/scenes"))) {

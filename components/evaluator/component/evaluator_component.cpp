@@ -8,6 +8,7 @@
 // motor.csv, timings.csv, uncertainty.csv and scanned_voxels.bt (OctoMap, opens in octovis); during
 // the run, snapshots of the controller's panorama as panorama/panorama_<sim time>.png.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -97,7 +98,26 @@ class EvaluatorComponent : public Component {
     });
     ctx.subscribe<sensor_msgs::msg::PointCloud2>("scan", [this](const sensor_msgs::msg::PointCloud2& m) {
       const auto time_field = pointcloud::findTimeField(m);
-      pending_scans_.push_back({fromMsg(m.header().stamp()).seconds(), pointcloud::readCloud(m, &time_field)});
+      PendingScan scan{fromMsg(m.header().stamp()).seconds(), pointcloud::readCloud(m, &time_field), 0.0, 0.0};
+      // The frame's span, once: the scan may wait for ground truth through many flushes. A point
+      // time that is not finite (a misbehaving driver) is left out of it: an infinite one would
+      // hold the scan, and every scan behind it, back for good. Such points are not placed.
+      scan.start = scan.end = scan.stamp;
+      std::size_t non_finite = 0;
+      for (float t : scan.points.time_offsets) {
+        if (!std::isfinite(t)) {
+          ++non_finite;
+          continue;
+        }
+        scan.start = std::min(scan.start, scan.stamp + t);
+        scan.end = std::max(scan.end, scan.stamp + t);
+      }
+      if (non_finite > 0 && !warned_non_finite_times_) {
+        warned_non_finite_times_ = true;
+        ctx_.log().warn("scans on ", ctx_.topicOf("scan"), " have points with non-finite times (", non_finite,
+                        " in this one); they are not placed with ground truth (said once)");
+      }
+      pending_scans_.push_back(std::move(scan));
       flush();
     });
     ctx.subscribe<sensor_msgs::msg::JointState>("motor_state", [this](const sensor_msgs::msg::JointState& m) {
@@ -170,6 +190,7 @@ class EvaluatorComponent : public Component {
   struct PendingScan {
     double stamp;
     pointcloud::ScanPoints points;
+    double start, end;  // s, its earliest and latest finite point times
   };
   using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
   static File open(const std::string& path, const char* header) {
@@ -216,11 +237,7 @@ class EvaluatorComponent : public Component {
     }
     while (!pending_scans_.empty()) {
       const PendingScan& scan = pending_scans_.front();
-      double start = scan.stamp, end = scan.stamp;
-      for (float t : scan.points.time_offsets) {
-        start = std::min(start, scan.stamp + t);
-        end = std::max(end, scan.stamp + t);
-      }
+      const double start = scan.start, end = scan.end;
       if (end > covered || motor_.empty() || motor_.newest().time < end) return;
       std::vector<Eigen::Vector3f> world;
       world.reserve(scan.points.positions.size());
@@ -234,7 +251,7 @@ class EvaluatorComponent : public Component {
         });
         for (std::size_t i = 0; i < scan.points.positions.size(); ++i) {
           const double t = scan.stamp + scan.points.time_offsets[i];
-          if (t < placeable) continue;
+          if (!(t >= placeable && t <= end)) continue;  // not placeable yet, or not a finite time
           world.push_back((lidar_pose_(t) * scan.points.positions[i].cast<double>()).cast<float>());
         }
       }
@@ -265,6 +282,7 @@ class EvaluatorComponent : public Component {
   Context& ctx_;
   frames::MotorLidarCalibration calibration_;
   frames::PoseKnots lidar_pose_;  // T_WL over the raw scan being placed
+  bool warned_non_finite_times_ = false;
   evaluator::PoseInterpolator ground_truth_;
   evaluator::TrajectoryEvaluator trajectory_;
   evaluator::Completeness cmplt_;
