@@ -412,7 +412,7 @@ TEST(MotorizedLidarOdometry, LongRunDriftsLessThanOnePercentWithBoundedMap) {
   EXPECT_LT(worst_drift_ratio, 0.01);
   // The latest 5 s of the map is a non-empty part of it.
   const double now = (frames - 1) * lidar.frame_duration + lidar.frame_duration;
-  const auto recent = odometry.localMapPoints(now - 5.0);
+  const auto recent = odometry.localMap().points(now - 5.0);
   EXPECT_GT(recent.size(), 1000u);
   EXPECT_LE(recent.size(), odometry.localMap().size());
   for (const auto& point : recent) EXPECT_GE(point.time, now - 5.0);

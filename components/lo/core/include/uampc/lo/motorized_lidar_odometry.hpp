@@ -10,7 +10,6 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
-#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,12 +103,8 @@ class MotorizedLidarOdometry {
   // Throws std::invalid_argument when scan.points_L and scan.time_offsets differ in size.
   OdometryResult registerScan(const Scan& scan, const frames::MotorAngleTrack& motor);
 
-  // The local map in the world frame with the time each voxel was last observed; pass
-  // time - 5.0 to get what was seen in the latest 5 s.
-  std::vector<MapPoint> localMapPoints(
-      double observed_since = -std::numeric_limits<double>::infinity()) const {
-    return map_.points(observed_since);
-  }
+  // The local map in the world frame (LocalMap::points and pointsSince list it, with or without
+  // the time each voxel was last observed).
   const LocalMap& localMap() const { return map_; }
   bool initialised() const { return filter_.has_value(); }
   const OdometryConfig& config() const { return config_; }
