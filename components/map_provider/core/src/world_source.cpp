@@ -55,6 +55,10 @@ World buildWorld(const WorldSettings& s) {
     if (!from_file) w.trajectory = generatedPath(campusLoopWaypoints(config, s.base_height), true, s);
   } else if (s.world == "corridor") {
     CorridorConfig config;
+    if (s.corridor_door_spacing != 0.0 && !(s.corridor_door_spacing >= 2.0)) {
+      throw std::runtime_error("corridor_door_spacing must be 0 (plain walls) or at least 2 m (1 m doors with wall "
+                               "between them), got " + std::to_string(s.corridor_door_spacing));
+    }
     config.door_spacing = s.corridor_door_spacing;
     w.mesh = makeCorridor(config);
     if (!from_file) w.trajectory = generatedPath(corridorWaypoints(config, s.base_height), false, s);

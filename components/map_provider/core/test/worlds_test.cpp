@@ -11,6 +11,7 @@
 #include "uampc/world/procedural_worlds.hpp"
 #include "uampc/world/seeded_random.hpp"
 #include "uampc/world/trajectory_io.hpp"
+#include "uampc/world/world_source.hpp"
 
 namespace uampc::world {
 namespace {
@@ -130,6 +131,15 @@ TEST(Corridor, LongPlainBox) {
   EXPECT_EQ(in_gap, 0u);
   EXPECT_GT(on_leaf, 20u);
   EXPECT_GT(on_wall_beside, 20u);
+}
+
+TEST(WorldSource, RejectsDoorsCloserThanTheirWidth) {
+  WorldSettings settings;
+  settings.world = "corridor";
+  settings.corridor_door_spacing = 0.5;
+  EXPECT_THROW(buildWorld(settings), std::runtime_error);
+  settings.corridor_door_spacing = 8.0;
+  EXPECT_GT(buildWorld(settings).mesh.size(), 0u);
 }
 
 TEST(Multilevel, StoreysAndAPathThroughThem) {
