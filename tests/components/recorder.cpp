@@ -1,5 +1,6 @@
 // Test component: records what arrives on its ports, as it arrives, to CSV files in the run's
-// output directory (<name>_motor_states.csv, _motor_commands.csv, _ground_truth.csv, _scans.csv),
+// output directory (<name>_motor_states.csv, _motor_commands.csv, _ground_truth.csv, _scans.csv,
+// _imu.csv),
 // at full precision, so that tests can check the data and compare runs byte for byte.
 #include <cstdio>
 #include <memory>
@@ -12,12 +13,13 @@ namespace uampc {
 class Recorder : public Component {
  public:
   static void describe(ComponentSpec& spec) {
-    spec.summary = "Test: records motor states, commands, ground truth and scans to CSV";
+    spec.summary = "Test: records motor states, commands, ground truth, scans and IMU samples to CSV";
     spec.input<sensor_msgs::msg::JointState>("state", "/motor/state", QosPreset::kControl, "motor states");
     spec.input<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "motor commands");
     spec.input<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
                                                 "ground-truth poses");
     spec.input<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor, "LiDAR scans");
+    spec.input<sensor_msgs::msg::Imu>("imu", "/lidar/imu", QosPreset::kSensor, "IMU samples");
     spec.param("max_scans", 5, "scans recorded (the first ones)").atLeast(0);
   }
 
@@ -27,6 +29,7 @@ class Recorder : public Component {
     commands_ = open("motor_commands.csv", "received,stamp,velocity\n");
     poses_ = open("ground_truth.csv", "stamp,x,y,z,qx,qy,qz,qw\n");
     scans_ = open("scans.csv", "stamp,x,y,z,intensity,t,ring\n");
+    imu_ = open("imu.csv", "stamp,wx,wy,wz,ax,ay,az\n");
     ctx.subscribe<sensor_msgs::msg::JointState>("state", [this](const sensor_msgs::msg::JointState& m) {
       std::fprintf(states_.get(), "%.9f,%.17g,%.17g\n", fromMsg(m.header().stamp()).seconds(), m.position().at(0),
                    m.velocity().at(0));
@@ -52,6 +55,12 @@ class Recorder : public Component {
                      points.intensities[i], points.time_offsets[i], points.rings[i]);
       }
     });
+    ctx.subscribe<sensor_msgs::msg::Imu>("imu", [this](const sensor_msgs::msg::Imu& m) {
+      const auto& w = m.angular_velocity();
+      const auto& a = m.linear_acceleration();
+      std::fprintf(imu_.get(), "%.9f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", fromMsg(m.header().stamp()).seconds(),
+                   w.x(), w.y(), w.z(), a.x(), a.y(), a.z());
+    });
   }
 
  private:
@@ -71,6 +80,7 @@ class Recorder : public Component {
   File commands_{nullptr, &std::fclose};
   File poses_{nullptr, &std::fclose};
   File scans_{nullptr, &std::fclose};
+  File imu_{nullptr, &std::fclose};
 };
 
 }  // namespace uampc

@@ -62,6 +62,32 @@ TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
   EXPECT_LT(worst, 1e-3) << "a de-rotated point is " << worst << " m off the corridor's planes";
 }
 
+// The raycaster's IMU on a straight path at constant speed, the motor at 3.6 rad/s: every sample
+// once, in order, on the 200 Hz grid; the gyro sees the motor's spin about the base z axis (in L,
+// tilted 30 degrees) and the accelerometer gravity, both within the default noise.
+TEST(Simulator, ImuSamplesComeInOrderAndSeeTheMotorAndGravity) {
+  const std::string out = freshDirectory("simulator_imu");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out +
+                                   " --set domain_id=43 --set lidar.imu=true");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = readCsv(out + "/recorder_imu.csv");
+  ASSERT_GT(rows.size(), 120u);  // 0.7 s at 200 Hz, less the start and the last steps
+  const double tilt = 30.0 * M_PI / 180.0;
+  const Eigen::Vector3d motor_axis_L(0.0, std::sin(tilt), std::cos(tilt));  // R_ML^T e_z
+  const double gyro_sigma = 4.5e-3 * M_PI / 180.0 * std::sqrt(200.0), accel_sigma = 100e-6 * 9.80665 * std::sqrt(200.0);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double t = rows[i][0];
+    if (i > 0) {
+      ASSERT_NEAR(t - rows[i - 1][0], 0.005, 1e-8) << "at t=" << t;
+    }
+    ASSERT_NEAR(t, 0.005 * std::round(t / 0.005), 1e-8);
+    if (t < 0.05) continue;  // the motor starts at the first command
+    const Eigen::Vector3d gyro(rows[i][1], rows[i][2], rows[i][3]), accel(rows[i][4], rows[i][5], rows[i][6]);
+    EXPECT_LT((gyro - 3.6 * motor_axis_L).cwiseAbs().maxCoeff(), 6.0 * gyro_sigma) << "at t=" << t;
+    EXPECT_LT((accel - 9.81 * motor_axis_L).cwiseAbs().maxCoeff(), 6.0 * accel_sigma) << "at t=" << t;
+  }
+}
+
 TEST(Simulator, CorruptMapsAndTrajectoriesStopTheRunNamingTheFile) {
   const std::string dir = freshDirectory("simulator_bad_inputs");
   const std::string good_tum = dir + "/path.tum";

@@ -3,13 +3,19 @@
 // and renders frame k (covering [k/rate, (k+1)/rate)) as soon as both cover it: every point at
 // its own time, with the motor turning during the frame. Publishes one PointCloud2 per frame in
 // the LiDAR frame (x, y, z, intensity, t since the header stamp = frame start, ring).
+// With `imu` on, it also publishes the LiDAR's built-in IMU (raycaster/imu_simulator.hpp), in the
+// LiDAR frame and so turning with the motor: every sample k / imu_rate, in order, as soon as the
+// buffered poses and encoder states cover its finite-difference stencil.
+#include <algorithm>
 #include <deque>
 #include <memory>
+#include <optional>
 
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/runtime/component.hpp"
 
@@ -25,6 +31,8 @@ class RaycasterComponent : public Component {
     spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
     spec.output<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor,
                                                "one frame, LiDAR frame, per-point time t");
+    spec.output<sensor_msgs::msg::Imu>("imu", "/lidar/imu", QosPreset::kSensor,
+                                       "IMU in the LiDAR frame, turning with the motor (with imu: true)");
     spec.param("model", "livox_mid360", "LiDAR model: livox_mid360, velodyne_vlp16, livox_avia or spinning")
         .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia", "spinning"});
     spec.param("elevations_deg", std::vector<double>{-15, -13, -11, -9, -7, -5, -3, -1, 1, 3, 5, 7, 9, 11, 13, 15},
@@ -36,20 +44,41 @@ class RaycasterComponent : public Component {
     adapters::declareRigParameters(spec);
     spec.param("range_noise", 0.0, "standard deviation of Gaussian range noise, m").between(0.0, 1.0);
     spec.param("dropout", 0.0, "probability that a return is lost").between(0.0, 1.0);
-    spec.param("frame_id", "lidar", "frame_id of the published scans");
+    spec.param("frame_id", "lidar", "frame_id of the published scans and IMU samples");
+    const raycaster::ImuNoiseParameters icm40609;  // the Mid-360's IMU
+    spec.param("imu", false, "publish the LiDAR's IMU (angular velocity and specific force in the LiDAR frame)");
+    spec.param("imu_rate", 200.0, "imu: sample rate, Hz").between(1.0, 1000.0);
+    spec.param("gyro_noise_density", icm40609.gyro_noise_density,
+               "imu: gyroscope white noise, rad/s/sqrt(Hz) (ICM-40609 datasheet: 4.5 mdps/sqrt(Hz))")
+        .between(0.0, 1.0);
+    spec.param("gyro_random_walk", icm40609.gyro_random_walk,
+               "imu: gyroscope bias random walk, rad/s^2/sqrt(Hz) (assumed: the datasheet gives none)")
+        .between(0.0, 1.0);
+    spec.param("accel_noise_density", icm40609.accel_noise_density,
+               "imu: accelerometer white noise, m/s^2/sqrt(Hz) (ICM-40609 datasheet: 100 ug/sqrt(Hz))")
+        .between(0.0, 10.0);
+    spec.param("accel_random_walk", icm40609.accel_random_walk,
+               "imu: accelerometer bias random walk, m/s^3/sqrt(Hz) (assumed: the datasheet gives none)")
+        .between(0.0, 10.0);
   }
 
   explicit RaycasterComponent(Context& ctx)
-      : ctx_(ctx), config_(configFrom(ctx)), scan_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("scan")) {
+      : ctx_(ctx),
+        config_(configFrom(ctx)),
+        scan_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("scan")),
+        imu_pub_(ctx.publisher<sensor_msgs::msg::Imu>("imu")) {
     frame_id_ = ctx.paramString("frame_id");
+    if (ctx.paramBool("imu")) imu_.emplace(imuConfigFrom(ctx, config_));
     ctx.subscribe<msg::WorldMesh>("world", [this](const msg::WorldMesh& m) { onWorld(m); });
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& p) {
       onPose(p);
       render();
+      publishImu();
     });
     ctx.subscribe<sensor_msgs::msg::JointState>("motor_state", [this](const sensor_msgs::msg::JointState& s) {
       onMotor(s);
       render();
+      publishImu();
     });
   }
 
@@ -66,6 +95,18 @@ class RaycasterComponent : public Component {
     c.range_noise_stddev = ctx.paramDouble("range_noise");
     c.dropout_probability = ctx.paramDouble("dropout");
     c.seed = ctx.seed();
+    return c;
+  }
+
+  static raycaster::ImuSimulatorConfig imuConfigFrom(const Context& ctx, const raycaster::RayCasterConfig& scans) {
+    raycaster::ImuSimulatorConfig c;
+    c.calibration = scans.calibration;
+    c.rate_hz = ctx.paramDouble("imu_rate");
+    c.noise.gyro_noise_density = ctx.paramDouble("gyro_noise_density");
+    c.noise.gyro_random_walk = ctx.paramDouble("gyro_random_walk");
+    c.noise.accel_noise_density = ctx.paramDouble("accel_noise_density");
+    c.noise.accel_random_walk = ctx.paramDouble("accel_random_walk");
+    c.seed = scans.seed;
     return c;
   }
 
@@ -118,7 +159,27 @@ class RaycasterComponent : public Component {
     if (s.position().empty() || !std::isfinite(s.position()[0])) {
       throw std::runtime_error("motor state without a finite position on " + ctx_.topicOf("motor_state"));
     }
-    motor_.add({fromMsg(s.header().stamp()).seconds(), s.position()[0], s.velocity().empty() ? 0.0 : s.velocity()[0]});
+    const frames::MotorReading reading{fromMsg(s.header().stamp()).seconds(), s.position()[0],
+                                       s.velocity().empty() ? 0.0 : s.velocity()[0]};
+    if (!motor_.add(reading) || !imu_) return;
+    // The IMU takes the motor's rate from the encoder's velocity: its angle is quantised.
+    if (s.velocity().empty() || !std::isfinite(s.velocity()[0])) {
+      throw std::runtime_error("the IMU needs a finite velocity (the motor's rate) in the motor states on " +
+                               ctx_.topicOf("motor_state"));
+    }
+    motor_rates_.push_back(reading);
+    const double needed_from = next_imu_ ? imuStencilStart() : reading.time - 2.0;
+    while (motor_rates_.size() > 2 && motor_rates_[1].time <= needed_from) motor_rates_.pop_front();
+  }
+
+  // theta_dot at t, linear between the encoder's velocity readings (held beyond them).
+  double motorRateAt(double t) const {
+    const auto after = std::lower_bound(motor_rates_.begin(), motor_rates_.end(), t,
+                                        [](const frames::MotorReading& r, double time) { return r.time < time; });
+    if (after == motor_rates_.begin()) return after->omega;
+    if (after == motor_rates_.end()) return motor_rates_.back().omega;
+    const frames::MotorReading& before = *(after - 1);
+    return before.omega + (t - before.time) / (after->time - before.time) * (after->omega - before.omega);
   }
 
   // Renders every frame the buffers cover, oldest first.
@@ -135,9 +196,64 @@ class RaycasterComponent : public Component {
       const raycaster::Scan scan = caster_->castFrame(next_frame_, start, window, motor_);
       publish(scan);
       ++next_frame_;
-      // Poses before the next frame's start are not needed any more (keep one for interpolation).
-      while (poses_.size() > 2 && poses_[1].time <= end) poses_.pop_front();
+      // Poses before the next frame's start (and the next IMU sample's stencil) are not needed any
+      // more (keep one for interpolation).
+      const double needed_from = next_imu_ ? std::min(end, imuStencilStart()) : end;
+      while (poses_.size() > 2 && poses_[1].time <= needed_from) poses_.pop_front();
     }
+  }
+
+  // The earliest time the next IMU sample needs poses and encoder states from.
+  double imuStencilStart() const { return imu_->sampleTime(*next_imu_) - raycaster::kImuStencilHalfWidth; }
+
+  // Publishes every IMU sample the buffers cover, oldest first, each once.
+  void publishImu() {
+    if (!imu_ || poses_.empty() || motor_rates_.empty()) return;
+    const double w = raycaster::kImuStencilHalfWidth;
+    const double covered_until = std::min(poses_.back().time, motor_.newest().time);
+    if (!next_imu_ || poses_.front().time > imuStencilStart() || !motor_.covers(imuStencilStart(), covered_until)) {
+      // The first sample, or the history no longer reaches back to the next one (the encoder's
+      // is kept 2 s; poses stopped for longer than that): start at the first one covered.
+      const double from = std::max(poses_.front().time, motor_.oldest().time) + w;
+      if (next_imu_) {
+        ctx_.log().warn("IMU: no poses or encoder states around t=", imu_->sampleTime(*next_imu_),
+                        " s any more; resuming at t=", from, " s");
+      }
+      next_imu_ = std::max(next_imu_.value_or(0), imu_->firstIndexAtOrAfter(from));
+    }
+    if (imu_->sampleTime(*next_imu_) + w > covered_until) return;
+    // The poses from the one before the first stencil's start on.
+    auto first = std::upper_bound(poses_.begin(), poses_.end(), imuStencilStart(),
+                                  [](double time, const world::TimedPose& p) { return time < p.time; });
+    if (first != poses_.begin()) --first;
+    const world::Trajectory window(std::vector<world::TimedPose>(first, poses_.end()));
+    const raycaster::ImuMotion motion{[&window](double t) { return window.poseAt(t); },
+                                      [this](double t) { return motor_.thetaAt(t).value(); },
+                                      [this](double t) { return motorRateAt(t); }};
+    for (; imu_->sampleTime(*next_imu_) + w <= covered_until; ++*next_imu_) {
+      publishImuSample(imu_->sample(*next_imu_, motion));
+    }
+  }
+
+  void publishImuSample(const raycaster::ImuSample& sample) {
+    sensor_msgs::msg::Imu m;
+    m.header().stamp(toMsg(Time::fromSeconds(sample.time)));
+    m.header().frame_id(frame_id_);
+    // No orientation: sensor_msgs/Imu asks for orientation_covariance[0] = -1 then.
+    m.orientation().w(1.0);
+    m.orientation_covariance()[0] = -1.0;
+    m.angular_velocity().x(sample.angular_velocity.x());
+    m.angular_velocity().y(sample.angular_velocity.y());
+    m.angular_velocity().z(sample.angular_velocity.z());
+    m.linear_acceleration().x(sample.linear_acceleration.x());
+    m.linear_acceleration().y(sample.linear_acceleration.y());
+    m.linear_acceleration().z(sample.linear_acceleration.z());
+    // The white noise of one sample (the bias drifts, unknown to a user, as on the real sensor).
+    for (const int diagonal : {0, 4, 8}) {
+      m.angular_velocity_covariance()[diagonal] = imu_->gyroNoiseVariance();
+      m.linear_acceleration_covariance()[diagonal] = imu_->accelNoiseVariance();
+    }
+    imu_pub_.publish(m);
   }
 
   void publish(const raycaster::Scan& scan) {
@@ -157,6 +273,7 @@ class RaycasterComponent : public Component {
   Context& ctx_;
   raycaster::RayCasterConfig config_;
   Publisher<sensor_msgs::msg::PointCloud2> scan_pub_;
+  Publisher<sensor_msgs::msg::Imu> imu_pub_;
   std::string frame_id_;
   world::TriangleMesh mesh_;
   std::vector<Eigen::Vector3f> points_;
@@ -165,6 +282,9 @@ class RaycasterComponent : public Component {
   std::deque<world::TimedPose> poses_;
   frames::MotorAngleTrack motor_{2.0};
   std::uint64_t next_frame_ = 0;
+  std::optional<raycaster::ImuSimulator> imu_;    // with imu: true
+  std::deque<frames::MotorReading> motor_rates_;  // encoder velocities, for the IMU
+  std::optional<std::uint64_t> next_imu_;         // the next IMU sample to publish
 };
 
 }  // namespace uampc

@@ -7,6 +7,7 @@
 #include "nav_msgs/msg/OdometryPubSubTypes.h"
 #include "rosgraph_msgs/msg/ClockPubSubTypes.h"
 #include "sensor_msgs/msg/ImagePubSubTypes.h"
+#include "sensor_msgs/msg/ImuPubSubTypes.h"
 #include "sensor_msgs/msg/JointStatePubSubTypes.h"
 #include "sensor_msgs/msg/PointCloud2PubSubTypes.h"
 #include "std_msgs/msg/Float64PubSubTypes.h"
@@ -33,6 +34,7 @@ UAMPC_MESSAGE_TYPE(geometry_msgs, PoseStamped)
 UAMPC_MESSAGE_TYPE(nav_msgs, Odometry)
 UAMPC_MESSAGE_TYPE(rosgraph_msgs, Clock)
 UAMPC_MESSAGE_TYPE(sensor_msgs, Image)
+UAMPC_MESSAGE_TYPE(sensor_msgs, Imu)
 UAMPC_MESSAGE_TYPE(sensor_msgs, JointState)
 UAMPC_MESSAGE_TYPE(sensor_msgs, PointCloud2)
 UAMPC_MESSAGE_TYPE(std_msgs, Float64)
