@@ -81,6 +81,11 @@ int replay(int argc, char** argv) {
     else if (flag == "--iterations") config.max_iterations = std::atoi(value);
     else if (flag == "--scan-voxel") config.scan_voxel_size = std::atof(value);
     else if (flag == "--map-voxel") config.map_voxel_size = std::atof(value);
+    else if (flag == "--degeneracy-threshold") config.degeneracy_threshold = std::atof(value);
+    else if (flag == "--degeneracy-length") config.degeneracy_scales.length = std::atof(value);
+    else if (flag == "--measurement-variance") config.measurement_variance = std::atof(value);
+    else if (flag == "--degeneracy-period") config.degeneracy_scales.period = std::atof(value);
+    else if (flag == "--degeneracy-aware") config.degeneracy_aware = std::atoi(value) != 0;
     else {
       std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
       return 2;
@@ -98,9 +103,9 @@ int replay(int argc, char** argv) {
 
   lo::MotorizedLidarOdometry odometry;  // replaced once the first frame's end is known
   bool started = false;
-  double worst_position = 0.0, worst_rotation = 0.0, lost_at = -1.0;
+  double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
-  std::printf("#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  status\n");
+  std::printf("#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y z]  status\n");
   std::uint64_t k = static_cast<std::uint64_t>(std::llround(start / frame));
   for (double t0 = k * frame; t0 + frame <= end; t0 = (++k) * frame) {
     const raycaster::Scan cast = caster.castFrame(k, t0, truth, motor);
@@ -133,12 +138,28 @@ int replay(int argc, char** argv) {
     worst_position = std::max(worst_position, pos_err);
     worst_rotation = std::max(worst_rotation, rot_err);
     if (lost_at < 0 && (rot_err > 5.0 || pos_err > 2.0)) lost_at = r.time;
+    const Eigen::Vector3d v_true = (T.translation() - truth.poseAt(r.time - 0.01).translation()) / 0.01;
+    const double v_err = (r.linear_velocity_W - v_true).norm();
+    worst_speed = std::max(worst_speed, v_err);
+    if (std::getenv("LO_REPLAY_DEBUG") && r.time >= std::atof(std::getenv("LO_REPLAY_DEBUG"))) {
+      const auto& e = r.degeneracy.eigenvalues;
+      std::printf("   v_est %.3f %.3f %.3f v_true %.3f %.3f %.3f std(v) %.3f %.3f\n", r.linear_velocity_W.x(), r.linear_velocity_W.y(),
+                  r.linear_velocity_W.z(), v_true.x(), v_true.y(), v_true.z(), std::sqrt(r.covariance(6, 6)), std::sqrt(r.covariance(7, 7)));
+      std::printf("   eig [%.1f %.1f %.1f %.1f %.1f %.1f] w_est %.4f %.4f %.4f w_true %.4f std(wz) %.4f std(yaw) %.4f deg\n", e(0), e(1),
+                  e(2), e(3), e(4), e(5), r.angular_velocity_B.x(), r.angular_velocity_B.y(), r.angular_velocity_B.z(),
+                  degrees(Eigen::AngleAxisd(previous_truth.linear()).angle()) * 0.0, std::sqrt(r.covariance(11, 11)),
+                  degrees(std::sqrt(r.covariance(2, 2))));
+    }
     if (k % static_cast<std::uint64_t>(every) == 0 || rot_err > 1.0) {
-      std::printf("%6.2f %7.2f %8.3f %6.1f %6.1f %6zu %5zu %8.1f %3d  %s\n", r.time, rot_err, pos_err, w_est,
-                  w_true, r.points_used, r.correspondences, r.min_information_eigenvalue, r.iterations, lo::toString(r.status));
+      const auto weakest = r.degeneracy.eigenvectors.col(0);
+      std::printf("%6.2f %7.2f %8.3f %6.1f %6.1f %6zu %5zu %8.1f %3d %6.2f %3d  [%5.2f %5.2f %5.2f %5.2f %5.2f %5.2f]  %s\n",
+                  r.time, rot_err, pos_err, w_est, w_true, r.points_used, r.correspondences, r.min_information_eigenvalue,
+                  r.iterations, v_err, r.degenerate_state_directions, weakest(0), weakest(1), weakest(2), weakest(3),
+                  weakest(4), weakest(5), lo::toString(r.status));
     }
   }
-  std::printf("summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, lost at %s\n", source.c_str(),
-              start, end, worst_rotation, worst_position, lost_at < 0 ? "never" : std::to_string(lost_at).c_str());
+  std::printf("summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at %s\n",
+              source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
+              lost_at < 0 ? "never" : std::to_string(lost_at).c_str());
   return 0;
 }

@@ -145,7 +145,10 @@ class EvaluatorComponent : public Component {
                      v.name().c_str(), v.value());
       }
     };
-    ctx.subscribe<msg::Metrics>("lo_metrics", onMetrics);
+    ctx.subscribe<msg::Metrics>("lo_metrics", [this, onMetrics](const msg::Metrics& m) {
+      onMetrics(m);
+      onLoStatus(m);
+    });
     ctx.subscribe<msg::Metrics>("mpc_timing", onMetrics);
     panorama_period_ = ctx.paramDouble("panorama_period");
     panorama_max_range_ = ctx.paramDouble("panorama_max_range");
@@ -176,6 +179,12 @@ class EvaluatorComponent : public Component {
     evaluator::JsonObject motor;
     motor.set("mean_speed", motor_samples_ ? motor_speed_sum_ / motor_samples_ : 0.0);
     root.set("motor", motor);
+    // The LO's own account of its losses of track (its "lost" flag on /lo/metrics).
+    evaluator::JsonObject lo;
+    if (first_lost_time_ >= 0.0) lo.set("first_lost_time", first_lost_time_);
+    lo.set("lost_frames", static_cast<std::int64_t>(lost_frames_));
+    lo.set("rejected_updates", static_cast<std::int64_t>(rejected_updates_));
+    root.set("lo", lo);
     evaluator::writeJson(out + "/metrics.json", root);
     evaluator::writeTumTrajectory(out + "/estimate.tum", trajectory_.pairedEstimates());
     evaluator::writeTumTrajectory(out + "/ground_truth.tum", trajectory_.pairedGroundTruth());
@@ -187,6 +196,17 @@ class EvaluatorComponent : public Component {
   }
 
  private:
+  void onLoStatus(const msg::Metrics& m) {
+    for (const auto& v : m.values()) {
+      if (v.name() == "lost" && v.value() > 0.5) {
+        if (first_lost_time_ < 0.0) first_lost_time_ = fromMsg(m.header().stamp()).seconds();
+        ++lost_frames_;
+      } else if (v.name() == "rejected_updates") {
+        rejected_updates_ = static_cast<long>(v.value());
+      }
+    }
+  }
+
   struct PendingScan {
     double stamp;
     pointcloud::ScanPoints points;
@@ -293,6 +313,9 @@ class EvaluatorComponent : public Component {
   std::deque<PendingScan> pending_scans_;
   std::unique_ptr<evaluator::CsvWriter> motor_csv_;
   File timings_{nullptr, &std::fclose};
+  double first_lost_time_ = -1.0;  // s; negative: the LO never said it was lost
+  long lost_frames_ = 0;
+  long rejected_updates_ = 0;
   File uncertainty_{nullptr, &std::fclose};
   double command_ = 0.0;
   double panorama_period_ = 0.0;

@@ -32,7 +32,7 @@ class LoComponent : public Component {
     spec.output<sensor_msgs::msg::PointCloud2>("local_map", "/lo/local_map", QosPreset::kSensor,
                                                "local map points observed in the last local_map_window s");
     spec.output<msg::Metrics>("metrics", "/lo/metrics", QosPreset::kSensor,
-                              "min information eigenvalue, correspondences, iterations, processing time");
+                              "status, lost, degenerate directions and eigenvalues, correspondences, processing time");
     adapters::declareRigParameters(spec);
     spec.param("init_from_pose", true, "start at the pose (and velocity) on initial_pose at the first scan; false: identity, at rest");
     spec.param("scan_voxel_size", 0.3, "voxel downsampling of the scan, m").between(0.01, 10.0);
@@ -43,6 +43,17 @@ class LoComponent : public Component {
     spec.param("linear_process_noise", 0.1, "linear velocity random walk density of the constant-velocity model, (m/s)^2/s").between(0.0, 100.0);
     spec.param("angular_process_noise", 0.1, "angular velocity random walk density of the constant-velocity model, (rad/s)^2/s").between(0.0, 100.0);
     spec.param("max_iterations", 10, "iterated EKF: at most this many re-linearisations").between(1, 100);
+    spec.param("degeneracy_aware", false,
+               "leave the state directions a scan does not constrain to the motion prior (suits wheeled platforms; "
+               "see README)");
+    spec.param("degeneracy_threshold", 20.0,
+               "a direction with fewer effective points than this is degenerate (reported in /lo/metrics)")
+        .between(0.0, 1e6);
+    spec.param("max_linear_acceleration", 10.0, "an update needing more is rejected and counted, m/s^2")
+        .between(0.0, 1e6);
+    spec.param("max_angular_acceleration", 20.0, "an update needing more is rejected and counted, rad/s^2")
+        .between(0.0, 1e6);
+    spec.param("lost_after", 1.0, "lost: no registration accepted for longer than this, s").between(0.0, 3600.0);
     spec.param("min_range", 0.5, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
     spec.param("max_range", 100.0, "points farther than this are dropped, m").between(0.1, 10000.0);
     spec.param("local_map_window", 5.0, "the published local map holds points seen in the last N s")
@@ -89,6 +100,11 @@ class LoComponent : public Component {
     c.linear_process_noise = ctx.paramDouble("linear_process_noise");
     c.angular_process_noise = ctx.paramDouble("angular_process_noise");
     c.max_iterations = static_cast<int>(ctx.paramInt("max_iterations"));
+    c.degeneracy_aware = ctx.paramBool("degeneracy_aware");
+    c.degeneracy_threshold = ctx.paramDouble("degeneracy_threshold");
+    c.max_linear_acceleration = ctx.paramDouble("max_linear_acceleration");
+    c.max_angular_acceleration = ctx.paramDouble("max_angular_acceleration");
+    c.lost_after = ctx.paramDouble("lost_after");
     c.min_range = ctx.paramDouble("min_range");
     c.max_range = ctx.paramDouble("max_range");
     return c;
@@ -252,7 +268,26 @@ class LoComponent : public Component {
       v.unit(unit);
       m.values().push_back(v);
     };
+    // status: 0 initialised, 1 tracking, 2 degenerate, 3 predicted-only, 5 lost (lo::OdometryStatus).
+    add("status", static_cast<double>(r.status), "");
+    add("lost", r.lost ? 1.0 : 0.0, "");
+    add("rejected_updates", static_cast<double>(r.rejected_updates), "");
     add("min_information_eigenvalue", r.min_information_eigenvalue, "");
+    // Every eigenvalue of the scaled pose information (effective points, ascending), and each
+    // degenerate direction as [rotation * degeneracy length, translation] (unit vector, m).
+    static const char* const kEigenvalueNames[6] = {"information_eigenvalue_1", "information_eigenvalue_2",
+                                                   "information_eigenvalue_3", "information_eigenvalue_4",
+                                                   "information_eigenvalue_5", "information_eigenvalue_6"};
+    for (int i = 0; i < 6; ++i) add(kEigenvalueNames[i], r.degeneracy.eigenvalues(i), "");
+    add("degenerate_directions", r.degeneracy.degenerate_directions, "");
+    add("degenerate_state_directions", r.degenerate_state_directions, "");
+    static const char* const kAxes[6] = {"rx", "ry", "rz", "x", "y", "z"};
+    for (int d = 0; d < r.degeneracy.degenerate_directions; ++d) {
+      for (int i = 0; i < 6; ++i) {
+        const std::string name = "degenerate_direction_" + std::to_string(d + 1) + "_" + kAxes[i];
+        add(name.c_str(), r.degeneracy.eigenvectors(i, d), "");
+      }
+    }
     add("correspondences", static_cast<double>(r.correspondences), "");
     add("iterations", r.iterations, "");
     add("points_used", static_cast<double>(r.points_used), "");

@@ -15,8 +15,6 @@ namespace uampc::lo {
 
 namespace {
 
-using Vector12d = Eigen::Matrix<double, 12, 1>;
-
 // Whether the plane's map points were mostly seen from the other side than the sensor at
 // viewpoint sees the point q from (views: unit directions from each neighbour to the sensor that
 // saw it). Views nearly along the plane (within ~6 degrees) do not vote.
@@ -228,7 +226,18 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     Matrix12d HtH = Matrix12d::Zero();
     HtH.selfadjointView<Eigen::Upper>().rankUpdate(H.transpose());
     HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
-    const Vector12d Htz = H.transpose() * z;
+    Vector12d Htz = H.transpose() * z;
+    // Directions the scan cannot see get none of its information (Zhang et al. 2016): in them,
+    // noise and the few wrong matches every scan has would otherwise move the pose freely.
+    summary.pose_information = HtH.topLeftCorner<6, 6>();
+    summary.pose_degeneracy = analysePoseDegeneracy(summary.pose_information, options.degeneracy_scales,
+                                                    options.degeneracy_threshold);
+    summary.state_degeneracy = analyseStateDegeneracy(HtH, options.degeneracy_scales, options.degeneracy_threshold);
+    if (options.project_degenerate && summary.state_degeneracy.degenerate_directions > 0) {
+      const Matrix12d& pi = summary.state_degeneracy.projector;
+      HtH = (pi.transpose() * HtH * pi).eval();
+      Htz = (pi.transpose() * Htz).eval();
+    }
 
     // Gauss-Newton step of the IEKF (information form, see header).
     const Matrix12d A = prior_information + inverse_variance * HtH;
@@ -241,7 +250,6 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     }
     x = boxPlus(x, dx);
     posterior_information = A;
-    summary.pose_information = HtH.topLeftCorner<6, 6>();
     summary.applied = true;
     summary.iterations = iteration + 1;
     const double step_rotation = dx.segment<3>(0).norm();

@@ -19,6 +19,18 @@ void addWarning(std::string& warning, const std::string& text) {
 
 }  // namespace
 
+bool MotorizedLidarOdometry::implausibleMotion(const IteratedEkf& predicted, const BaseState& updated, double dt) const {
+  // The constant-velocity prediction keeps the velocity, so the update's change is the frame's.
+  // Allowed: the acceleration limit over the frame, plus 3 standard deviations of the predicted
+  // velocity (a velocity not known yet, as at the start, may change by what it is unsure of).
+  const Matrix12d& P = predicted.covariance();
+  const double linear_std = std::sqrt(P.diagonal().segment<3>(6).maxCoeff());
+  const double angular_std = std::sqrt(P.diagonal().segment<3>(9).maxCoeff());
+  const BaseState& before = predicted.state();
+  return (updated.v_W - before.v_W).norm() > config_.max_linear_acceleration * dt + 3.0 * linear_std ||
+         (updated.w_B - before.w_B).norm() > config_.max_angular_acceleration * dt + 3.0 * angular_std;
+}
+
 const char* toString(OdometryStatus status) {
   switch (status) {
     case OdometryStatus::kInitialised:
@@ -31,6 +43,8 @@ const char* toString(OdometryStatus status) {
       return "predicted-only";
     case OdometryStatus::kRejected:
       return "rejected";
+    case OdometryStatus::kLost:
+      return "lost";
   }
   return "unknown";
 }
@@ -83,7 +97,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     P.diagonal().head<6>().setConstant(1e-8);
     P.diagonal().tail<6>().setConstant(config_.initial_velocity_variance);
     filter_.emplace(x, P);
-    last_time_ = derotated.end_time;
+    last_time_ = last_accepted_time_ = derotated.end_time;
     const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
     map_.insert(points_W, last_time_, x.r_WB);
     map_.removeFarFrom(x.r_WB);
@@ -107,6 +121,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
   }
   filter_->predict(dt, config_.linear_process_noise, config_.angular_process_noise);
   last_time_ = end_time;
+  const IteratedEkf predicted = *filter_;
 
   const std::vector<TimedPoint> keypoints =
       voxelDownsample(derotated.points, config_.scan_voxel_size);
@@ -120,16 +135,30 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     options.measurement_variance = config_.measurement_variance;
     options.max_iterations = config_.max_iterations;
     options.min_correspondences = config_.min_correspondences;
+    options.project_degenerate = config_.degeneracy_aware;
+    options.degeneracy_threshold = config_.degeneracy_threshold;
+    options.degeneracy_scales = config_.degeneracy_scales;
     summary = filter_->update(keypoints, map_, options);
   }
   result.correspondences = summary.correspondences;
   result.iterations = summary.iterations;
+  if (summary.applied && implausibleMotion(predicted, filter_->state(), dt)) {
+    *filter_ = predicted;
+    summary.applied = false;
+    result.implausible_motion = true;
+    ++rejected_updates_;
+  }
+  if (summary.applied) last_accepted_time_ = end_time;
+  result.rejected_updates = rejected_updates_;
 
   if (!summary.applied) {
     result.status = OdometryStatus::kPredictedOnly;
     std::ostringstream why;
     if (keypoints.empty()) {
       why << "no usable points";
+    } else if (result.implausible_motion) {
+      why << "registration rejected: it needs an acceleration beyond " << config_.max_linear_acceleration
+          << " m/s^2 or " << config_.max_angular_acceleration << " rad/s^2";
     } else {
       why << "only " << summary.correspondences << " plane correspondences (need "
           << config_.min_correspondences << ")";
@@ -137,10 +166,10 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     why << ": pose predicted by the constant-velocity model, uncertainty grows";
     addWarning(result.warning, why.str());
   } else {
-    const Eigen::SelfAdjointEigenSolver<Matrix6d> solver(summary.pose_information,
-                                                         Eigen::EigenvaluesOnly);
-    result.min_information_eigenvalue = std::max(0.0, solver.eigenvalues()(0));
-    if (result.min_information_eigenvalue < config_.degeneracy_threshold) {
+    result.degeneracy = summary.pose_degeneracy;
+    result.degenerate_state_directions = summary.state_degeneracy.degenerate_directions;
+    result.min_information_eigenvalue = summary.pose_degeneracy.eigenvalues(0);
+    if (summary.pose_degeneracy.degenerate_directions > 0) {
       result.status = OdometryStatus::kDegenerate;
       std::ostringstream why;
       why << "degenerate geometry: smallest pose information eigenvalue "
@@ -154,6 +183,14 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
       addWarning(result.warning, "iterated EKF did not converge in " +
                                      std::to_string(config_.max_iterations) + " iterations");
     }
+  }
+
+  if (end_time - last_accepted_time_ > config_.lost_after) {
+    result.status = OdometryStatus::kLost;
+    result.lost = true;
+    std::ostringstream why;
+    why << "lost: no registration accepted for " << end_time - last_accepted_time_ << " s";
+    addWarning(result.warning, why.str());
   }
 
   const double position_std =

@@ -41,14 +41,13 @@
 #include <cstddef>
 #include <vector>
 
+#include "uampc/lo/degeneracy.hpp"
 #include "uampc/lo/deskew.hpp"
 #include "uampc/lo/local_map.hpp"
 #include "uampc/lo/scan.hpp"
 
 namespace uampc::lo {
 
-using Matrix12d = Eigen::Matrix<double, 12, 12>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
 struct UpdateOptions {
   std::size_t nearest_neighbours = 5;
@@ -67,6 +66,12 @@ struct UpdateOptions {
   double min_residual_gate = 0.05;  // m
   // Skip a plane whose map points were mostly seen from its other side (see the header).
   bool match_seen_side_only = true;
+  // Degeneracy-aware update (degeneracy.hpp): pose directions whose scaled information
+  // eigenvalue (an effective number of points) is below degeneracy_threshold get no information
+  // from the measurements; the motion prior decides them. Rotation is scaled at degeneracy_length.
+  bool project_degenerate = false;
+  double degeneracy_threshold = 20.0;
+  DegeneracyScales degeneracy_scales;
 };
 
 struct UpdateSummary {
@@ -77,6 +82,10 @@ struct UpdateSummary {
   // Information of the pose from the last linearisation, unit weight, [rotation, translation]:
   // Lambda = sum_i J_i J_i^T (as in DESIGN.md section 1, step 4).
   Matrix6d pose_information = Matrix6d::Zero();
+  // Eigen-analyses at the last linearisation: of the pose alone (what is reported) and of the
+  // whole state (the directions the measurements were kept out of).
+  PoseDegeneracy pose_degeneracy;
+  StateDegeneracy state_degeneracy;
 };
 
 class IteratedEkf {

@@ -52,18 +52,39 @@ struct OdometryConfig {
   std::size_t min_correspondences = 30;
 
   double initial_velocity_variance = 1.0;  // (m/s)^2 and (rad/s)^2 at the first scan
-  // Warnings: smallest eigenvalue of the unit-weight pose information below this (degenerate
-  // geometry, e.g. a corridor or an open field), or position standard deviation above this.
+  // Degeneracy (degeneracy.hpp): a direction whose scaled information eigenvalue (an effective
+  // number of points) is below degeneracy_threshold is degenerate. It is always analysed and
+  // reported; with degeneracy_aware the scan does not move the estimate along the degenerate
+  // directions of the whole state (pose and velocities), and the motion prior decides them.
+  // Off by default: on a hand-held rig (MCD KTH) it also takes away the weak within-frame view
+  // of the angular rate that fast turns need, and KTH, held without it, is lost at 219 s; on a
+  // wheeled platform in poor geometry (the campus) it stops the yaw-rate runaway (README, "LO in
+  // degenerate geometry").
   double degeneracy_threshold = 20.0;
+  DegeneracyScales degeneracy_scales;
+  bool degeneracy_aware = false;
+  // Warning: position standard deviation above this.
   double max_position_std = 1.0;  // m
+  // Motion that cannot be: an update that changes the velocity by more than these accelerations
+  // over the frame is rejected (the frame is predicted only and not added to the map) and
+  // counted. A hand-held rig reaches 6 rad/s^2 (MCD KTH: 70 deg/s within 0.2 s) and a ground
+  // vehicle rarely 1 g; a registration that needs more (beyond 3 standard deviations of the
+  // predicted velocity) is a wrong one.
+  double max_linear_acceleration = 10.0;   // m/s^2
+  double max_angular_acceleration = 20.0;  // rad/s^2
+  // Lost: no registration accepted for longer than this. The estimate then rests on the motion
+  // model alone; the status says so until a scan registers again.
+  double lost_after = 1.0;  // s
 };
 
 enum class OdometryStatus {
   kInitialised,    // first usable scan: the map starts at initial_pose
   kTracking,       // registered
   kDegenerate,     // registered, but some direction is poorly constrained (see warning)
-  kPredictedOnly,  // no update (no usable points or too few correspondences): motion model only
+  kPredictedOnly,  // no update (no usable points, too few correspondences, or an implausible
+                   // acceleration): motion model only, the scan is not added to the map
   kRejected,       // scan not newer than the previous one: state unchanged
+  kLost,           // no registration accepted for more than lost_after: motion model only
 };
 
 const char* toString(OdometryStatus status);
@@ -83,11 +104,17 @@ struct OdometryResult {
   // Every usable point in the world frame, placed with the base pose at its own time (deskewed).
   std::vector<Eigen::Vector3f> registered_points_W;
 
-  // Smallest eigenvalue of the unit-weight pose information sum_i J_i J_i^T (DESIGN.md step 4);
-  // near zero means some direction is unobservable. 0 when there was no update.
+  // Smallest eigenvalue of the scaled unit-weight pose information sum_i J_i J_i^T (DESIGN.md
+  // step 4; scaled as in degeneracy.hpp); near zero means some direction is unobservable. 0 when
+  // there was no update. degeneracy has every eigenvalue and the degenerate directions.
   double min_information_eigenvalue = 0.0;
+  PoseDegeneracy degeneracy;
+  int degenerate_state_directions = 0;  // of the 12-dimensional state, velocities included
   std::size_t correspondences = 0;
   int iterations = 0;
+  bool implausible_motion = false;     // this scan's update was rejected for its acceleration
+  std::size_t rejected_updates = 0;    // such rejections since the start
+  bool lost = false;                   // see OdometryStatus::kLost
 
   std::size_t points_in = 0;
   std::size_t points_used = 0;  // after downsampling, fed to the filter
@@ -110,10 +137,15 @@ class MotorizedLidarOdometry {
   const OdometryConfig& config() const { return config_; }
 
  private:
+  // Whether the update from predicted to updated needs an acceleration beyond the configured ones.
+  bool implausibleMotion(const IteratedEkf& predicted, const BaseState& updated, double dt) const;
+
   OdometryConfig config_;
   LocalMap map_;
   std::optional<IteratedEkf> filter_;
   double last_time_ = 0.0;
+  double last_accepted_time_ = 0.0;  // s, the end of the last scan whose registration was accepted
+  std::size_t rejected_updates_ = 0;
 };
 
 }  // namespace uampc::lo
