@@ -21,6 +21,7 @@
 #include <string>
 
 #include "uampc/lo/motorized_lidar_odometry.hpp"
+#include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/world/world_source.hpp"
 
@@ -65,6 +66,7 @@ int replay(int argc, char** argv) {
   }
   double start = 0.0, duration = 30.0, motor_speed = 3.6;
   int every = 1;
+  bool use_imu = false;
   lo::OdometryConfig config;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
@@ -81,6 +83,7 @@ int replay(int argc, char** argv) {
     else if (flag == "--iterations") config.max_iterations = std::atoi(value);
     else if (flag == "--scan-voxel") config.scan_voxel_size = std::atof(value);
     else if (flag == "--map-voxel") config.map_voxel_size = std::atof(value);
+    else if (flag == "--imu") use_imu = std::atoi(value) != 0;
     else if (flag == "--degeneracy-threshold") config.degeneracy_threshold = std::atof(value);
     else if (flag == "--degeneracy-length") config.degeneracy_scales.length = std::atof(value);
     else if (flag == "--measurement-variance") config.measurement_variance = std::atof(value);
@@ -101,6 +104,14 @@ int replay(int argc, char** argv) {
   frames::MotorAngleTrack motor(1e9);
   for (double t = 0.0; t <= end + 1.0; t += 0.005) motor.add({t, motor_speed * t, motor_speed});
 
+  config.use_imu = use_imu;
+  raycaster::ImuSimulatorConfig imu_config;
+  imu_config.seed = settings.seed;
+  raycaster::ImuSimulator imu(imu_config);
+  const raycaster::ImuMotion imu_motion{[&truth](double t) { return truth.poseAt(t); },
+                                        [motor_speed](double t) { return motor_speed * t; },
+                                        [motor_speed](double) { return motor_speed; }};
+  std::uint64_t next_imu = imu.firstIndexAtOrAfter(std::max(0.0, start - 0.5) + raycaster::kImuStencilHalfWidth);
   lo::MotorizedLidarOdometry odometry;  // replaced once the first frame's end is known
   bool started = false;
   double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
@@ -126,6 +137,10 @@ int replay(int argc, char** argv) {
       config.initial_angular_velocity_B = turn.axis() * turn.angle() / h;
       odometry = lo::MotorizedLidarOdometry(config);
       started = true;
+    }
+    for (; use_imu && imu.sampleTime(next_imu) <= t0 + frame + 0.01; ++next_imu) {
+      const raycaster::ImuSample sample = imu.sample(next_imu, imu_motion);
+      odometry.addImu({sample.time, sample.angular_velocity, sample.linear_acceleration});
     }
     const lo::OdometryResult r = odometry.registerScan(scan, motor);
     const Eigen::Isometry3d T = truth.poseAt(r.time);

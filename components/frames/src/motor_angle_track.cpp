@@ -37,6 +37,16 @@ std::optional<double> MotorAngleTrack::thetaAt(double t, std::size_t& cursor) co
   return before.theta + s * (after.theta - before.theta);
 }
 
+std::optional<double> MotorAngleTrack::omegaAt(double t) const {
+  if (readings_.empty() || t < readings_.front().time || t > readings_.back().time) return std::nullopt;
+  const auto after = std::lower_bound(readings_.begin(), readings_.end(), t,
+                                      [](const MotorReading& r, double time) { return r.time < time; });
+  if (after->time == t || after == readings_.begin()) return after->omega;
+  const MotorReading& before = *(after - 1);
+  const double s = (t - before.time) / (after->time - before.time);
+  return before.omega + s * (after->omega - before.omega);
+}
+
 bool MotorAngleTrack::covers(double t0, double t1) const {
   return !readings_.empty() && readings_.front().time <= t0 && readings_.back().time >= t1;
 }

@@ -23,6 +23,8 @@ class LoComponent : public Component {
     spec.input<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor,
                                               "scans, LiDAR frame, per-point time (t, time, timestamp or offset_time)");
     spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
+    spec.input<sensor_msgs::msg::Imu>("imu", "/lidar/imu", QosPreset::kSensor,
+                                      "IMU in the LiDAR frame (used with use_imu: LiDAR-inertial mode)");
     spec.input<geometry_msgs::msg::PoseStamped>("initial_pose", "/ground_truth/pose", QosPreset::kControl,
                                                 "start pose (first sample used when init_from_pose is true)");
     spec.output<nav_msgs::msg::Odometry>("odometry", "/lo/odometry", QosPreset::kControl,
@@ -54,6 +56,11 @@ class LoComponent : public Component {
     spec.param("max_angular_acceleration", 20.0, "an update needing more is rejected and counted, rad/s^2")
         .between(0.0, 1e6);
     spec.param("lost_after", 1.0, "lost: no registration accepted for longer than this, s").between(0.0, 3600.0);
+    spec.param("use_imu", false,
+               "LiDAR-inertial mode: the IMU on the imu port replaces the constant-velocity prediction (beyond the "
+               "paper, whose LO is LiDAR-only)");
+    spec.param("gyro_noise_density", 7.85e-5, "use_imu: gyroscope white noise, rad/s/sqrt(Hz)").between(0.0, 1.0);
+    spec.param("accel_noise_density", 9.81e-4, "use_imu: accelerometer white noise, m/s^2/sqrt(Hz)").between(0.0, 10.0);
     spec.param("min_range", 0.5, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
     spec.param("max_range", 100.0, "points farther than this are dropped, m").between(0.1, 10000.0);
     spec.param("local_map_window", 5.0, "the published local map holds points seen in the last N s")
@@ -83,6 +90,12 @@ class LoComponent : public Component {
       motor_.add({fromMsg(s.header().stamp()).seconds(), s.position()[0], s.velocity().empty() ? 0.0 : s.velocity()[0]});
       processReady();
     });
+    // Subscribed whatever use_imu says: every declared port must be opened.
+    ctx.subscribe<sensor_msgs::msg::Imu>("imu", [this](const sensor_msgs::msg::Imu& m) {
+      if (!config_.use_imu) return;
+      onImu(m);
+      processReady();
+    });
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("initial_pose", [this](const geometry_msgs::msg::PoseStamped& p) {
       if (initial_poses_.size() > 4000) initial_poses_.pop_front();
       if (!odometry_) initial_poses_.push_back(p);
@@ -105,6 +118,9 @@ class LoComponent : public Component {
     c.max_linear_acceleration = ctx.paramDouble("max_linear_acceleration");
     c.max_angular_acceleration = ctx.paramDouble("max_angular_acceleration");
     c.lost_after = ctx.paramDouble("lost_after");
+    c.use_imu = ctx.paramBool("use_imu");
+    c.imu_noise.gyro_noise_density = ctx.paramDouble("gyro_noise_density");
+    c.imu_noise.accel_noise_density = ctx.paramDouble("accel_noise_density");
     c.min_range = ctx.paramDouble("min_range");
     c.max_range = ctx.paramDouble("max_range");
     return c;
@@ -133,6 +149,25 @@ class LoComponent : public Component {
     pending_.push_back(std::move(scan));
   }
 
+  // A reading with a non-finite value or out of time order is skipped and reported once.
+  void onImu(const sensor_msgs::msg::Imu& m) {
+    const auto& w = m.angular_velocity();
+    const auto& a = m.linear_acceleration();
+    lo::ImuReading reading{fromMsg(m.header().stamp()).seconds(), {w.x(), w.y(), w.z()}, {a.x(), a.y(), a.z()}};
+    const bool in_order = imu_.empty() || reading.time > imu_.back().time;
+    if (!reading.angular_velocity_L.allFinite() || !reading.specific_force_L.allFinite() ||
+        !std::isfinite(reading.time) || !in_order) {
+      if (!warned_bad_imu_) {
+        ctx_.log().warn("IMU readings on ", ctx_.topicOf("imu"),
+                        " with non-finite values or out of time order are skipped (said once)");
+        warned_bad_imu_ = true;
+      }
+      return;
+    }
+    imu_.push_back(reading);
+    if (imu_.size() > 4000) imu_.pop_front();  // 20 s at 200 Hz: bounded if scans stop
+  }
+
   static std::string layoutOf(const sensor_msgs::msg::PointCloud2& m) {
     std::string s = std::to_string(m.point_step());
     for (const auto& f : m.fields()) s += "|" + f.name() + ":" + std::to_string(f.offset()) + ":" + std::to_string(f.datatype());
@@ -143,9 +178,9 @@ class LoComponent : public Component {
   void processReady() {
     while (!pending_.empty()) {
       const lo::Scan& scan = pending_.front();
-      double end = scan.stamp;
-      for (float t : scan.time_offsets) end = std::max(end, scan.stamp + t);
-      const bool covered = motor_.covers(scan.stamp, end);
+      const double end = end_of(scan);
+      const bool imu_covered = !config_.use_imu || (!imu_.empty() && imu_.back().time >= end);
+      const bool covered = motor_.covers(scan.stamp, end) && imu_covered;
       const bool waited = !motor_.empty() && motor_.newest().time > end + max_motor_wait_;
       if (!covered && !waited) return;
       if (init_from_pose_ && !odometry_ && !initialise(end)) return;
@@ -185,6 +220,10 @@ class LoComponent : public Component {
 
   void process(const lo::Scan& scan) {
     const auto start = std::chrono::steady_clock::now();
+    while (!imu_.empty() && imu_.front().time <= end_of(scan) + 0.05) {
+      odometry_->addImu(imu_.front());
+      imu_.pop_front();
+    }
     const lo::OdometryResult r = odometry_->registerScan(scan, motor_);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r.status == lo::OdometryStatus::kRejected) {
@@ -206,6 +245,12 @@ class LoComponent : public Component {
     local_map.header().stamp(toMsg(stamp));
     local_map_pub_.publish(local_map);
     publishMetrics(r, stamp, seconds);
+  }
+
+  static double end_of(const lo::Scan& scan) {
+    double end = scan.stamp;
+    for (float t : scan.time_offsets) end = std::max(end, scan.stamp + t);
+    return end;
   }
 
   // A warning that repeats every scan would drown the log: each kind (its text without numbers)
@@ -308,6 +353,8 @@ class LoComponent : public Component {
   std::unique_ptr<lo::MotorizedLidarOdometry> odometry_;
   frames::MotorAngleTrack motor_{2.0};
   std::deque<lo::Scan> pending_;
+  std::deque<lo::ImuReading> imu_;  // readings not handed to the odometry yet
+  bool warned_bad_imu_ = false;
   std::deque<geometry_msgs::msg::PoseStamped> initial_poses_;
   std::string layout_;
   std::string layout_error_;

@@ -120,6 +120,38 @@ void IteratedEkf::predict(double dt, double linear_process_noise, double angular
   covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
 }
 
+void IteratedEkf::predictInertial(const std::vector<InertialStep>& steps, const InertialNoise& noise) {
+  const Eigen::Vector3d gravity_W(0.0, 0.0, -9.81);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d rate_sum = Eigen::Vector3d::Zero();
+  double duration = 0.0;
+  for (const InertialStep& step : steps) {
+    const double dt = step.dt;
+    const Eigen::Vector3d phi = step.angular_velocity_B * dt;
+    Matrix12d F = Matrix12d::Identity();
+    F.block<3, 3>(0, 0) = expSO3(-phi);
+    F.block<3, 3>(3, 6) = I * dt;
+    F.block<3, 3>(6, 0) = -state_.R_WB * hat(step.specific_force_B) * dt;
+    Matrix12d Q = Matrix12d::Zero();
+    Q.block<3, 3>(0, 0) = noise.gyro_noise_density * noise.gyro_noise_density * dt * I;
+    Q.block<3, 3>(6, 6) = noise.accel_noise_density * noise.accel_noise_density * dt * I;
+    covariance_ = F * covariance_ * F.transpose() + Q;
+    const Eigen::Vector3d a_W = state_.R_WB * step.specific_force_B + gravity_W;
+    state_.r_WB += state_.v_W * dt + 0.5 * a_W * dt * dt;
+    state_.v_W += a_W * dt;
+    state_.R_WB = state_.R_WB * expSO3(phi);
+    rate_sum += phi;
+    duration += dt;
+  }
+  state_.R_WB = Eigen::Quaterniond(state_.R_WB).normalized().toRotationMatrix();
+  if (duration > 0.0) state_.w_B = rate_sum / duration;
+  // The rate is the gyro's, not a consequence of the earlier state: no correlation is kept.
+  covariance_.block<3, 12>(9, 0).setZero();
+  covariance_.block<12, 3>(0, 9).setZero();
+  covariance_.block<3, 3>(9, 9) = noise.rate_variance * I;
+  covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
+}
+
 UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const LocalMap& map,
                                   const UpdateOptions& options) {
   UpdateSummary summary;

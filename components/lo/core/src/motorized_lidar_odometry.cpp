@@ -19,6 +19,13 @@ void addWarning(std::string& warning, const std::string& text) {
 
 }  // namespace
 
+void MotorizedLidarOdometry::addImu(const ImuReading& reading) {
+  if (!imu_.empty() && !(reading.time > imu_.back().time)) return;
+  imu_.push_back(reading);
+  // Bounded whatever the scans do: at 200 Hz, 10 s of readings.
+  if (imu_.size() > 2000) imu_.pop_front();
+}
+
 bool MotorizedLidarOdometry::implausibleMotion(const IteratedEkf& predicted, const BaseState& updated, double dt) const {
   // The constant-velocity prediction keeps the velocity, so the update's change is the frame's.
   // Allowed: the acceleration limit over the frame, plus 3 standard deviations of the predicted
@@ -119,8 +126,18 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     fill(*filter_);
     return result;
   }
-  filter_->predict(dt, config_.linear_process_noise, config_.angular_process_noise);
+  const std::vector<InertialStep> steps =
+      config_.use_imu ? inertialSteps(imu_, last_time_, end_time, motor, config_.calibration)
+                      : std::vector<InertialStep>{};
+  if (!steps.empty()) {
+    filter_->predictInertial(steps, config_.imu_noise);
+    result.inertial_prediction = true;
+  } else {
+    filter_->predict(dt, config_.linear_process_noise, config_.angular_process_noise);
+    if (config_.use_imu) addWarning(result.warning, "no IMU readings cover the frame: constant-velocity prediction");
+  }
   last_time_ = end_time;
+  while (!imu_.empty() && imu_.front().time < last_time_ - 0.1) imu_.pop_front();
   const IteratedEkf predicted = *filter_;
 
   const std::vector<TimedPoint> keypoints =

@@ -32,6 +32,10 @@ class MotorAngleTrack {
   // same two readings needs no search. A scan has ~1000 points per encoder interval.
   std::optional<double> thetaAt(double t, std::size_t& cursor) const;
 
+  // The motor's rate at time t, interpolated between the readings' velocities (not differentiated
+  // from the angles, which the encoder quantises), or nothing outside the stored readings.
+  std::optional<double> omegaAt(double t) const;
+
   // True when the readings span [t0, t1].
   bool covers(double t0, double t1) const;
 

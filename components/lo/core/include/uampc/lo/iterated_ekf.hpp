@@ -43,6 +43,7 @@
 
 #include "uampc/lo/degeneracy.hpp"
 #include "uampc/lo/deskew.hpp"
+#include "uampc/lo/inertial.hpp"
 #include "uampc/lo/local_map.hpp"
 #include "uampc/lo/scan.hpp"
 
@@ -94,6 +95,13 @@ class IteratedEkf {
 
   // Process noise densities: linear (m/s)^2/s, angular (rad/s)^2/s.
   void predict(double dt, double linear_process_noise, double angular_process_noise);
+  // LiDAR-inertial prediction (inertial.hpp): the steps integrated in turn,
+  //   a_W = R f_B + g,  R <- R Exp(omega dt),  r <- r + v dt + a_W dt^2 / 2,  v <- v + a_W dt,
+  // with the error-state Jacobian of each step (dtheta <- Exp(-omega dt) dtheta,
+  // dr <- dr + dv dt, dv <- dv - R [f_B]x dtheta dt) and the IMU's white noise as process noise.
+  // The angular velocity becomes the steps' mean rate, with noise.rate_variance: the scan's
+  // deskew uses it, the gyro has measured it.
+  void predictInertial(const std::vector<InertialStep>& steps, const InertialNoise& noise);
   UpdateSummary update(const std::vector<TimedPoint>& points, const LocalMap& map,
                        const UpdateOptions& options);
 

@@ -10,12 +10,14 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/lo/inertial.hpp"
 #include "uampc/lo/iterated_ekf.hpp"
 #include "uampc/lo/local_map.hpp"
 #include "uampc/lo/scan.hpp"
@@ -72,6 +74,10 @@ struct OdometryConfig {
   // predicted velocity) is a wrong one.
   double max_linear_acceleration = 10.0;   // m/s^2
   double max_angular_acceleration = 20.0;  // rad/s^2
+  // LiDAR-inertial mode (inertial.hpp): with use_imu, the IMU readings given to addImu replace
+  // the constant-velocity prediction wherever they cover the time since the last scan.
+  bool use_imu = false;
+  InertialNoise imu_noise;
   // Lost: no registration accepted for longer than this. The estimate then rests on the motion
   // model alone; the status says so until a scan registers again.
   double lost_after = 1.0;  // s
@@ -114,6 +120,7 @@ struct OdometryResult {
   int iterations = 0;
   bool implausible_motion = false;     // this scan's update was rejected for its acceleration
   std::size_t rejected_updates = 0;    // such rejections since the start
+  bool inertial_prediction = false;    // predicted with the IMU (else: constant velocity)
   bool lost = false;                   // see OdometryStatus::kLost
 
   std::size_t points_in = 0;
@@ -129,6 +136,10 @@ class MotorizedLidarOdometry {
 
   // Throws std::invalid_argument when scan.points_L and scan.time_offsets differ in size.
   OdometryResult registerScan(const Scan& scan, const frames::MotorAngleTrack& motor);
+
+  // An IMU reading (LiDAR-inertial mode), in time order; older or equal ones are ignored.
+  // Readings are kept until a scan past them has been registered.
+  void addImu(const ImuReading& reading);
 
   // The local map in the world frame (LocalMap::points and pointsSince list it, with or without
   // the time each voxel was last observed).
@@ -146,6 +157,7 @@ class MotorizedLidarOdometry {
   double last_time_ = 0.0;
   double last_accepted_time_ = 0.0;  // s, the end of the last scan whose registration was accepted
   std::size_t rejected_updates_ = 0;
+  std::deque<ImuReading> imu_;
 };
 
 }  // namespace uampc::lo
