@@ -102,7 +102,7 @@ std::string ExperimentValidator::substitute(const YAML::Node& node, const std::s
     if (found != variables_.end()) {
       out += found->second;
     } else if (variable == "data_dir") {
-      error(node, "${data_dir} is used but no --data-dir was given (e.g. --data-dir ../shared/data/mcd_trajectories)");
+      error(node, "${data_dir} is used but no --data-dir was given (e.g. --data-dir data/mcd)");
     } else {
       error(node, "unknown variable ${" + variable + "} (known: ${data_dir})");
     }

@@ -121,7 +121,7 @@ TEST(Loop, EvaluatorSkipsPointsWithNonFiniteTimes) {
 }
 
 TEST(Loop, EveryShippedSceneStartsAndSteps) {
-  // Without --out, as a user's first try would be; the MCD scenes read ../shared/data.
+  // Without --out, as a user's first try would be; the MCD scenes read data/mcd.
   for (const auto& entry : std::filesystem::directory_iterator(sourcePath("config/scenes"))) {
     if (entry.path().extension() != ".yaml") continue;
     const CommandResult r =

@@ -133,16 +133,15 @@ TEST(TrajectoryIo, MalformedFilesNameFileAndLine) {
       readMcdCsv(dir.write("gap2.csv", header + good1 + "2,102.0,0,0,0,0,0,0,1\n"), loose));
 }
 
-std::string sharedData() {
-  const char* dir = std::getenv("UAMPC_SHARED_DATA");
-  return dir ? dir : "";
+// The MCD trajectories copied into the repository (data/mcd).
+std::string mcdData() {
+  const char* source = std::getenv("UAMPC_SOURCE_DIR");
+  return std::string(source ? source : ".") + "/data/mcd";
 }
 
 TEST(TrajectoryIo, ReadsTheRealMcdTrajectories) {
-  const std::string dir = sharedData() + "/mcd_trajectories";
-  if (sharedData().empty() || !std::filesystem::is_directory(dir)) {
-    GTEST_SKIP() << "UAMPC_SHARED_DATA not set or has no mcd_trajectories";
-  }
+  const std::string dir = mcdData();
+  ASSERT_TRUE(std::filesystem::is_directory(dir)) << dir;
   for (const char* name : {"ntu_day01.csv", "kth_day06.csv", "tuhh_day03.csv"}) {
     SCOPED_TRACE(name);
     const std::string path = dir + "/" + name;

@@ -169,9 +169,9 @@ TEST(AroundTrajectory, KeepsClearOfThePath) {
 }
 
 TEST(AroundTrajectory, AroundARealMcdTrajectory) {
-  const char* data = std::getenv("UAMPC_SHARED_DATA");
-  const std::string file = std::string(data ? data : "") + "/mcd_trajectories/ntu_day01.csv";
-  if (!data || !std::filesystem::exists(file)) GTEST_SKIP() << "no MCD trajectories";
+  const char* source = std::getenv("UAMPC_SOURCE_DIR");
+  const std::string file = std::string(source ? source : ".") + "/data/mcd/ntu_day01.csv";
+  ASSERT_TRUE(std::filesystem::exists(file)) << file;
   const Trajectory t = readMcdCsv(file, TrajectoryReadOptions::forMcd());
   std::vector<Eigen::Vector3d> path;
   for (const auto& p : t.poses()) path.push_back(p.position);
