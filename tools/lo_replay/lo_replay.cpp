@@ -4,14 +4,20 @@
 //   lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S]
 //             [--motor RAD_PER_S] [--seed N] [--attitude from_file|yaw_only|identity] [--every N]
 //             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
-//             [--map-voxel M] [--door-spacing M]
+//             [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1]
+//             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
+//             [--measurement-variance M2]
 //
 // Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
 // generated around it (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD
 // scenes); for a procedural world its generated path at 1.5 m/s. Spins the motor at a constant
 // speed, casts Mid-360 frames at 10 Hz, registers them, and prints per frame the rotation and
 // position error against ground truth, the estimated and true yaw rate, and the LO's figures
-// (`pts`: points the LO kept after its downsampling); then a summary line.
+// (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
+// degenerate directions of the 12-dimensional state; the weakest pose direction, rotation scaled
+// at 10 m); then a summary line. --imu 1 simulates the Mid-360's IMU (the raycaster's simulator)
+// and runs the LO LiDAR-inertial. LO_REPLAY_DEBUG=T prints every eigenvalue, the velocities and
+// their standard deviations from T s on.
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
@@ -50,7 +56,8 @@ int replay(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0) {
     std::fprintf(stderr, "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor RAD_PER_S] "
                          "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
-                         "[--scan-voxel M] [--map-voxel M] [--door-spacing M]\n");
+                         "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+                         "[--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2]\n");
     return 2;
   }
   const std::string source = argv[1];
