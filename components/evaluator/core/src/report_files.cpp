@@ -31,6 +31,10 @@ JsonObject toJson(const TrajectoryReport& report) {
         .set("rotation_deg", toJson(rpe.rotation_deg));
     json.set("rpe_" + formatDouble(rpe.segment_length) + "m", segment);
   }
+  JsonObject speed;
+  speed.set("max_m_s", report.speed_error.max);
+  if (report.speed_error.first_runaway_time) speed.set("first_runaway_time", *report.speed_error.first_runaway_time);
+  json.set("speed_error", speed);
   return json;
 }
 

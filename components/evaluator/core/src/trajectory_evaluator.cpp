@@ -48,6 +48,7 @@ TrajectoryReport TrajectoryEvaluator::report() const {
   report.invalid = invalid_;
   report.ate = ate_.report();
   for (const double d : config_.rpe_segment_lengths) report.rpe.push_back(rpe_.report(d));
+  report.speed_error = speedError(estimates_, ground_truths_);
   return report;
 }
 

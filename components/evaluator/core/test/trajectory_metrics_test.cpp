@@ -9,6 +9,7 @@
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/relative_pose_error.hpp"
+#include "uampc/evaluator/speed_error.hpp"
 #include "uampc/evaluator/trajectory_evaluator.hpp"
 #include "uampc/evaluator/umeyama.hpp"
 
@@ -286,6 +287,35 @@ TEST(RelativePoseError, HeadingDriftGivesItsRotationPerSegment) {
   EXPECT_EQ(report.rotation_deg.count, 41u);
   EXPECT_NEAR(report.rotation_deg.mean, 1.0, 1e-9);
   EXPECT_NEAR(report.rotation_deg.max, 1.0, 1e-9);
+}
+
+TEST(SpeedError, FindsWhenTheEstimatedSpeedRunsAwayAndIgnoresFrameJitter) {
+  // Truth at 1.5 m/s along x, 10 Hz, 20 s. The estimate jitters by +-2 cm every frame (0.4 m/s
+  // frame to frame), and from 12 s on its speed drifts away, 0.5 m/s more each second.
+  std::vector<TimedPose> truths, estimates;
+  double drift = 0.0;
+  for (int k = 0; k <= 200; ++k) {
+    const double t = 0.1 * k;
+    TimedPose truth{t, Eigen::Isometry3d::Identity()};
+    truth.pose.translation() = Eigen::Vector3d(1.5 * t, 0.0, 0.0);
+    if (t > 12.0) drift += 0.5 * (t - 12.0) * 0.1;
+    TimedPose estimate = truth;
+    estimate.pose.translation() += Eigen::Vector3d(drift, (k % 2 ? 0.02 : -0.02), 0.0);
+    truths.push_back(truth);
+    estimates.push_back(estimate);
+  }
+  const SpeedErrorReport report = speedError(estimates, truths);
+  ASSERT_TRUE(report.first_runaway_time.has_value());
+  // The speed error over [t - 1, t] first passes 1 m/s at about t = 14.5 s (0.5 m/s^2 from 12 s).
+  EXPECT_NEAR(*report.first_runaway_time, 14.5, 0.3);
+  EXPECT_GT(report.max, 3.0);
+  // The same without the drift: jitter alone is no runaway.
+  for (std::size_t i = 0; i < estimates.size(); ++i) {
+    estimates[i].pose.translation().x() = truths[i].pose.translation().x();
+  }
+  const SpeedErrorReport steady = speedError(estimates, truths);
+  EXPECT_FALSE(steady.first_runaway_time.has_value());
+  EXPECT_LT(steady.max, 0.05);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
 #include "uampc/evaluator/relative_pose_error.hpp"
+#include "uampc/evaluator/speed_error.hpp"
 #include "uampc/evaluator/timed_pose.hpp"
 
 namespace uampc::evaluator {
@@ -27,6 +28,8 @@ struct TrajectoryReport {
   std::size_t invalid = 0;   // non-finite time or pose
   AteReport ate;
   std::vector<RpeReport> rpe;  // one per configured segment length, in that order
+  // Speed over 1 s baselines against the truth's; a runaway is an error above 1 m/s.
+  SpeedErrorReport speed_error;
 };
 
 class TrajectoryEvaluator {
