@@ -30,6 +30,25 @@ int indexOf(const std::vector<std::string>& names, const std::string& name) {
   return -1;
 }
 
+// "Losses of track" table: lost / finished runs per controller and scene.
+std::string lossesOfTrack(const ResultsTable& t) {
+  std::string md =
+      "## Losses of track\n\nRuns that lost track (the estimated speed more than 1 m/s off the true one over 1 s, "
+      "at some point; when, in the Runs table) of the finished runs.\n\n| controller |";
+  for (const auto& s : t.scenes) md += " " + s + " |";
+  md += "\n|---|";
+  for (std::size_t i = 0; i < t.scenes.size(); ++i) md += "---|";
+  md += "\n";
+  for (std::size_t c = 0; c < t.controllers.size(); ++c) {
+    md += "| " + t.controllers[c] + " |";
+    for (std::size_t s = 0; s < t.scenes.size(); ++s) {
+      md += " " + std::to_string(t.lost_runs[c][s]) + " lost of " + std::to_string(t.finished_runs[c][s]) + " |";
+    }
+    md += "\n";
+  }
+  return md;
+}
+
 }  // namespace
 
 ResultsTable summarize(const Experiment& experiment, const std::vector<RunResult>& results) {
@@ -45,9 +64,13 @@ ResultsTable summarize(const Experiment& experiment, const std::vector<RunResult
   t.ate.assign(nc, std::vector<MeanOverSeeds>(ns));
   t.cmplt.assign(nc, std::vector<MeanOverSeeds>(ns));
   std::vector<std::vector<double>> ate_sum(nc, std::vector<double>(ns, 0.0)), cmplt_sum = ate_sum;
+  t.finished_runs.assign(nc, std::vector<int>(ns, 0));
+  t.lost_runs = t.finished_runs;
   for (const RunResult& r : results) {
     const int c = indexOf(t.controllers, r.controller), s = indexOf(t.scenes, r.scene);
     if (c < 0 || s < 0 || !r.finished()) continue;
+    ++t.finished_runs[c][s];
+    if (std::isfinite(r.metrics.runaway_time_s)) ++t.lost_runs[c][s];
     if (std::isfinite(r.metrics.ate_m)) {
       ate_sum[c][s] += r.metrics.ate_m;
       ++t.ate[c][s].runs;
@@ -129,16 +152,18 @@ std::string renderMarkdown(const Experiment& experiment, const ResultsTable& t, 
         (line.empty() ? "No comparison: the experiment lacks controller '" + t.subject + "' or '" + t.baseline +
                             "' (set compare: {subject, baseline})."
                       : line) +
-        "\n\n## Runs\n\n| scene | controller | seed | status | ATE m | aligned ATE m | CMPLT | CMPLT (ground truth) "
-        "| mean speed rad/s | sim s | wall s | real-time factor | directory |\n"
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "\n\n" + lossesOfTrack(t) +
+        "\n## Runs\n\n| scene | controller | seed | status | ATE m | aligned ATE m | CMPLT | CMPLT (ground truth) "
+        "| mean speed rad/s | lost track at s | sim s | wall s | real-time factor | directory |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   auto num = [](double v, int decimals) { return std::isfinite(v) ? fixed(v, decimals) : std::string("n/a"); };
   for (const RunResult& r : results) {
     md += "| " + r.scene + " | " + r.controller + " | " + std::to_string(r.seed) + " | " + statusName(r.status) +
           (r.failure.empty() ? "" : ": " + r.failure) + " | " + num(r.metrics.ate_m, 3) + " | " +
           num(r.metrics.ate_aligned_m, 3) + " | " + num(r.metrics.cmplt, 0) + " | " +
           num(r.metrics.cmplt_ground_truth, 0) + " | " + num(r.metrics.mean_speed, 2) + " | " +
-          num(r.metrics.sim_time_s, 1) + " | " + num(r.wall_time_s, 1) + " | " + num(r.real_time_factor, 2) + " | " +
+          (std::isfinite(r.metrics.runaway_time_s) ? fixed(r.metrics.runaway_time_s, 1) : std::string("never")) +
+          " | " + num(r.metrics.sim_time_s, 1) + " | " + num(r.wall_time_s, 1) + " | " + num(r.real_time_factor, 2) + " | " +
           r.directory + " |\n";
   }
   return md;

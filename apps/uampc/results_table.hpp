@@ -26,6 +26,10 @@ struct ResultsTable {
   std::vector<double> ate_sum;                    // [controller]; NaN if a scene has no ATE
   std::vector<double> ate_sum_ratio;              // [controller] ate_sum / baseline's
   std::vector<std::vector<double>> cmplt_ratio;   // [controller][scene] cmplt / baseline's
+  // [controller][scene]: finished runs, and of those the ones that lost track (ran away: their
+  // estimated speed strayed more than 1 m/s from the truth's). A mean over seeds hides a lost run;
+  // this does not.
+  std::vector<std::vector<int>> finished_runs, lost_runs;
   std::string subject;
   std::string baseline;
   int subject_index = -1;  // -1: not among the controllers

@@ -72,6 +72,7 @@ std::optional<RunMetrics> readRunMetrics(const std::string& run_directory) {
   m.cmplt = number(root, {"cmplt", "cmplt"});
   m.cmplt_ground_truth = number(root, {"cmplt_ground_truth", "cmplt"});
   m.mean_speed = number(root, {"motor", "mean_speed"});
+  m.runaway_time_s = number(root, {"trajectory", "speed_error", "first_runaway_time"});
   return m;
 }
 
@@ -142,6 +143,7 @@ void writeResultsJson(const std::string& path, const Experiment& experiment, con
         .set("rpe_10m_m", r.metrics.rpe_10m_m)
         .set("rpe_100m_m", r.metrics.rpe_100m_m)
         .set("mean_speed", r.metrics.mean_speed)
+        .set("lost_track_at_s", r.metrics.runaway_time_s)
         .set("sim_time_s", r.metrics.sim_time_s)
         .set("wall_time_s", r.wall_time_s)
         .set("real_time_factor", r.real_time_factor);

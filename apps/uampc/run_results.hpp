@@ -25,6 +25,9 @@ struct RunMetrics {
   double rpe_100m_m = kMissing;
   double sim_time_s = kMissing;
   double mean_speed = kMissing;  // rad/s
+  // Loss of track judged against ground truth: when the estimated speed first strayed more than
+  // 1 m/s from the true one (over 1 s); NaN when it never did.
+  double runaway_time_s = kMissing;
 };
 
 // Reads RUN_DIR/metrics.json; nullopt when missing or unreadable (the run did not finish).

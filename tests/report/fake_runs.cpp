@@ -21,16 +21,17 @@ namespace {
 
 struct FakeFigures {
   double ate;
-  double cmplt;  // NaN: written as null
+  double cmplt;                // NaN: written as null
+  double runaway_time = NAN;   // s, when the run lost track; NaN: it never did
 };
 
 // [scene][controller][seed]
 const std::map<std::tuple<std::string, std::string, int>, FakeFigures> kFigures{
     {{"alpha", "ua_mpc", 1}, {1.0, 100}},       {{"alpha", "ua_mpc", 2}, {2.0, 110}},
     {{"alpha", "constant_3.6", 1}, {4.0, 100}}, {{"alpha", "constant_3.6", 2}, {6.0, 100}},
-    {{"alpha", "zero", 1}, {8.0, NAN}},         {{"alpha", "zero", 2}, {9.0, NAN}},
+    {{"alpha", "zero", 1}, {8.0, NAN, 3.5}},    {{"alpha", "zero", 2}, {9.0, NAN, 4.25}},
     {{"beta", "ua_mpc", 1}, {3.0, 50}},         {{"beta", "ua_mpc", 2}, {4.0, 50}},
-    {{"beta", "constant_3.6", 1}, {10.0, 40}},  {{"beta", "constant_3.6", 2}, {20.0, 60}},
+    {{"beta", "constant_3.6", 1}, {10.0, 40}},  {{"beta", "constant_3.6", 2}, {20.0, 60, 7.0}},
     {{"beta", "zero", 1}, {29.5, 20}},
 };
 
@@ -48,7 +49,9 @@ void writeRun(const fs::path& dir, const FakeFigures& f, bool ua_mpc) {
             "{\n  \"sim_time\": 10,\n  \"trajectory\": {\"ate\": {\"unaligned_m\": {\"rmse\": " + jsonNumber(f.ate) +
                 "}, \"aligned_m\": {\"rmse\": " + jsonNumber(f.ate / 2) +
                 "}},\n    \"rpe_10m\": {\"translation_m\": {\"rmse\": 0.5}}, \"rpe_100m\": {\"translation_m\": "
-                "{\"rmse\": null}}},\n  \"cmplt\": {\"cmplt\": " +
+                "{\"rmse\": null}}, \"speed_error\": {\"max_m_s\": 0.5" +
+                (std::isfinite(f.runaway_time) ? ", \"first_runaway_time\": " + jsonNumber(f.runaway_time) : "") +
+                "}},\n  \"cmplt\": {\"cmplt\": " +
                 jsonNumber(f.cmplt) + "},\n  \"cmplt_ground_truth\": {\"cmplt\": " + jsonNumber(f.cmplt * 1.1) +
                 "},\n  \"motor\": {\"mean_speed\": 3.6}\n}\n");
   std::string ate = "time,ate_m,ate_aligned_m\n", motor = "time,theta,omega,command\n";

@@ -49,6 +49,21 @@ TEST(ResultsTable, MarkdownHasThePapersColumnsAndMarksMissingSeeds) {
   EXPECT_NE(md.find("| beta | zero | 2 | failed: exit code 1 |"), std::string::npos) << md;
 }
 
+TEST(ResultsTable, CountsLossesOfTrackThatMeansHide) {
+  const auto fake = test::makeFakeExperiment(test::freshDirectory("results_table_lost_test"));
+  const ResultsTable t = summarize(fake.experiment, fake.results);
+  EXPECT_EQ(t.lost_runs[0], (std::vector<int>{0, 0}));  // ua_mpc
+  EXPECT_EQ(t.lost_runs[1], (std::vector<int>{0, 1}));  // constant_3.6: beta seed 2
+  EXPECT_EQ(t.lost_runs[2], (std::vector<int>{2, 0}));  // zero: both alpha seeds
+  EXPECT_EQ(t.finished_runs[2], (std::vector<int>{2, 1}));
+  const std::string md = renderMarkdown(fake.experiment, t, fake.results);
+  EXPECT_NE(md.find("| constant_3.6 | 0 lost of 2 | 1 lost of 2 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| zero | 2 lost of 2 | 0 lost of 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| beta | constant_3.6 | 2 | reused | 20.000 | 10.000 | 60 | 66 | 3.60 | 7.0 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| beta | ua_mpc | 1 | reused | 3.000 | 1.500 | 50 | 55 | 3.60 | never |"), std::string::npos) << md;
+}
+
 TEST(ResultsJson, EveryRunWithItsFigures) {
   const auto fake = test::makeFakeExperiment(test::freshDirectory("results_json_test"));
   const std::string path = fake.directory + "/results.json";
@@ -69,6 +84,8 @@ TEST(ResultsJson, EveryRunWithItsFigures) {
   EXPECT_DOUBLE_EQ(first["sim_time_s"].as<double>(), 10);
   EXPECT_DOUBLE_EQ(first["wall_time_s"].as<double>(), 4.5);
   EXPECT_DOUBLE_EQ(first["real_time_factor"].as<double>(), 2.5);
+  EXPECT_TRUE(first["lost_track_at_s"].IsNull());
+  EXPECT_DOUBLE_EQ(root["runs"][4]["lost_track_at_s"].as<double>(), 3.5);  // alpha, zero, seed 1
   EXPECT_EQ(root["runs"][11]["status"].as<std::string>(), "failed");
 }
 
