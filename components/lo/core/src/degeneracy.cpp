@@ -8,8 +8,8 @@ namespace {
 
 // scale: x_k / scale_k is component k in displacement units (y = S^-1 x, scaled Jacobian H S).
 template <int N>
-DegeneracyAnalysis<N> analyse(const Eigen::Matrix<double, N, N>& information,
-                              const Eigen::Matrix<double, N, 1>& scale, double threshold) {
+DegeneracyAnalysis<N> analyse(const Eigen::Matrix<double, N, N>& information, const Eigen::Matrix<double, N, 1>& scale,
+                              double threshold) {
   using Matrix = Eigen::Matrix<double, N, N>;
   const Matrix scaled = scale.asDiagonal() * information * scale.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<Matrix> solver(0.5 * (scaled + scaled.transpose()));
@@ -30,15 +30,13 @@ DegeneracyAnalysis<N> analyse(const Eigen::Matrix<double, N, N>& information,
 
 }  // namespace
 
-PoseDegeneracy analysePoseDegeneracy(const Matrix6d& information, const DegeneracyScales& scales,
-                                     double threshold) {
+PoseDegeneracy analysePoseDegeneracy(const Matrix6d& information, const DegeneracyScales& scales, double threshold) {
   Vector6d scale;
   scale << Eigen::Vector3d::Constant(1.0 / scales.length), Eigen::Vector3d::Ones();
   return analyse<6>(information, scale, threshold);
 }
 
-StateDegeneracy analyseStateDegeneracy(const Matrix12d& information, const DegeneracyScales& scales,
-                                       double threshold) {
+StateDegeneracy analyseStateDegeneracy(const Matrix12d& information, const DegeneracyScales& scales, double threshold) {
   Vector12d scale;
   scale << Eigen::Vector3d::Constant(1.0 / scales.length), Eigen::Vector3d::Ones(),
       Eigen::Vector3d::Constant(1.0 / scales.period), Eigen::Vector3d::Constant(1.0 / (scales.length * scales.period));

@@ -143,8 +143,8 @@ double axialShiftOfOneUpdate(bool project_degenerate) {
 TEST(IteratedEkf, LeavesTheAxisOfADegenerateCorridorToThePrior) {
   const double with_projection = axialShiftOfOneUpdate(true);
   const double without_projection = axialShiftOfOneUpdate(false);
-  std::printf("axial shift of one update: %.4f m with the degeneracy-aware update, %.4f m without\n",
-              with_projection, without_projection);
+  std::printf("axial shift of one update: %.4f m with the degeneracy-aware update, %.4f m without\n", with_projection,
+              without_projection);
   EXPECT_LT(std::abs(with_projection), 0.002);
   EXPECT_GT(std::abs(without_projection), 0.005);  // what the test guards against
 }

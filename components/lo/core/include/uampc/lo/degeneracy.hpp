@@ -56,9 +56,7 @@ using StateDegeneracy = DegeneracyAnalysis<12>;
 
 // information: unit-weight Lambda = sum_i J_i J_i^T, order [rotation, translation] (pose) or the
 // filter's error state [rotation, position, linear velocity, angular velocity] (state).
-PoseDegeneracy analysePoseDegeneracy(const Matrix6d& information, const DegeneracyScales& scales,
-                                     double threshold);
-StateDegeneracy analyseStateDegeneracy(const Matrix12d& information, const DegeneracyScales& scales,
-                                       double threshold);
+PoseDegeneracy analysePoseDegeneracy(const Matrix6d& information, const DegeneracyScales& scales, double threshold);
+StateDegeneracy analyseStateDegeneracy(const Matrix12d& information, const DegeneracyScales& scales, double threshold);
 
 }  // namespace uampc::lo

@@ -27,7 +27,7 @@ namespace uampc::lo {
 
 // One IMU reading, LiDAR frame.
 struct ImuReading {
-  double time = 0.0;                                          // s
+  double time = 0.0;                                             // s
   Eigen::Vector3d angular_velocity_L = Eigen::Vector3d::Zero();  // rad/s
   Eigen::Vector3d specific_force_L = Eigen::Vector3d::Zero();    // m/s^2, gravity included
 };
