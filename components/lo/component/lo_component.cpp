@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cctype>
 #include <deque>
+#include <limits>
 #include <map>
 
 #include "uampc/adapters/pose_messages.hpp"
@@ -45,22 +46,31 @@ class LoComponent : public Component {
     spec.param("linear_process_noise", 0.1, "linear velocity random walk density of the constant-velocity model, (m/s)^2/s").between(0.0, 100.0);
     spec.param("angular_process_noise", 0.1, "angular velocity random walk density of the constant-velocity model, (rad/s)^2/s").between(0.0, 100.0);
     spec.param("max_iterations", 10, "iterated EKF: at most this many re-linearisations").between(1, 100);
-    spec.param("degeneracy_aware", false,
+    // The parameters of this round take their defaults from the core's config (one source).
+    const lo::OdometryConfig core;
+    spec.param("degeneracy_aware", core.degeneracy_aware,
                "leave the state directions a scan does not constrain to the motion prior (suits wheeled platforms; "
                "see README)");
-    spec.param("degeneracy_threshold", 20.0,
+    spec.param("degeneracy_threshold", core.degeneracy_threshold,
                "a direction with fewer effective points than this is degenerate (reported in /lo/metrics)")
         .between(0.0, 1e6);
-    spec.param("max_linear_acceleration", 10.0, "an update needing more is rejected and counted, m/s^2")
+    spec.param("max_linear_acceleration", core.max_linear_acceleration,
+               "an update needing more is rejected and counted, m/s^2")
         .between(0.0, 1e6);
-    spec.param("max_angular_acceleration", 20.0, "an update needing more is rejected and counted, rad/s^2")
+    spec.param("max_angular_acceleration", core.max_angular_acceleration,
+               "an update needing more is rejected and counted, rad/s^2")
         .between(0.0, 1e6);
-    spec.param("lost_after", 1.0, "lost: no registration accepted for longer than this, s").between(0.0, 3600.0);
-    spec.param("use_imu", false,
+    spec.param("lost_after", core.lost_after, "lost: no registration accepted for longer than this, s")
+        .between(0.0, 3600.0);
+    spec.param("use_imu", core.use_imu,
                "LiDAR-inertial mode: the IMU on the imu port replaces the constant-velocity prediction (beyond the "
                "paper, whose LO is LiDAR-only)");
-    spec.param("gyro_noise_density", 7.85e-5, "use_imu: gyroscope white noise, rad/s/sqrt(Hz)").between(0.0, 1.0);
-    spec.param("accel_noise_density", 9.81e-4, "use_imu: accelerometer white noise, m/s^2/sqrt(Hz)").between(0.0, 10.0);
+    spec.param("gyro_noise_density", core.imu_noise.gyro_noise_density,
+               "use_imu: gyroscope white noise, rad/s/sqrt(Hz)")
+        .between(0.0, 1.0);
+    spec.param("accel_noise_density", core.imu_noise.accel_noise_density,
+               "use_imu: accelerometer white noise, m/s^2/sqrt(Hz)")
+        .between(0.0, 10.0);
     spec.param("min_range", 0.5, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
     spec.param("max_range", 100.0, "points farther than this are dropped, m").between(0.1, 10000.0);
     spec.param("local_map_window", 5.0, "the published local map holds points seen in the last N s")
@@ -149,23 +159,31 @@ class LoComponent : public Component {
     pending_.push_back(std::move(scan));
   }
 
-  // A reading with a non-finite value or out of time order is skipped and reported once.
+  // Readings go to the odometry; before it exists (it starts at the first scan, from the start
+  // pose) they wait in pending_imu_. A reading with a non-finite value or out of time order is
+  // refused and reported once.
   void onImu(const sensor_msgs::msg::Imu& m) {
     const auto& w = m.angular_velocity();
     const auto& a = m.linear_acceleration();
-    lo::ImuReading reading{fromMsg(m.header().stamp()).seconds(), {w.x(), w.y(), w.z()}, {a.x(), a.y(), a.z()}};
-    const bool in_order = imu_.empty() || reading.time > imu_.back().time;
-    if (!reading.angular_velocity_L.allFinite() || !reading.specific_force_L.allFinite() ||
-        !std::isfinite(reading.time) || !in_order) {
-      if (!warned_bad_imu_) {
-        ctx_.log().warn("IMU readings on ", ctx_.topicOf("imu"),
-                        " with non-finite values or out of time order are skipped (said once)");
-        warned_bad_imu_ = true;
-      }
-      return;
+    const lo::ImuReading reading{fromMsg(m.header().stamp()).seconds(), {w.x(), w.y(), w.z()}, {a.x(), a.y(), a.z()}};
+    bool taken = false;
+    if (odometry_) {
+      taken = odometry_->addImu(reading);
+    } else if (lo::usableImuReading(reading, newestImuTime())) {
+      pending_imu_.push_back(reading);
+      if (pending_imu_.size() > 400) pending_imu_.pop_front();  // 2 s at 200 Hz: the first scan needs less
+      taken = true;
     }
-    imu_.push_back(reading);
-    if (imu_.size() > 4000) imu_.pop_front();  // 20 s at 200 Hz: bounded if scans stop
+    if (!taken && !warned_bad_imu_) {
+      ctx_.log().warn("IMU readings on ", ctx_.topicOf("imu"),
+                      " with non-finite values or out of time order are skipped (said once)");
+      warned_bad_imu_ = true;
+    }
+  }
+
+  double newestImuTime() const {
+    if (odometry_) return odometry_->newestImuTime();
+    return pending_imu_.empty() ? -std::numeric_limits<double>::infinity() : pending_imu_.back().time;
   }
 
   static std::string layoutOf(const sensor_msgs::msg::PointCloud2& m) {
@@ -178,13 +196,17 @@ class LoComponent : public Component {
   void processReady() {
     while (!pending_.empty()) {
       const lo::Scan& scan = pending_.front();
-      const double end = end_of(scan);
-      const bool imu_covered = !config_.use_imu || (!imu_.empty() && imu_.back().time >= end);
+      const double end = scanEnd(scan);
+      const bool imu_covered = !config_.use_imu || newestImuTime() >= end;
       const bool covered = motor_.covers(scan.stamp, end) && imu_covered;
       const bool waited = !motor_.empty() && motor_.newest().time > end + max_motor_wait_;
       if (!covered && !waited) return;
       if (init_from_pose_ && !odometry_ && !initialise(end)) return;
-      if (!odometry_) odometry_ = std::make_unique<lo::MotorizedLidarOdometry>(config_);
+      if (!odometry_) {
+        odometry_ = std::make_unique<lo::MotorizedLidarOdometry>(config_);
+        for (const lo::ImuReading& r : pending_imu_) odometry_->addImu(r);
+        pending_imu_.clear();
+      }
       process(scan);
       pending_.pop_front();
     }
@@ -220,10 +242,6 @@ class LoComponent : public Component {
 
   void process(const lo::Scan& scan) {
     const auto start = std::chrono::steady_clock::now();
-    while (!imu_.empty() && imu_.front().time <= end_of(scan) + 0.05) {
-      odometry_->addImu(imu_.front());
-      imu_.pop_front();
-    }
     const lo::OdometryResult r = odometry_->registerScan(scan, motor_);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (r.status == lo::OdometryStatus::kRejected) {
@@ -247,7 +265,7 @@ class LoComponent : public Component {
     publishMetrics(r, stamp, seconds);
   }
 
-  static double end_of(const lo::Scan& scan) {
+  static double scanEnd(const lo::Scan& scan) {
     double end = scan.stamp;
     for (float t : scan.time_offsets) end = std::max(end, scan.stamp + t);
     return end;
@@ -353,7 +371,7 @@ class LoComponent : public Component {
   std::unique_ptr<lo::MotorizedLidarOdometry> odometry_;
   frames::MotorAngleTrack motor_{2.0};
   std::deque<lo::Scan> pending_;
-  std::deque<lo::ImuReading> imu_;  // readings not handed to the odometry yet
+  std::deque<lo::ImuReading> pending_imu_;  // readings before the odometry starts
   bool warned_bad_imu_ = false;
   std::deque<geometry_msgs::msg::PoseStamped> initial_poses_;
   std::string layout_;

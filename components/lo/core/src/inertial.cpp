@@ -1,5 +1,7 @@
 #include "uampc/lo/inertial.hpp"
 
+#include <cmath>
+
 namespace uampc::lo {
 
 namespace {
@@ -25,6 +27,11 @@ InertialStep toBase(const ImuReading& reading, double theta, double theta_dot,
 }
 
 }  // namespace
+
+bool usableImuReading(const ImuReading& reading, double newest_time) {
+  return std::isfinite(reading.time) && reading.angular_velocity_L.allFinite() &&
+         reading.specific_force_L.allFinite() && reading.time > newest_time;
+}
 
 std::vector<InertialStep> inertialSteps(const std::deque<ImuReading>& readings, double t0, double t1,
                                         const frames::MotorAngleTrack& motor,

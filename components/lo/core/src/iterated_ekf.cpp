@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "uampc/frames/gravity.hpp"
 #include "uampc/lo/plane_fit.hpp"
 #include "uampc/lo/so3.hpp"
 #include "uampc/lo/voxel.hpp"
@@ -121,7 +122,7 @@ void IteratedEkf::predict(double dt, double linear_process_noise, double angular
 }
 
 void IteratedEkf::predictInertial(const std::vector<InertialStep>& steps, const InertialNoise& noise) {
-  const Eigen::Vector3d gravity_W(0.0, 0.0, -9.81);
+  const Eigen::Vector3d gravity_W = frames::gravityInWorld();
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   Eigen::Vector3d rate_sum = Eigen::Vector3d::Zero();
   double duration = 0.0;
@@ -185,6 +186,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor> H;
   Eigen::VectorXd z;  // point-to-plane residuals
   std::vector<double> magnitudes;
+  Matrix12d information = Matrix12d::Zero();  // unit-weight H^T H of the last linearisation
 
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     if (associate) {
@@ -259,16 +261,18 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     HtH.selfadjointView<Eigen::Upper>().rankUpdate(H.transpose());
     HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
     Vector12d Htz = H.transpose() * z;
+    information = HtH;
     // Directions the scan cannot see get none of its information (Zhang et al. 2016): in them,
-    // noise and the few wrong matches every scan has would otherwise move the pose freely.
-    summary.pose_information = HtH.topLeftCorner<6, 6>();
-    summary.pose_degeneracy = analysePoseDegeneracy(summary.pose_information, options.degeneracy_scales,
-                                                    options.degeneracy_threshold);
-    summary.state_degeneracy = analyseStateDegeneracy(HtH, options.degeneracy_scales, options.degeneracy_threshold);
-    if (options.project_degenerate && summary.state_degeneracy.degenerate_directions > 0) {
-      const Matrix12d& pi = summary.state_degeneracy.projector;
-      HtH = (pi.transpose() * HtH * pi).eval();
-      Htz = (pi.transpose() * Htz).eval();
+    // noise and the few wrong matches every scan has would otherwise move the pose freely. The
+    // analysis is redone at every linearisation only when it decides the step; for the report
+    // it is made once, after the loop.
+    if (options.project_degenerate) {
+      summary.state_degeneracy = analyseStateDegeneracy(HtH, options.degeneracy_scales, options.degeneracy_threshold);
+      if (summary.state_degeneracy.degenerate_directions > 0) {
+        const Matrix12d& pi = summary.state_degeneracy.projector;
+        HtH = (pi.transpose() * HtH * pi).eval();
+        Htz = (pi.transpose() * Htz).eval();
+      }
     }
 
     // Gauss-Newton step of the IEKF (information form, see header).
@@ -304,6 +308,16 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     // two sets); the association is redone only once the state has moved enough since.
     associate = rotation_since_association > options.reassociation_rotation ||
                 translation_since_association > options.reassociation_translation;
+  }
+  if (summary.applied) {
+    // The information of the last linearisation, before any projection: what the scan saw.
+    summary.pose_information = information.topLeftCorner<6, 6>();
+    summary.pose_degeneracy =
+        analysePoseDegeneracy(summary.pose_information, options.degeneracy_scales, options.degeneracy_threshold);
+    if (!options.project_degenerate) {
+      summary.state_degeneracy =
+          analyseStateDegeneracy(information, options.degeneracy_scales, options.degeneracy_threshold);
+    }
   }
   if (!summary.applied || !finite(x)) {
     summary.applied = false;

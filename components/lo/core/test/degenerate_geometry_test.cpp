@@ -266,6 +266,25 @@ TEST(Inertial, TakesTheMotorOutOfTheReadings) {
   EXPECT_TRUE(inertialSteps(readings, 0.2, 1.5, motor, lidar.calibration).empty());
 }
 
+// Bad IMU input is refused at the door, never integrated: a non-finite value or time, a reading
+// not newer than the last. The frame is then predicted from the good readings around it.
+TEST(Inertial, RefusesNonFiniteAndOutOfOrderReadings) {
+  const sim::LidarModel lidar;
+  OdometryConfig config;
+  config.use_imu = true;
+  MotorizedLidarOdometry odometry(config);
+  const Eigen::Vector3d gravity_reaction(0.0, 0.0, 9.81);
+  EXPECT_TRUE(odometry.addImu({0.010, Eigen::Vector3d::Zero(), gravity_reaction}));
+  EXPECT_FALSE(odometry.addImu({0.015, Eigen::Vector3d(NAN, 0.0, 0.0), gravity_reaction}));
+  EXPECT_FALSE(odometry.addImu({0.015, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, INFINITY, 0.0)}));
+  EXPECT_FALSE(odometry.addImu({NAN, Eigen::Vector3d::Zero(), gravity_reaction}));
+  EXPECT_FALSE(odometry.addImu({0.010, Eigen::Vector3d::Zero(), gravity_reaction}));  // not newer
+  EXPECT_FALSE(odometry.addImu({0.005, Eigen::Vector3d::Zero(), gravity_reaction}));  // older
+  EXPECT_DOUBLE_EQ(odometry.newestImuTime(), 0.010);
+  EXPECT_TRUE(odometry.addImu({0.015, Eigen::Vector3d::Zero(), gravity_reaction}));
+  EXPECT_DOUBLE_EQ(odometry.newestImuTime(), 0.015);
+}
+
 // An open field (ground only: x, y and yaw unobservable to the LiDAR) crossed at 1 m/s, weaving:
 // LiDAR-only the constant-velocity model drifts; with the IMU the estimate follows.
 double openFieldError(bool use_imu) {

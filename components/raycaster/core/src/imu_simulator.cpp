@@ -2,11 +2,11 @@
 
 #include <cmath>
 
+#include "uampc/frames/gravity.hpp"
+
 namespace uampc::raycaster {
 
 namespace {
-
-const Eigen::Vector3d kGravityWorld(0.0, 0.0, -9.81);  // m/s^2, world z up
 
 // log(R) as a rotation vector (axis * angle), accurate for the small angles it is used on.
 Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) {
@@ -56,7 +56,7 @@ ImuKinematics imuKinematics(double t, const ImuMotion& motion, const frames::Mot
       (2.0 * h);
   const Eigen::Vector3d a_W =
       (lidar_pose(t + h_a).translation() - 2.0 * T_WL.translation() + lidar_pose(t - h_a).translation()) / (h_a * h_a);
-  k.specific_force = R_LW * (a_W - kGravityWorld);
+  k.specific_force = R_LW * (a_W - frames::gravityInWorld());
   return k;
 }
 

@@ -32,6 +32,10 @@ struct ImuReading {
   Eigen::Vector3d specific_force_L = Eigen::Vector3d::Zero();    // m/s^2, gravity included
 };
 
+// Whether a reading can be used after one taken at newest_time: finite values and time, and
+// newer. A reading that fails is refused, never integrated.
+bool usableImuReading(const ImuReading& reading, double newest_time);
+
 // A piece of the base's motion over dt: its angular velocity and the specific force at its
 // origin, both in B, held constant over the piece.
 struct InertialStep {

@@ -67,9 +67,10 @@ struct UpdateOptions {
   double min_residual_gate = 0.05;  // m
   // Skip a plane whose map points were mostly seen from its other side (see the header).
   bool match_seen_side_only = true;
-  // Degeneracy-aware update (degeneracy.hpp): pose directions whose scaled information
-  // eigenvalue (an effective number of points) is below degeneracy_threshold get no information
-  // from the measurements; the motion prior decides them. Rotation is scaled at degeneracy_length.
+  // Degeneracy (degeneracy.hpp): directions whose scaled information eigenvalue (an effective
+  // number of points) is below degeneracy_threshold are degenerate. With project_degenerate, the
+  // degenerate directions of the whole state get no information from the measurements and the
+  // motion prior decides them; either way both analyses are reported in the summary.
   bool project_degenerate = false;
   double degeneracy_threshold = 20.0;
   DegeneracyScales degeneracy_scales;

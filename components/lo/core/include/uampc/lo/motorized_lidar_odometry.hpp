@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <deque>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,7 +72,8 @@ struct OdometryConfig {
   // over the frame is rejected (the frame is predicted only and not added to the map) and
   // counted. A hand-held rig reaches 6 rad/s^2 (MCD KTH: 70 deg/s within 0.2 s) and a ground
   // vehicle rarely 1 g; a registration that needs more (beyond 3 standard deviations of the
-  // predicted velocity) is a wrong one.
+  // predicted velocity) is a wrong one. Not applied while lost (see lost_after): the prediction
+  // is then what is wrong.
   double max_linear_acceleration = 10.0;   // m/s^2
   double max_angular_acceleration = 20.0;  // rad/s^2
   // LiDAR-inertial mode (inertial.hpp): with use_imu, the IMU readings given to addImu replace
@@ -137,9 +139,12 @@ class MotorizedLidarOdometry {
   // Throws std::invalid_argument when scan.points_L and scan.time_offsets differ in size.
   OdometryResult registerScan(const Scan& scan, const frames::MotorAngleTrack& motor);
 
-  // An IMU reading (LiDAR-inertial mode), in time order; older or equal ones are ignored.
-  // Readings are kept until a scan past them has been registered.
-  void addImu(const ImuReading& reading);
+  // An IMU reading (LiDAR-inertial mode). Refused (false) when a value or its time is not finite,
+  // or it is not newer than the last one taken: the caller says so. Readings are kept until a
+  // scan past them has been registered (at most 10 s of them).
+  bool addImu(const ImuReading& reading);
+  // Time of the newest reading taken, or -infinity before the first.
+  double newestImuTime() const;
 
   // The local map in the world frame (LocalMap::points and pointsSince list it, with or without
   // the time each voxel was last observed).
