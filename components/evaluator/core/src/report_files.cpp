@@ -19,7 +19,8 @@ JsonObject toJson(const TrajectoryReport& report) {
   json.set("estimates", std::uint64_t{report.estimates})
       .set("paired", std::uint64_t{report.paired})
       .set("unpaired", std::uint64_t{report.unpaired})
-      .set("invalid", std::uint64_t{report.invalid});
+      .set("invalid", std::uint64_t{report.invalid})
+      .set("distance_m", report.distance);
   JsonObject ate;
   ate.set("unaligned_m", toJson(report.ate.unaligned)).set("aligned_m", toJson(report.ate.aligned));
   json.set("ate", ate);
@@ -59,13 +60,11 @@ void writeAteSeriesCsv(const std::string& path, const std::vector<AteSample>& se
   csv.close();
 }
 
-void writeCompletenessWindowsCsv(const std::string& path,
-                                 const std::vector<CompletenessWindow>& windows) {
+void writeCompletenessWindowsCsv(const std::string& path, const std::vector<CompletenessWindow>& windows) {
   CsvWriter csv(path, {"window", "start", "end", "voxels", "scans", "points", "complete"});
   for (const CompletenessWindow& w : windows) {
     csv.addRow({static_cast<double>(w.index), w.start, w.end, static_cast<double>(w.voxels),
-                static_cast<double>(w.scans), static_cast<double>(w.points),
-                w.complete ? 1.0 : 0.0});
+                static_cast<double>(w.scans), static_cast<double>(w.points), w.complete ? 1.0 : 0.0});
   }
   csv.close();
 }

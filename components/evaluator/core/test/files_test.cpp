@@ -30,8 +30,7 @@ std::string contentOf(const std::string& path) {
 // Runs a Python check on a JSON file: the file must parse with json.load, then the script (with
 // the parsed object as d) must not raise.
 int checkJsonWithPython(const std::string& path, const std::string& script) {
-  const std::string command =
-      "python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); " + script + "' " + path;
+  const std::string command = "python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); " + script + "' " + path;
   return std::system(command.c_str());
 }
 
@@ -88,8 +87,7 @@ TEST(TumTrajectory, ErrorsNameThePathAndLine) {
   expectThrowNaming<std::runtime_error>([&] { readTumTrajectory(path); }, path + ":1");
   expectThrowNaming<std::runtime_error>([&] { readTumTrajectory(directory.file("missing.tum")); },
                                         directory.file("missing.tum"));
-  expectThrowNaming<std::runtime_error>([&] { writeTumTrajectory("/nonexistent/t.tum", {}); },
-                                        "/nonexistent/t.tum");
+  expectThrowNaming<std::runtime_error>([&] { writeTumTrajectory("/nonexistent/t.tum", {}); }, "/nonexistent/t.tum");
 }
 
 TEST(JsonWriter, WritesValidJsonWithNullForNaN) {
@@ -109,30 +107,27 @@ TEST(JsonWriter, WritesValidJsonWithNullForNaN) {
       .set("replaced", 2.0);
   const std::string path = directory.file("metrics.json");
   writeJson(path, json);
-  EXPECT_EQ(
-      checkJsonWithPython(path,
-                          "assert d[\"name\"] == \"ua \\\"mpc\\\"\\n\\\\ \\x01\", d; "
-                          "assert d[\"count\"] == 2**64 - 1; assert d[\"negative\"] == -3; "
-                          "assert d[\"flag\"] is True; assert d[\"tiny\"] == 1e-300; "
-                          "assert d[\"inner\"] == {\"rmse\": 0.1, \"nan\": None, \"inf\": None}; "
-                          "assert d[\"empty\"] == {}; assert d[\"list\"] == [1.5, None, -2.0]; "
-                          "assert d[\"replaced\"] == 2.0; "
-                          "assert list(d) == [\"name\", \"count\", \"negative\", \"flag\", "
-                          "\"tiny\", \"inner\", \"empty\", \"list\", \"replaced\"]"),
-      0)
+  EXPECT_EQ(checkJsonWithPython(path,
+                                "assert d[\"name\"] == \"ua \\\"mpc\\\"\\n\\\\ \\x01\", d; "
+                                "assert d[\"count\"] == 2**64 - 1; assert d[\"negative\"] == -3; "
+                                "assert d[\"flag\"] is True; assert d[\"tiny\"] == 1e-300; "
+                                "assert d[\"inner\"] == {\"rmse\": 0.1, \"nan\": None, \"inf\": None}; "
+                                "assert d[\"empty\"] == {}; assert d[\"list\"] == [1.5, None, -2.0]; "
+                                "assert d[\"replaced\"] == 2.0; "
+                                "assert list(d) == [\"name\", \"count\", \"negative\", \"flag\", "
+                                "\"tiny\", \"inner\", \"empty\", \"list\", \"replaced\"]"),
+            0)
       << contentOf(path);
-  expectThrowNaming<std::runtime_error>([&] { writeJson("/nonexistent/m.json", json); },
-                                        "/nonexistent/m.json");
+  expectThrowNaming<std::runtime_error>([&] { writeJson("/nonexistent/m.json", json); }, "/nonexistent/m.json");
 }
 
 TEST(JsonWriter, ReportsBecomeValidJson) {
   test::TestDirectory directory;
-  const PoseInterpolator truth({{0.0, Eigen::Isometry3d::Identity()},
-                                {100.0, Eigen::Isometry3d(Eigen::Translation3d(200, 0, 0))}});
+  const PoseInterpolator truth(
+      {{0.0, Eigen::Isometry3d::Identity()}, {100.0, Eigen::Isometry3d(Eigen::Translation3d(200, 0, 0))}});
   TrajectoryEvaluator evaluator([&truth](double t) { return truth(t); });
   for (int k = 0; k <= 1000; ++k) {
-    evaluator.addEstimate(0.1 * k,
-                          Eigen::Isometry3d(Eigen::Translation3d(2.0 * k * 0.1 * 1.01, 0, 0)));
+    evaluator.addEstimate(0.1 * k, Eigen::Isometry3d(Eigen::Translation3d(2.0 * k * 0.1 * 1.01, 0, 0)));
   }
   Completeness cmplt;
   cmplt.addScan(0.0, {{0, 0, 0}});
@@ -140,13 +135,13 @@ TEST(JsonWriter, ReportsBecomeValidJson) {
   json.set("trajectory", toJson(evaluator.report())).set("cmplt_estimate", toJson(cmplt.report()));
   const std::string path = directory.file("report.json");
   writeJson(path, json);
-  EXPECT_EQ(checkJsonWithPython(
-                path,
-                "t = d[\"trajectory\"]; assert t[\"paired\"] == 1001; "
-                "assert abs(t[\"rpe_10m\"][\"translation_percent\"][\"mean\"] - 1) < 1e-6; "
-                "assert t[\"rpe_100m\"][\"segment_length_m\"] == 100; "
-                "assert t[\"ate\"][\"aligned_m\"][\"rmse\"] >= 0; "
-                "assert d[\"cmplt_estimate\"][\"cmplt\"] is None"),
+  EXPECT_EQ(checkJsonWithPython(path,
+                                "t = d[\"trajectory\"]; assert t[\"paired\"] == 1001; "
+                                "assert abs(t[\"distance_m\"] - 200) < 1e-9; "
+                                "assert abs(t[\"rpe_10m\"][\"translation_percent\"][\"mean\"] - 1) < 1e-6; "
+                                "assert t[\"rpe_100m\"][\"segment_length_m\"] == 100; "
+                                "assert t[\"ate\"][\"aligned_m\"][\"rmse\"] >= 0; "
+                                "assert d[\"cmplt_estimate\"][\"cmplt\"] is None"),
             0)
       << contentOf(path);
 }
@@ -160,8 +155,7 @@ TEST(CsvWriter, WritesHeaderAndRows) {
   EXPECT_THROW(csv.addRow({1.0}), std::invalid_argument);
   csv.close();
   EXPECT_EQ(contentOf(path), "time,ate_m\n0.1,2\n1e+20,nan\n");
-  expectThrowNaming<std::runtime_error>([&] { CsvWriter("/nonexistent/s.csv", {"a"}); },
-                                        "/nonexistent/s.csv");
+  expectThrowNaming<std::runtime_error>([&] { CsvWriter("/nonexistent/s.csv", {"a"}); }, "/nonexistent/s.csv");
 }
 
 TEST(CsvWriter, SeriesFiles) {

@@ -65,8 +65,7 @@ TEST(Umeyama, RecoversKnownTransformFromNoisyPoints) {
   const std::vector<Eigen::Vector3d> source = randomPoints(2000, rng);
   const Eigen::Isometry3d T = knownTransform();
   std::vector<Eigen::Vector3d> target;
-  for (const auto& s : source)
-    target.push_back(T * s + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
+  for (const auto& s : source) target.push_back(T * s + Eigen::Vector3d(noise(rng), noise(rng), noise(rng)));
 
   const Eigen::Isometry3d A = umeyamaAlignment(source, target);
   EXPECT_LT(Eigen::AngleAxisd(A.linear().transpose() * T.linear()).angle(), 1e-3);
@@ -106,8 +105,7 @@ TEST(Umeyama, NeverReturnsAReflection) {
 TEST(Umeyama, DegenerateInputs) {
   EXPECT_THROW(umeyamaAlignment({Eigen::Vector3d::Zero()}, {}), std::invalid_argument);
   EXPECT_TRUE(umeyamaAlignment({}, {}).isApprox(Eigen::Isometry3d::Identity()));
-  const Eigen::Isometry3d one =
-      umeyamaAlignment({Eigen::Vector3d(1, 2, 3)}, {Eigen::Vector3d(2, 2, 2)});
+  const Eigen::Isometry3d one = umeyamaAlignment({Eigen::Vector3d(1, 2, 3)}, {Eigen::Vector3d(2, 2, 2)});
   EXPECT_LT((one * Eigen::Vector3d(1, 2, 3) - Eigen::Vector3d(2, 2, 2)).norm(), 1e-12);
 }
 
@@ -183,6 +181,25 @@ TEST(TrajectoryEvaluator, EstimatesOutsideGroundTruthAreUnpairedNotPairedWrongly
   EXPECT_NEAR(evaluator.pairedGroundTruth()[0].pose.translation().x(), 5.0, 1e-12);
 }
 
+TEST(TrajectoryEvaluator, DistanceIsTheGroundTruthPathOverTheEvaluatedSpanOnly) {
+  // Ground truth: 10 m east in 10 s, then 5 m north in 5 s, then 20 m east in 20 s (35 m in all).
+  const PoseInterpolator truth({{0.0, poseOf({0, 0, 0}, 0)},
+                                {10.0, poseOf({10, 0, 0}, 0)},
+                                {15.0, poseOf({10, 5, 0}, 0)},
+                                {35.0, poseOf({30, 5, 0}, 0)}});
+  TrajectoryEvaluator evaluator([&truth](double t) { return truth(t); });
+  // Estimates from 5 s to 20 s (the span evaluated) at 10 Hz, given out of order, far off the
+  // truth (the distance is the truth's, not the estimate's), plus two outside the ground truth.
+  for (int k = 200; k >= 50; --k) evaluator.addEstimate(0.1 * k, poseOf({0, 0, 0.01 * k}, 0));
+  EXPECT_FALSE(evaluator.addEstimate(-1.0, poseOf({0, 0, 0}, 0)));
+  EXPECT_FALSE(evaluator.addEstimate(40.0, poseOf({0, 0, 0}, 0)));
+  // Over 5..20 s the truth goes 5 m east (to the corner), 5 m north, 5 m east: 15 m. The corner
+  // at 10 s and at 15 s are estimate times, so the chords follow the path exactly.
+  EXPECT_NEAR(evaluator.report().distance, 15.0, 1e-9);
+  TrajectoryEvaluator nothing([&truth](double t) { return truth(t); });
+  EXPECT_EQ(nothing.report().distance, 0.0);
+}
+
 // ---------------------------------------------------------------- ATE
 
 TEST(AbsoluteTrajectoryError, ConstantOffsetIsTheOffsetUnalignedAndZeroAligned) {
@@ -237,8 +254,7 @@ TEST(RelativePoseError, PerfectEstimateHasZeroError) {
   RelativePoseError rpe;
   for (int k = 0; k < 600; ++k) {  // a 0.5 m-step curve with turning attitude, ~300 m
     const double a = 0.01 * k;
-    const Eigen::Isometry3d truth =
-        poseOf({50.0 * std::sin(a), 50.0 * (1 - std::cos(a)), 0.01 * k}, a);
+    const Eigen::Isometry3d truth = poseOf({50.0 * std::sin(a), 50.0 * (1 - std::cos(a)), 0.01 * k}, a);
     rpe.add(0.1 * k, truth, truth);
   }
   for (const double d : {10.0, 100.0}) {
@@ -262,8 +278,7 @@ TEST(RelativePoseError, ScaleDriftGivesItsPercentage) {
   const double scale_drift = 0.02;
   const Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
   for (int k = 300; k >= 0; --k) {  // added backwards: the report sorts by time
-    rpe.add(0.1 * k, poseOf((1.0 + scale_drift) * k * direction, 30 * kDegree),
-            poseOf(k * direction, 30 * kDegree));
+    rpe.add(0.1 * k, poseOf((1.0 + scale_drift) * k * direction, 30 * kDegree), poseOf(k * direction, 30 * kDegree));
   }
   const RpeReport ten = rpe.report(10.0);
   EXPECT_EQ(ten.translation.count, 291u);  // starts 0..290 reach 10 m

@@ -12,8 +12,8 @@
 namespace uampc::evaluator {
 
 JsonObject toJson(const ErrorStatistics& statistics);
-// Counts, "ate" (unaligned: the paper's ATE is ate.unaligned.rmse; aligned) and
-// "rpe_<d>m" per segment length (d printed without trailing zeros, e.g. rpe_10m).
+// Counts, "distance_m" (the ground truth's path length over the evaluated span), "ate" (unaligned: the paper's ATE is
+// ate.unaligned.rmse; aligned) and "rpe_<d>m" per segment length (d printed without trailing zeros, e.g. rpe_10m).
 JsonObject toJson(const TrajectoryReport& report);
 // "cmplt" (the mean over complete windows), counts; the per-window counts go to CSV.
 JsonObject toJson(const CompletenessReport& report);
@@ -21,7 +21,6 @@ JsonObject toJson(const CompletenessReport& report);
 // Columns time,ate_m,ate_aligned_m.
 void writeAteSeriesCsv(const std::string& path, const std::vector<AteSample>& series);
 // Columns window,start,end,voxels,scans,points,complete (complete is 0 or 1).
-void writeCompletenessWindowsCsv(const std::string& path,
-                                 const std::vector<CompletenessWindow>& windows);
+void writeCompletenessWindowsCsv(const std::string& path, const std::vector<CompletenessWindow>& windows);
 
 }  // namespace uampc::evaluator

@@ -30,12 +30,18 @@ struct TrajectoryReport {
   std::vector<RpeReport> rpe;  // one per configured segment length, in that order
   // Speed over 1 s baselines against the truth's; a runaway is an error above 1 m/s.
   SpeedErrorReport speed_error;
+  // m, the ground truth's path length over the evaluated span: ATE in proportion to how far the
+  // run went (runs of different scenes and lengths become comparable).
+  double distance = 0.0;
 };
+
+// Length of the polyline through the poses' positions in time order (any order given), m. At the
+// estimates' rate (10 Hz) the chords differ from the arc by far less than the ATE's precision.
+double pathLength(std::vector<TimedPose> poses);
 
 class TrajectoryEvaluator {
  public:
-  explicit TrajectoryEvaluator(GroundTruthLookup ground_truth,
-                               TrajectoryEvaluatorConfig config = {});
+  explicit TrajectoryEvaluator(GroundTruthLookup ground_truth, TrajectoryEvaluatorConfig config = {});
 
   // Returns true when the estimate was paired with ground truth.
   bool addEstimate(double time, const Eigen::Isometry3d& estimate);
