@@ -6,11 +6,12 @@
 //             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
 //             [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1]
 //             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
-//             [--measurement-variance M2]
+//             [--measurement-variance M2] [--profile rich|mixed|poor] [--open-fraction F]
 //
 // Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
 // generated around it (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD
-// scenes); for a procedural world its generated path at 1.5 m/s. Spins the motor at a constant
+// scenes, with --profile or --open-fraction as map_provider's density_profile and open_fraction);
+// for a procedural world its generated path at 1.5 m/s. Spins the motor at a constant
 // speed, casts Mid-360 frames at 10 Hz, registers them, and prints per frame the rotation and
 // position error against ground truth, the estimated and true yaw rate, and the LO's figures
 // (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
@@ -54,10 +55,14 @@ int main(int argc, char** argv) {
 
 int replay(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0) {
-    std::fprintf(stderr, "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor RAD_PER_S] "
-                         "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
-                         "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
-                         "[--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2]\n");
+    std::fprintf(
+        stderr,
+        "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor "
+        "RAD_PER_S] "
+        "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
+        "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+        "[--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] "
+        "[--profile rich|mixed|poor] [--open-fraction F]\n");
     return 2;
   }
   const std::string source = argv[1];
@@ -78,24 +83,46 @@ int replay(int argc, char** argv) {
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     const char* value = argv[i + 1];
-    if (flag == "--start") start = std::atof(value);
-    else if (flag == "--duration") duration = std::atof(value);
-    else if (flag == "--motor") motor_speed = std::atof(value);
-    else if (flag == "--seed") settings.seed = std::strtoul(value, nullptr, 10);
-    else if (flag == "--attitude") settings.attitude = value;
-    else if (flag == "--door-spacing") settings.corridor_door_spacing = std::atof(value);
-    else if (flag == "--every") every = std::atoi(value);
-    else if (flag == "--linear-noise") config.linear_process_noise = std::atof(value);
-    else if (flag == "--angular-noise") config.angular_process_noise = std::atof(value);
-    else if (flag == "--iterations") config.max_iterations = std::atoi(value);
-    else if (flag == "--scan-voxel") config.scan_voxel_size = std::atof(value);
-    else if (flag == "--map-voxel") config.map_voxel_size = std::atof(value);
-    else if (flag == "--imu") use_imu = std::atoi(value) != 0;
-    else if (flag == "--degeneracy-threshold") config.degeneracy_threshold = std::atof(value);
-    else if (flag == "--degeneracy-length") config.degeneracy_scales.length = std::atof(value);
-    else if (flag == "--measurement-variance") config.measurement_variance = std::atof(value);
-    else if (flag == "--degeneracy-period") config.degeneracy_scales.period = std::atof(value);
-    else if (flag == "--degeneracy-aware") config.degeneracy_aware = std::atoi(value) != 0;
+    if (flag == "--start")
+      start = std::atof(value);
+    else if (flag == "--duration")
+      duration = std::atof(value);
+    else if (flag == "--motor")
+      motor_speed = std::atof(value);
+    else if (flag == "--seed")
+      settings.seed = std::strtoul(value, nullptr, 10);
+    else if (flag == "--attitude")
+      settings.attitude = value;
+    else if (flag == "--door-spacing")
+      settings.corridor_door_spacing = std::atof(value);
+    else if (flag == "--profile")
+      settings.density_profile = value;
+    else if (flag == "--open-fraction")
+      settings.open_fraction = std::atof(value);
+    else if (flag == "--every")
+      every = std::atoi(value);
+    else if (flag == "--linear-noise")
+      config.linear_process_noise = std::atof(value);
+    else if (flag == "--angular-noise")
+      config.angular_process_noise = std::atof(value);
+    else if (flag == "--iterations")
+      config.max_iterations = std::atoi(value);
+    else if (flag == "--scan-voxel")
+      config.scan_voxel_size = std::atof(value);
+    else if (flag == "--map-voxel")
+      config.map_voxel_size = std::atof(value);
+    else if (flag == "--imu")
+      use_imu = std::atoi(value) != 0;
+    else if (flag == "--degeneracy-threshold")
+      config.degeneracy_threshold = std::atof(value);
+    else if (flag == "--degeneracy-length")
+      config.degeneracy_scales.length = std::atof(value);
+    else if (flag == "--measurement-variance")
+      config.measurement_variance = std::atof(value);
+    else if (flag == "--degeneracy-period")
+      config.degeneracy_scales.period = std::atof(value);
+    else if (flag == "--degeneracy-aware")
+      config.degeneracy_aware = std::atoi(value) != 0;
     else {
       std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
       return 2;
@@ -104,6 +131,7 @@ int replay(int argc, char** argv) {
 
   const world::World world = world::buildWorld(settings);
   const world::Trajectory& truth = world.trajectory;
+  std::printf("# world: %s, %zu triangles\n", world.description.c_str(), world.mesh.size());
   raycaster::RayCaster caster(world.mesh);
 
   const double frame = caster.frameDuration();
@@ -123,7 +151,9 @@ int replay(int argc, char** argv) {
   bool started = false;
   double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
-  std::printf("#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y z]  status\n");
+  std::printf(
+      "#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y "
+      "z]  status\n");
   std::uint64_t k = static_cast<std::uint64_t>(std::llround(start / frame));
   for (double t0 = k * frame; t0 + frame <= end; t0 = (++k) * frame) {
     const raycaster::Scan cast = caster.castFrame(k, t0, truth, motor);
@@ -153,7 +183,8 @@ int replay(int argc, char** argv) {
     const Eigen::Isometry3d T = truth.poseAt(r.time);
     const double rot_err = degrees(rotationAngle(T.linear().transpose() * r.T_WB.linear()));
     const double pos_err = (T.translation() - r.T_WB.translation()).norm();
-    const double w_est = degrees(Eigen::AngleAxisd(previous_estimate.linear().transpose() * r.T_WB.linear()).angle()) / frame;
+    const double w_est =
+        degrees(Eigen::AngleAxisd(previous_estimate.linear().transpose() * r.T_WB.linear()).angle()) / frame;
     const double w_true = degrees(Eigen::AngleAxisd(previous_truth.linear().transpose() * T.linear()).angle()) / frame;
     previous_estimate = r.T_WB;
     previous_truth = T;
@@ -165,22 +196,26 @@ int replay(int argc, char** argv) {
     worst_speed = std::max(worst_speed, v_err);
     if (std::getenv("LO_REPLAY_DEBUG") && r.time >= std::atof(std::getenv("LO_REPLAY_DEBUG"))) {
       const auto& e = r.degeneracy.eigenvalues;
-      std::printf("   v_est %.3f %.3f %.3f v_true %.3f %.3f %.3f std(v) %.3f %.3f\n", r.linear_velocity_W.x(), r.linear_velocity_W.y(),
-                  r.linear_velocity_W.z(), v_true.x(), v_true.y(), v_true.z(), std::sqrt(r.covariance(6, 6)), std::sqrt(r.covariance(7, 7)));
-      std::printf("   eig [%.1f %.1f %.1f %.1f %.1f %.1f] w_est %.4f %.4f %.4f std(wz) %.4f std(yaw) %.4f deg\n", e(0), e(1),
-                  e(2), e(3), e(4), e(5), r.angular_velocity_B.x(), r.angular_velocity_B.y(), r.angular_velocity_B.z(),
-                  std::sqrt(r.covariance(11, 11)), degrees(std::sqrt(r.covariance(2, 2))));
+      std::printf("   v_est %.3f %.3f %.3f v_true %.3f %.3f %.3f std(v) %.3f %.3f\n", r.linear_velocity_W.x(),
+                  r.linear_velocity_W.y(), r.linear_velocity_W.z(), v_true.x(), v_true.y(), v_true.z(),
+                  std::sqrt(r.covariance(6, 6)), std::sqrt(r.covariance(7, 7)));
+      std::printf("   eig [%.1f %.1f %.1f %.1f %.1f %.1f] w_est %.4f %.4f %.4f std(wz) %.4f std(yaw) %.4f deg\n", e(0),
+                  e(1), e(2), e(3), e(4), e(5), r.angular_velocity_B.x(), r.angular_velocity_B.y(),
+                  r.angular_velocity_B.z(), std::sqrt(r.covariance(11, 11)), degrees(std::sqrt(r.covariance(2, 2))));
     }
     if (k % static_cast<std::uint64_t>(every) == 0 || rot_err > 1.0) {
       const auto weakest = r.degeneracy.eigenvectors.col(0);
-      std::printf("%6.2f %7.2f %8.3f %6.1f %6.1f %6zu %5zu %8.1f %3d %6.2f %3d  [%5.2f %5.2f %5.2f %5.2f %5.2f %5.2f]  %s\n",
-                  r.time, rot_err, pos_err, w_est, w_true, r.points_used, r.correspondences, r.min_information_eigenvalue,
-                  r.iterations, v_err, r.degenerate_state_directions, weakest(0), weakest(1), weakest(2), weakest(3),
-                  weakest(4), weakest(5), lo::toString(r.status));
+      std::printf(
+          "%6.2f %7.2f %8.3f %6.1f %6.1f %6zu %5zu %8.1f %3d %6.2f %3d  [%5.2f %5.2f %5.2f %5.2f %5.2f %5.2f]  %s\n",
+          r.time, rot_err, pos_err, w_est, w_true, r.points_used, r.correspondences, r.min_information_eigenvalue,
+          r.iterations, v_err, r.degenerate_state_directions, weakest(0), weakest(1), weakest(2), weakest(3),
+          weakest(4), weakest(5), lo::toString(r.status));
     }
   }
-  std::printf("summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at %s\n",
-              source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
-              lost_at < 0 ? "never" : std::to_string(lost_at).c_str());
+  std::printf(
+      "summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at "
+      "%s\n",
+      source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
+      lost_at < 0 ? "never" : std::to_string(lost_at).c_str());
   return 0;
 }

@@ -8,6 +8,7 @@
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/world/density_profile.hpp"
 #include "uampc/world/point_sampling.hpp"
 #include "uampc/world/world_source.hpp"
 
@@ -43,12 +44,20 @@ class MapProvider : public Component {
     spec.param("path_speed", 1.5, "speed of generated paths, m/s").between(0.01, 50.0);
     spec.param("path_laps", 1, "laps of closed generated paths (campus)").between(1, 1000);
     spec.param("base_height", 1.0, "height of generated paths above the ground, m").between(0.0, 100.0);
-    spec.param("campus_poor_rows", 1, "world: campus: rows of blocks with poor geometry (0: all rich)")
-        .between(0, 3);
+    spec.param("campus_poor_rows", 1, "world: campus: rows of blocks with poor geometry (0: all rich)").between(0, 3);
     spec.param("corridor_door_spacing", 0.0,
                "world: corridor: a 1 m door recessed 0.3 m every this many metres, alternating sides (0: plain "
                "walls, nothing fixes the position along the axis between the end walls)")
         .between(0.0, 1000.0);
+    spec.param("density_profile", world::WorldSettings{}.density_profile.c_str(),
+               "world: around_trajectory: how built-up the path's stretches (30-90 m, seeded) are; open stretches "
+               "(lawn, car park, one long wall, a street of two) make up this share of the path: " +
+                   profileFractions() + " (chosen with constant motor speeds only, see README)")
+        .oneOf(profileNames());
+    spec.param("open_fraction", world::WorldSettings::kUseProfile,
+               "world: around_trajectory: share of path length that is open, 0 to 1, overriding density_profile "
+               "(-1: density_profile's)")
+        .between(-1.0, 1.0);
     spec.param("pose_rate", 200.0, "ground-truth pose rate, Hz").between(1.0, 10000.0);
     spec.param("map_point_spacing", 0.5, "voxel size of the published map sample, m").between(0.05, 10.0);
     spec.param("chunk_triangles", 10000, "triangles per world chunk (keeps samples under ~0.5 MB)")
@@ -69,6 +78,21 @@ class MapProvider : public Component {
   }
 
  private:
+  static std::vector<std::string> profileNames() {
+    std::vector<std::string> names;
+    for (const auto& p : world::kDensityProfiles) names.emplace_back(p.name);
+    return names;
+  }
+
+  // "rich 0, mixed 0.4, poor 0.7" from the profiles themselves, so the docs cannot drift from the code.
+  static std::string profileFractions() {
+    std::string text;
+    for (const auto& p : world::kDensityProfiles) {
+      text += (text.empty() ? "" : ", ") + std::string(p.name) + " " + formatNumber(p.open_fraction);
+    }
+    return text;
+  }
+
   static world::WorldSettings settingsFrom(const Context& ctx) {
     world::WorldSettings s;
     s.world = ctx.paramString("world");
@@ -86,6 +110,8 @@ class MapProvider : public Component {
     s.base_height = ctx.paramDouble("base_height");
     s.campus_poor_rows = static_cast<int>(ctx.paramInt("campus_poor_rows"));
     s.corridor_door_spacing = ctx.paramDouble("corridor_door_spacing");
+    s.density_profile = ctx.paramString("density_profile");
+    s.open_fraction = ctx.paramDouble("open_fraction");
     s.seed = ctx.seed();
     return s;
   }

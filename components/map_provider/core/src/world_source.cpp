@@ -1,5 +1,6 @@
 #include "uampc/world/world_source.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "uampc/world/generated_paths.hpp"
@@ -9,6 +10,12 @@
 namespace uampc::world {
 
 namespace {
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 Trajectory readFileTrajectory(const WorldSettings& s) {
   if (s.trajectory_file.empty()) throw std::runtime_error("trajectory: file needs trajectory_file");
@@ -23,8 +30,8 @@ Trajectory readFileTrajectory(const WorldSettings& s) {
       throw std::runtime_error("trajectory_start " + std::to_string(s.trajectory_start) + " s is beyond the end of " +
                                s.trajectory_file + " (" + std::to_string(t.duration()) + " s)");
     }
-    std::vector<TimedPose> kept{{0.0, t.poseAt(s.trajectory_start).translation(),
-                                        Eigen::Quaterniond(t.poseAt(s.trajectory_start).linear())}};
+    std::vector<TimedPose> kept{
+        {0.0, t.poseAt(s.trajectory_start).translation(), Eigen::Quaterniond(t.poseAt(s.trajectory_start).linear())}};
     for (const auto& p : t.poses()) {
       if (p.time > s.trajectory_start) kept.push_back({p.time - s.trajectory_start, p.position, p.orientation});
     }
@@ -32,6 +39,26 @@ Trajectory readFileTrajectory(const WorldSettings& s) {
   }
   if (s.smoothing > 0) t = movingAverage(t, s.smoothing);
   return Trajectory(t.poses(), interpolationFromName(s.interpolation));
+}
+
+// The around-trajectory world's density profile: the named profile's open fraction, or the
+// explicit one; either refused with a message naming the parameter.
+DensityProfileConfig densityProfileOf(const WorldSettings& s) {
+  DensityProfileConfig profile;
+  try {
+    profile.open_fraction = openFractionOfProfile(s.density_profile);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(std::string("density_profile: ") + e.what());
+  }
+  if (s.open_fraction != WorldSettings::kUseProfile) {
+    if (!(s.open_fraction >= 0.0 && s.open_fraction <= 1.0)) {
+      throw std::runtime_error("open_fraction must be between 0 and 1 (share of path length that is open), or " +
+                               shortNumber(WorldSettings::kUseProfile) + " for density_profile's, got " +
+                               shortNumber(s.open_fraction));
+    }
+    profile.open_fraction = s.open_fraction;
+  }
+  return profile;
 }
 
 Trajectory generatedPath(const std::vector<Eigen::Vector3d>& waypoints, bool closed, const WorldSettings& s) {
@@ -56,8 +83,10 @@ World buildWorld(const WorldSettings& s) {
   } else if (s.world == "corridor") {
     CorridorConfig config;
     if (s.corridor_door_spacing != 0.0 && !(s.corridor_door_spacing >= 2.0)) {
-      throw std::runtime_error("corridor_door_spacing must be 0 (plain walls) or at least 2 m (1 m doors with wall "
-                               "between them), got " + std::to_string(s.corridor_door_spacing));
+      throw std::runtime_error(
+          "corridor_door_spacing must be 0 (plain walls) or at least 2 m (1 m doors with wall "
+          "between them), got " +
+          std::to_string(s.corridor_door_spacing));
     }
     config.door_spacing = s.corridor_door_spacing;
     w.mesh = makeCorridor(config);
@@ -70,7 +99,9 @@ World buildWorld(const WorldSettings& s) {
     if (!from_file) throw std::runtime_error("world: around_trajectory needs trajectory: file and a trajectory_file");
     std::vector<Eigen::Vector3d> path;
     for (const auto& p : w.trajectory.poses()) path.push_back(p.position);
-    w.mesh = makeAroundTrajectory(path, AroundTrajectoryConfig{}, s.seed);
+    AroundTrajectoryConfig config;
+    config.density = densityProfileOf(s);
+    w.mesh = makeAroundTrajectory(path, config, s.seed);
   } else if (s.world == "file") {
     if (s.map_file.empty()) throw std::runtime_error("world: file needs map_file (a PCD or PLY map)");
     if (!from_file) throw std::runtime_error("world: file needs trajectory: file and a trajectory_file");
@@ -85,7 +116,11 @@ World buildWorld(const WorldSettings& s) {
   } else {
     throw std::runtime_error("unknown world '" + s.world + "'");
   }
-  w.description = s.world + (s.world == "file" ? " " + s.map_file : " seed " + std::to_string(s.seed)) +
+  const std::string profile = s.world != "around_trajectory" ? ""
+                              : s.open_fraction == WorldSettings::kUseProfile
+                                  ? ", density profile " + s.density_profile
+                                  : ", open fraction " + shortNumber(s.open_fraction);
+  w.description = s.world + (s.world == "file" ? " " + s.map_file : " seed " + std::to_string(s.seed)) + profile +
                   ", trajectory " + (from_file ? s.trajectory_file : "generated");
   return w;
 }

@@ -21,8 +21,7 @@ bool sameMesh(const TriangleMesh& a, const TriangleMesh& b) {
 }
 
 // Horizontal distance from p to the polyline through path (closed if asked).
-double distanceToPath(const Eigen::Vector3f& p, const std::vector<Eigen::Vector3d>& path,
-                      bool closed) {
+double distanceToPath(const Eigen::Vector3f& p, const std::vector<Eigen::Vector3d>& path, bool closed) {
   double best = 1e30;
   const std::size_t n = path.size();
   for (std::size_t i = 0; i + (closed ? 0 : 1) < n; ++i) {
@@ -53,8 +52,7 @@ TEST(SeededRandom, SameSeedSameNumbersAndInRange) {
 
 TEST(Campus, DeterministicFromSeedAndRichInGeometry) {
   CampusConfig config;
-  const TriangleMesh a = makeCampus(config, 7), b = makeCampus(config, 7),
-                     c = makeCampus(config, 8);
+  const TriangleMesh a = makeCampus(config, 7), b = makeCampus(config, 7), c = makeCampus(config, 8);
   EXPECT_TRUE(sameMesh(a, b));
   EXPECT_FALSE(sameMesh(a, c));
   EXPECT_GT(a.size(), 5000u);
@@ -69,8 +67,7 @@ TEST(Campus, DeterministicFromSeedAndRichInGeometry) {
 
 // Smallest horizontal distance from the trajectory to any point above the ground (z > 1 mm), via
 // a grid of the points.
-double clearanceOf(const Trajectory& t, const std::vector<Eigen::Vector3f>& points, double ground_z,
-                   double reach) {
+double clearanceOf(const Trajectory& t, const std::vector<Eigen::Vector3f>& points, double ground_z, double reach) {
   std::map<std::pair<int, int>, std::vector<Eigen::Vector2d>> grid;
   for (const auto& p : points) {
     if (std::abs(p.z() - ground_z) < 1e-3) continue;
@@ -86,8 +83,7 @@ double clearanceOf(const Trajectory& t, const std::vector<Eigen::Vector3f>& poin
       for (int j = cy - r; j <= cy + r; ++j) {
         auto it = grid.find({i, j});
         if (it == grid.end()) continue;
-        for (const auto& q : it->second)
-          best = std::min(best, (q - pose.position.head<2>()).norm());
+        for (const auto& q : it->second) best = std::min(best, (q - pose.position.head<2>()).norm());
       }
     }
   }
@@ -145,8 +141,7 @@ TEST(WorldSource, RejectsDoorsCloserThanTheirWidth) {
 TEST(Multilevel, StoreysAndAPathThroughThem) {
   MultilevelConfig config;
   const TriangleMesh mesh = makeMultilevel(config);
-  EXPECT_NEAR(mesh.bounds().max().z(), config.floors * config.floor_height + config.slab_thickness,
-              1e-3);
+  EXPECT_NEAR(mesh.bounds().max().z(), config.floors * config.floor_height + config.slab_thickness, 1e-3);
   const auto waypoints = multilevelWaypoints(config, 1.0);
   EXPECT_NEAR(waypoints.back().z(), (config.floors - 1) * config.floor_height + 1.0, 1e-9);
   const Trajectory path = pathThroughWaypoints(waypoints, GeneratedPathConfig{});
@@ -199,6 +194,177 @@ TEST(AroundTrajectory, AroundARealMcdTrajectory) {
   EXPECT_GT(clearanceOf(t, high, -1e9, 6.0), config.clearance - 0.05);
 }
 
+// A checksum of a mesh: vertices rounded to the millimetre (robust to the last bits of libm),
+// and the triangles' indices (FNV-1a over both).
+std::uint64_t meshChecksum(const TriangleMesh& mesh) {
+  std::uint64_t hash = 1469598103934665603ull;
+  auto mix = [&hash](std::int64_t value) {
+    for (int byte = 0; byte < 8; ++byte) {
+      hash ^= static_cast<std::uint64_t>(value >> (8 * byte)) & 0xffu;
+      hash *= 1099511628211ull;
+    }
+  };
+  for (const auto& v : mesh.vertices)
+    for (int d = 0; d < 3; ++d) mix(std::llround(v[d] * 1000.0));
+  for (const auto& t : mesh.triangles)
+    for (int d = 0; d < 3; ++d) mix(t[d]);
+  return hash;
+}
+
+std::vector<Eigen::Vector3d> sinePath() {
+  std::vector<Eigen::Vector3d> path;
+  for (int i = 0; i <= 200; ++i) path.emplace_back(i, 20.0 * std::sin(i / 30.0), 5.0);
+  return path;
+}
+
+std::vector<Eigen::Vector3d> mcdPath(const std::string& name) {
+  const char* source = std::getenv("UAMPC_SOURCE_DIR");
+  const std::string file = std::string(source ? source : ".") + "/data/mcd/" + name;
+  const Trajectory t = readMcdCsv(file, TrajectoryReadOptions::forMcd());
+  std::vector<Eigen::Vector3d> path;
+  for (const auto& p : t.poses()) path.push_back(p.position);
+  return path;
+}
+
+AroundTrajectoryConfig withOpenFraction(double open_fraction) {
+  AroundTrajectoryConfig config;
+  config.density.open_fraction = open_fraction;
+  return config;
+}
+
+TEST(DensityProfile, SameSeedSameWorld) {
+  for (const double open : {0.4, 1.0}) {
+    const TriangleMesh a = makeAroundTrajectory(sinePath(), withOpenFraction(open), 5);
+    EXPECT_TRUE(sameMesh(a, makeAroundTrajectory(sinePath(), withOpenFraction(open), 5))) << open;
+    EXPECT_FALSE(sameMesh(a, makeAroundTrajectory(sinePath(), withOpenFraction(open), 6))) << open;
+  }
+}
+
+// The figures were taken from the world as generated before density profiles existed (commit
+// 4483d18): the rich profile must leave the existing scenes exactly as they were.
+TEST(DensityProfile, RichIsTheWorldBeforeProfiles) {
+  EXPECT_EQ(openFractionOfProfile("rich"), 0.0);
+  const TriangleMesh sine = makeAroundTrajectory(sinePath(), withOpenFraction(0.0), 11);
+  EXPECT_EQ(sine.size(), 3668u);
+  EXPECT_EQ(meshChecksum(sine), 12293607041605505244ull);
+  const TriangleMesh ntu = makeAroundTrajectory(mcdPath("ntu_day01.csv"), withOpenFraction(0.0), 1);
+  EXPECT_EQ(ntu.size(), 27542u);
+  EXPECT_EQ(meshChecksum(ntu), 4424553685897329197ull);
+  // And the checksum tells worlds apart: a mixed one is another world.
+  const TriangleMesh mixed =
+      makeAroundTrajectory(mcdPath("ntu_day01.csv"), withOpenFraction(openFractionOfProfile("mixed")), 1);
+  EXPECT_NE(meshChecksum(mixed), meshChecksum(ntu));
+}
+
+// Outward normal of triangle t, or zero for a degenerate one.
+Eigen::Vector3f normalOf(const TriangleMesh& mesh, const Eigen::Vector3i& t) {
+  const Eigen::Vector3f n =
+      (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+  return n.norm() > 1e-9f ? Eigen::Vector3f(n.normalized()) : Eigen::Vector3f::Zero();
+}
+
+// Along a straight path on x, every open stretch's furniture (long walls following the path, cars
+// parked along or across it) and the flat ground have faces facing along x, y or z only; the
+// buildings (random yaw) and trees (cylinders and cones) of a built-up stretch do not.
+TEST(DensityProfile, OpenStretchesHoldOnlyTheirFurniture) {
+  std::vector<Eigen::Vector3d> path;
+  for (int i = 0; i <= 1200; ++i) path.emplace_back(i, 0.0, 5.0);  // ground at z = 4
+  std::map<StretchKind, int> kinds;
+  for (const auto& s : drawStretches(1200.0, withOpenFraction(1.0).density, 3)) ++kinds[s.kind];
+  ASSERT_EQ(kinds.count(StretchKind::kBuiltUp), 0u);
+  ASSERT_EQ(kinds.size(), 4u) << "every open kind should appear along 1200 m";
+
+  auto tilted = [](const TriangleMesh& mesh) {
+    std::size_t count = 0;
+    for (const auto& t : mesh.triangles) {
+      const Eigen::Vector3f n = normalOf(mesh, t).cwiseAbs();
+      count += n.maxCoeff() < 0.9999f;
+    }
+    return count;
+  };
+  const TriangleMesh rich = makeAroundTrajectory(path, withOpenFraction(0.0), 3);
+  EXPECT_GT(tilted(rich), 1000u);  // buildings and trees
+
+  const AroundTrajectoryConfig config = withOpenFraction(1.0);
+  const TriangleMesh open = makeAroundTrajectory(path, config, 3);
+  EXPECT_EQ(tilted(open), 0u);
+  std::size_t car_tops = 0, wall_faces = 0;
+  for (const auto& t : open.triangles) {
+    const Eigen::Vector3f n = normalOf(open, t);
+    const float top = std::max({open.vertices[t[0]].z(), open.vertices[t[1]].z(), open.vertices[t[2]].z()});
+    car_tops += std::abs(n.z()) > 0.9999f && std::abs(top - 5.5f) < 1e-3f;  // 1.5 m above the ground
+    wall_faces += std::abs(n.y()) > 0.9999f && top > 6.0f;                  // taller than any car, facing the path
+  }
+  EXPECT_GT(car_tops, 0u);
+  EXPECT_GT(wall_faces, 0u);
+  for (const auto& p : sampleSurface(open, 1.0, 3)) {
+    if (std::abs(p.z() - 4.0f) < 1e-3f) continue;  // ground
+    ASSERT_GT(std::abs(p.y()), config.clearance - 0.05) << p.transpose();
+  }
+}
+
+TEST(DensityProfile, OpenShareOfALongPathIsTheOpenFraction) {
+  const double length = 60000.0;  // about a thousand stretches
+  for (const double open : {0.0, 0.25, openFractionOfProfile("mixed"), openFractionOfProfile("poor"), 1.0}) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      DensityProfileConfig config;
+      config.open_fraction = open;
+      const auto stretches = drawStretches(length, config, seed);
+      double open_length = 0.0, end = 0.0;
+      for (std::size_t i = 0; i < stretches.size(); ++i) {
+        const PathStretch& s = stretches[i];
+        ASSERT_EQ(s.begin, end);
+        ASSERT_LT(s.length(), config.max_stretch);
+        if (i + 1 < stretches.size()) {
+          ASSERT_GE(s.length(), config.min_stretch);  // only the last is cut short
+        }
+        end = s.end;
+        if (s.open()) open_length += s.length();
+      }
+      EXPECT_EQ(end, length);
+      EXPECT_NEAR(open_length / length, open, 0.05) << "open_fraction " << open << " seed " << seed;
+    }
+  }
+}
+
+template <typename Error, typename F>
+std::string errorOf(F f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(nothing thrown)";
+}
+
+TEST(DensityProfile, RefusesBadProfileNamesAndFractions) {
+  EXPECT_NE(
+      errorOf<std::invalid_argument>([] { openFractionOfProfile("dense"); }).find("'dense' (known: rich, mixed, poor)"),
+      std::string::npos);
+  EXPECT_NE(errorOf<std::invalid_argument>([] {
+              makeAroundTrajectory(sinePath(), withOpenFraction(1.2), 1);
+            }).find("open_fraction must be between 0 and 1"),
+            std::string::npos);
+  WorldSettings settings;
+  settings.world = "around_trajectory";
+  settings.trajectory = "file";
+  const char* source = std::getenv("UAMPC_SOURCE_DIR");
+  settings.trajectory_file = std::string(source ? source : ".") + "/data/mcd/tuhh_day03.csv";
+  settings.density_profile = "dense";
+  const std::string bad_name = errorOf<std::runtime_error>([&] { buildWorld(settings); });
+  EXPECT_NE(bad_name.find("density_profile: unknown density profile 'dense'"), std::string::npos) << bad_name;
+  settings.density_profile = "poor";
+  for (const double bad : {-0.5, 1.5}) {
+    settings.open_fraction = bad;
+    const std::string bad_fraction = errorOf<std::runtime_error>([&] { buildWorld(settings); });
+    EXPECT_NE(bad_fraction.find("open_fraction must be between 0 and 1"), std::string::npos) << bad_fraction;
+  }
+  settings.open_fraction = 0.5;
+  EXPECT_NE(buildWorld(settings).description.find("open fraction 0.5"), std::string::npos);
+  settings.open_fraction = WorldSettings::kUseProfile;
+  EXPECT_NE(buildWorld(settings).description.find("density profile poor"), std::string::npos);
+}
+
 TEST(SurfaceSampling, DensityDeterminismAndPointsOnTheSurface) {
   TriangleMesh box;
   box.addBox({0, 0, 0}, {10, 20, 5});
@@ -214,8 +380,7 @@ TEST(SurfaceSampling, DensityDeterminismAndPointsOnTheSurface) {
 }
 
 TEST(VoxelDownsample, CentroidPerVoxelInFirstSeenOrder) {
-  const std::vector<Eigen::Vector3f> points = {
-      {0.1f, 0.1f, 0.1f}, {5.1f, 0, 0}, {0.3f, 0.3f, 0.3f}, {-0.1f, 0, 0}};
+  const std::vector<Eigen::Vector3f> points = {{0.1f, 0.1f, 0.1f}, {5.1f, 0, 0}, {0.3f, 0.3f, 0.3f}, {-0.1f, 0, 0}};
   const auto out = voxelDownsample(points, 1.0);
   ASSERT_EQ(out.size(), 3u);
   EXPECT_TRUE(out[0].isApprox(Eigen::Vector3f(0.2f, 0.2f, 0.2f)));

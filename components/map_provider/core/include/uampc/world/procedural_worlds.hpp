@@ -9,12 +9,15 @@
 //   corridor:          a long plain corridor (300 m by default), the classic degenerate case.
 //   multilevel:        a building of several storeys joined by a stairwell.
 //   around-trajectory: buildings, trees and walls scattered around a given path, kept off it by a
-//                      clearance, on a ground that follows the path's height.
+//                      clearance, on a ground that follows the path's height; with a density
+//                      profile (density_profile.hpp), stretches of the path are open instead: a
+//                      lawn, a car park, one long plain wall or a street between two of them.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "uampc/world/density_profile.hpp"
 #include "uampc/world/triangle_mesh.hpp"
 
 namespace uampc::world {
@@ -56,22 +59,29 @@ struct MultilevelConfig {
 };
 
 struct AroundTrajectoryConfig {
-  double clearance = 4.0;    // m, nothing closer than this to the path (horizontally)
-  double margin = 40.0;      // m of ground beyond the path's bounding box
-  double band = 30.0;        // m: objects stand within this of the path (beyond the clearance)
-  double base_height = 1.0;  // m, height of the path above the ground
+  double clearance = 4.0;              // m, nothing closer than this to the path (horizontally)
+  double margin = 40.0;                // m of ground beyond the path's bounding box
+  double band = 30.0;                  // m: objects stand within this of the path (beyond the clearance)
+  double base_height = 1.0;            // m, height of the path above the ground
   double buildings_per_hectare = 3.0;  // per hectare of the band along the path
   double trees_per_hectare = 12.0;
   double walls_per_hectare = 2.0;
   double ground_cell = 5.0;  // m, grid of the ground height field
   int segments = 8;
+  // Which stretches of the path are built-up (the objects above) and which open. An object
+  // belongs to the stretch of its nearest path sample; objects of open stretches are not built.
+  DensityProfileConfig density;
+  // Open stretches' furniture, all kept off the path by the clearance like everything else.
+  double car_spacing = 15.0;   // m of car-park stretch per parked car (a 4.5 x 1.8 x 1.5 m box)
+  double car_reach = 12.0;     // m beyond the clearance within which cars park
+  double wall_segment = 10.0;  // m, long walls are straight pieces this long following the path
 };
 
 TriangleMesh makeCampus(const CampusConfig& config, std::uint64_t seed);
 TriangleMesh makeCorridor(const CorridorConfig& config);
 TriangleMesh makeMultilevel(const MultilevelConfig& config);
-TriangleMesh makeAroundTrajectory(const std::vector<Eigen::Vector3d>& path,
-                                  const AroundTrajectoryConfig& config, std::uint64_t seed);
+TriangleMesh makeAroundTrajectory(const std::vector<Eigen::Vector3d>& path, const AroundTrajectoryConfig& config,
+                                  std::uint64_t seed);
 
 // Street centre lines of the campus: the ring around the centre block, counter-clockwise,
 // at height base_height, as closed waypoints (last != first). Use with pathThroughWaypoints.
@@ -81,7 +91,6 @@ std::vector<Eigen::Vector3d> campusLoopWaypoints(const CampusConfig& config, dou
 std::vector<Eigen::Vector3d> corridorWaypoints(const CorridorConfig& config, double base_height);
 
 // Through every floor: a tour around each storey, then up the switch-back stairs to the next.
-std::vector<Eigen::Vector3d> multilevelWaypoints(const MultilevelConfig& config,
-                                                 double base_height);
+std::vector<Eigen::Vector3d> multilevelWaypoints(const MultilevelConfig& config, double base_height);
 
 }  // namespace uampc::world

@@ -24,16 +24,21 @@ struct WorldSettings {
   double trajectory_start = 0.0;         // s skipped at the start of a file trajectory
   double path_speed = 1.5;               // m/s, generated paths
   int path_laps = 1;
-  double base_height = 1.0;              // m above the ground, generated paths
-  int campus_poor_rows = 1;              // campus: rows of blocks with poor geometry (0: all rich)
-  double corridor_door_spacing = 0.0;    // corridor: m between door recesses (0: plain walls)
+  double base_height = 1.0;            // m above the ground, generated paths
+  int campus_poor_rows = 1;            // campus: rows of blocks with poor geometry (0: all rich)
+  double corridor_door_spacing = 0.0;  // corridor: m between door recesses (0: plain walls)
+  // around_trajectory: how built-up the path's stretches are (density_profile.hpp): a named profile
+  // (rich | mixed | poor), or open_fraction in [0, 1] overriding it (kUseProfile: the profile's).
+  std::string density_profile = "rich";
+  double open_fraction = kUseProfile;
+  static constexpr double kUseProfile = -1.0;
   std::uint64_t seed = 1;
 };
 
 struct World {
   TriangleMesh mesh;
   std::vector<Eigen::Vector3f> points;  // point maps only
-  Trajectory trajectory;         // starts at time 0 (sim time)
+  Trajectory trajectory;                // starts at time 0 (sim time)
   std::string description;
   std::vector<std::string> warnings;
 };
