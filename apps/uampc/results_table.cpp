@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "experiment_statistics.hpp"
+
 namespace uampc::app {
 
 namespace {
@@ -152,7 +154,7 @@ std::string renderMarkdown(const Experiment& experiment, const ResultsTable& t, 
         (line.empty() ? "No comparison: the experiment lacks controller '" + t.subject + "' or '" + t.baseline +
                             "' (set compare: {subject, baseline})."
                       : line) +
-        "\n\n" + lossesOfTrack(t) +
+        "\n\n" + lossesOfTrack(t) + "\n" + statisticsMarkdown(computeStatistics(experiment, results)) +
         "\n## Runs\n\n| scene | controller | seed | status | ATE m | aligned ATE m | CMPLT | CMPLT (ground truth) "
         "| mean speed rad/s | lost track at s | sim s | wall s | real-time factor | directory |\n"
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -163,8 +165,8 @@ std::string renderMarkdown(const Experiment& experiment, const ResultsTable& t, 
           num(r.metrics.ate_aligned_m, 3) + " | " + num(r.metrics.cmplt, 0) + " | " +
           num(r.metrics.cmplt_ground_truth, 0) + " | " + num(r.metrics.mean_speed, 2) + " | " +
           (std::isfinite(r.metrics.runaway_time_s) ? fixed(r.metrics.runaway_time_s, 1) : std::string("never")) +
-          " | " + num(r.metrics.sim_time_s, 1) + " | " + num(r.wall_time_s, 1) + " | " + num(r.real_time_factor, 2) + " | " +
-          r.directory + " |\n";
+          " | " + num(r.metrics.sim_time_s, 1) + " | " + num(r.wall_time_s, 1) + " | " + num(r.real_time_factor, 2) +
+          " | " + r.directory + " |\n";
   }
   return md;
 }

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "experiment_statistics.hpp"
 #include "uampc/evaluator/json_writer.hpp"
 
 namespace fs = std::filesystem;
@@ -72,6 +73,7 @@ std::optional<RunMetrics> readRunMetrics(const std::string& run_directory) {
   m.cmplt = number(root, {"cmplt", "cmplt"});
   m.cmplt_ground_truth = number(root, {"cmplt_ground_truth", "cmplt"});
   m.mean_speed = number(root, {"motor", "mean_speed"});
+  m.distance_m = number(root, {"trajectory", "distance_m"});  // NaN from evaluators before it was added
   m.runaway_time_s = number(root, {"trajectory", "speed_error", "first_runaway_time"});
   return m;
 }
@@ -125,6 +127,7 @@ void writeResultsJson(const std::string& path, const Experiment& experiment, con
   head.set("seeds", seeds);
   if (experiment.duration_s) head.set("duration_s", *experiment.duration_s);
   head.set("subject", experiment.subject).set("baseline", experiment.baseline);
+  head.set("statistics", statisticsJson(computeStatistics(experiment, results)));
   std::string runs;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const RunResult& r = results[i];
@@ -143,6 +146,7 @@ void writeResultsJson(const std::string& path, const Experiment& experiment, con
         .set("rpe_10m_m", r.metrics.rpe_10m_m)
         .set("rpe_100m_m", r.metrics.rpe_100m_m)
         .set("mean_speed", r.metrics.mean_speed)
+        .set("distance_m", r.metrics.distance_m)
         .set("lost_track_at_s", r.metrics.runaway_time_s)
         .set("sim_time_s", r.metrics.sim_time_s)
         .set("wall_time_s", r.wall_time_s)

@@ -25,6 +25,7 @@ struct RunMetrics {
   double rpe_100m_m = kMissing;
   double sim_time_s = kMissing;
   double mean_speed = kMissing;  // rad/s
+  double distance_m = kMissing;  // the ground truth's path length over the evaluated span
   // Loss of track judged against ground truth: when the estimated speed first strayed more than
   // 1 m/s from the true one (over 1 s); NaN when it never did.
   double runaway_time_s = kMissing;
@@ -68,7 +69,7 @@ struct RunResult {
 // Fills metrics, wall time and real-time factor of a finished run from its directory.
 void readRunOutputs(const std::string& run_directory, RunResult& result);
 
-// results.json: the experiment and every run.
+// results.json: the experiment, its statistics (experiment_statistics.hpp) and every run.
 void writeResultsJson(const std::string& path, const Experiment& experiment, const std::vector<RunResult>& results);
 
 }  // namespace uampc::app

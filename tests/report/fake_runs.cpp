@@ -21,8 +21,8 @@ namespace {
 
 struct FakeFigures {
   double ate;
-  double cmplt;                // NaN: written as null
-  double runaway_time = NAN;   // s, when the run lost track; NaN: it never did
+  double cmplt;               // NaN: written as null
+  double runaway_time = NAN;  // s, when the run lost track; NaN: it never did
 };
 
 // [scene][controller][seed]
@@ -35,6 +35,9 @@ const std::map<std::tuple<std::string, std::string, int>, FakeFigures> kFigures{
     {{"beta", "zero", 1}, {29.5, 20}},
 };
 
+// The ground truth's path length (trajectory.distance_m), the same for every run of a scene.
+constexpr double kAlphaDistance = 50.0, kBetaDistance = 200.0;
+
 std::string jsonNumber(double v) {
   std::ostringstream s;
   if (std::isfinite(v))
@@ -44,16 +47,16 @@ std::string jsonNumber(double v) {
   return s.str();
 }
 
-void writeRun(const fs::path& dir, const FakeFigures& f, bool ua_mpc) {
+void writeRun(const fs::path& dir, const FakeFigures& f, double distance, bool ua_mpc) {
   writeText((dir / "metrics.json").string(),
-            "{\n  \"sim_time\": 10,\n  \"trajectory\": {\"ate\": {\"unaligned_m\": {\"rmse\": " + jsonNumber(f.ate) +
+            "{\n  \"sim_time\": 10,\n  \"trajectory\": {\"distance_m\": " + jsonNumber(distance) +
+                ", \"ate\": {\"unaligned_m\": {\"rmse\": " + jsonNumber(f.ate) +
                 "}, \"aligned_m\": {\"rmse\": " + jsonNumber(f.ate / 2) +
                 "}},\n    \"rpe_10m\": {\"translation_m\": {\"rmse\": 0.5}}, \"rpe_100m\": {\"translation_m\": "
                 "{\"rmse\": null}}, \"speed_error\": {\"max_m_s\": 0.5" +
                 (std::isfinite(f.runaway_time) ? ", \"first_runaway_time\": " + jsonNumber(f.runaway_time) : "") +
-                "}},\n  \"cmplt\": {\"cmplt\": " +
-                jsonNumber(f.cmplt) + "},\n  \"cmplt_ground_truth\": {\"cmplt\": " + jsonNumber(f.cmplt * 1.1) +
-                "},\n  \"motor\": {\"mean_speed\": 3.6}\n}\n");
+                "}},\n  \"cmplt\": {\"cmplt\": " + jsonNumber(f.cmplt) + "},\n  \"cmplt_ground_truth\": {\"cmplt\": " +
+                jsonNumber(f.cmplt * 1.1) + "},\n  \"motor\": {\"mean_speed\": 3.6}\n}\n");
   std::string ate = "time,ate_m,ate_aligned_m\n", motor = "time,theta,omega,command\n";
   std::string estimate, truth;
   for (int i = 0; i <= 100; ++i) {
@@ -126,7 +129,7 @@ FakeExperiment makeFakeExperiment(const std::string& directory) {
     const fs::path dir = fs::path(fake.directory) / run.directory;
     const auto figures = kFigures.find({r.scene, r.controller, static_cast<int>(r.seed)});
     if (figures != kFigures.end()) {
-      writeRun(dir, figures->second, r.controller == "ua_mpc");
+      writeRun(dir, figures->second, r.scene == "alpha" ? kAlphaDistance : kBetaDistance, r.controller == "ua_mpc");
       writeText((dir / "done").string(), "wall_time_s=4.5\n");
     } else {
       writeText((dir / "run.log").string(), "something broke\n");

@@ -1,0 +1,215 @@
+#include "experiment_statistics.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <tuple>
+
+#include "uampc/evaluator/json_writer.hpp"
+
+namespace uampc::app {
+
+namespace {
+
+bool lostTrack(const RunResult& r) { return std::isfinite(r.metrics.runaway_time_s); }
+
+CellStatistics cellOf(const std::vector<const RunResult*>& runs) {
+  CellStatistics cell;
+  std::vector<double> ates, percents, cmplts;
+  for (const RunResult* r : runs) {
+    ++cell.runs;
+    ++(lostTrack(*r) ? cell.lost : cell.held);
+    if (std::isfinite(r->metrics.ate_m)) {
+      ates.push_back(r->metrics.ate_m);
+      if (r->metrics.distance_m > 0) percents.push_back(100.0 * r->metrics.ate_m / r->metrics.distance_m);
+    }
+    if (std::isfinite(r->metrics.cmplt)) cmplts.push_back(r->metrics.cmplt);
+  }
+  cell.median_ate_m = median(ates);
+  double sum = 0.0;
+  for (double a : ates) sum += a;
+  cell.mean_ate_m = ates.empty() ? kMissing : sum / ates.size();
+  cell.median_ate_percent = median(percents);
+  cell.median_cmplt = median(cmplts);
+  return cell;
+}
+
+RunPair pairOf(const RunResult& subject, const RunResult& baseline) {
+  return {subject.metrics.ate_m,  baseline.metrics.ate_m, subject.metrics.cmplt,
+          baseline.metrics.cmplt, lostTrack(subject),     lostTrack(baseline)};
+}
+
+std::string fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
+  return buffer;
+}
+
+// p with three significant digits (0.0625, 0.00012), since its size matters more than its decimals.
+std::string pText(double p) {
+  if (!std::isfinite(p)) return "n/a";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.3g", p);
+  return buffer;
+}
+
+std::string testText(const WilcoxonResult& w) {
+  if (w.n == 0) return "no non-zero difference";
+  std::string text = std::string(w.exact ? "exact" : "normal approx.") + ", n=" + std::to_string(w.n);
+  if (w.zeros_dropped) text += " (" + std::to_string(w.zeros_dropped) + " zero difference(s) dropped)";
+  return text;
+}
+
+std::string comparisonRow(const std::string& controller, const std::string& scene, const PairedComparison& c) {
+  const std::string lower =
+      c.pairs ? std::to_string(static_cast<int>(std::lround(c.fraction_subject_lower * c.pairs))) + "/" +
+                    std::to_string(c.pairs) + " (" + fixed(100.0 * c.fraction_subject_lower, 0) + "%)"
+              : "n/a";
+  return "| " + controller + " | " + scene + " | " + std::to_string(c.pairs) + " | " + fixed(c.median_ate_ratio, 2) +
+         " | " + fixed(c.summed_ate_ratio, 2) + " | " + lower + " | " + std::to_string(c.subject_lost) + " | " +
+         std::to_string(c.baseline_lost) + " | " + fixed(c.median_cmplt_ratio, 2) + " | " + pText(c.wilcoxon.p_value) +
+         " | " + testText(c.wilcoxon) + " |\n";
+}
+
+evaluator::JsonObject cellJson(const CellStatistics& c) {
+  evaluator::JsonObject json;
+  json.set("runs", c.runs)
+      .set("held", c.held)
+      .set("lost", c.lost)
+      .set("median_ate_m", c.median_ate_m)
+      .set("mean_ate_m", c.mean_ate_m)
+      .set("median_ate_percent_of_distance", c.median_ate_percent)
+      .set("median_cmplt", c.median_cmplt);
+  return json;
+}
+
+evaluator::JsonObject comparisonJson(const PairedComparison& c) {
+  evaluator::JsonObject wilcoxon;
+  wilcoxon.set("n", c.wilcoxon.n)
+      .set("zeros_dropped", c.wilcoxon.zeros_dropped)
+      .set("w_plus", c.wilcoxon.w_plus)
+      .set("p_two_sided", c.wilcoxon.p_value)
+      .set("exact", c.wilcoxon.exact);
+  evaluator::JsonObject json;
+  json.set("pairs", c.pairs)
+      .set("median_ate_ratio", c.median_ate_ratio)
+      .set("summed_ate_ratio", c.summed_ate_ratio)
+      .set("fraction_subject_lower", c.fraction_subject_lower)
+      .set("subject_lost", c.subject_lost)
+      .set("baseline_lost", c.baseline_lost)
+      .set("median_cmplt_ratio", c.median_cmplt_ratio)
+      .set("wilcoxon_signed_rank", wilcoxon);
+  return json;
+}
+
+}  // namespace
+
+ExperimentStatistics computeStatistics(const Experiment& experiment, const std::vector<RunResult>& results) {
+  ExperimentStatistics st;
+  for (const auto& s : experiment.scenes) st.scenes.push_back(s.name);
+  for (const auto& c : experiment.controllers) st.controllers.push_back(c.name);
+  // Finished runs by (scene, controller, seed): the pairing key.
+  std::map<std::tuple<std::string, std::string, std::uint64_t>, const RunResult*> finished;
+  for (const RunResult& r : results) {
+    if (r.finished()) finished[{r.scene, r.controller, r.seed}] = &r;
+  }
+  for (const auto& controller : st.controllers) {
+    st.cells.emplace_back();
+    for (const auto& scene : st.scenes) {
+      std::vector<const RunResult*> runs;
+      for (auto seed : experiment.seeds) {
+        if (auto it = finished.find({scene, controller, seed}); it != finished.end()) runs.push_back(it->second);
+      }
+      st.cells.back().push_back(cellOf(runs));
+    }
+  }
+  bool has_subject = false;
+  for (const auto& c : st.controllers) has_subject = has_subject || c == experiment.subject;
+  if (!has_subject) return st;
+  st.subject = experiment.subject;
+  for (const auto& controller : st.controllers) {
+    if (controller == st.subject) continue;
+    BaselineComparison comparison{controller, {}, {}};
+    std::vector<RunPair> pooled;
+    for (const auto& scene : st.scenes) {
+      std::vector<RunPair> pairs;
+      for (auto seed : experiment.seeds) {
+        const auto subject = finished.find({scene, st.subject, seed});
+        const auto baseline = finished.find({scene, controller, seed});
+        if (subject == finished.end() || baseline == finished.end()) continue;
+        if (!std::isfinite(subject->second->metrics.ate_m) || !std::isfinite(baseline->second->metrics.ate_m)) continue;
+        pairs.push_back(pairOf(*subject->second, *baseline->second));
+      }
+      pooled.insert(pooled.end(), pairs.begin(), pairs.end());
+      comparison.per_scene.push_back(comparePairs(pairs));
+    }
+    comparison.pooled = comparePairs(pooled);
+    st.comparisons.push_back(std::move(comparison));
+  }
+  return st;
+}
+
+std::string statisticsMarkdown(const ExperimentStatistics& st) {
+  std::string md =
+      "## Per scene and controller\n\nFinished runs; held: never lost track; ATE % of distance: median over runs "
+      "of the ATE over the ground truth's path length; medians are not moved by one run that ran away.\n\n"
+      "| scene | controller | runs | held | lost | median ATE m | mean ATE m | ATE % of distance | median CMPLT |\n"
+      "|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t s = 0; s < st.scenes.size(); ++s) {
+    for (std::size_t c = 0; c < st.controllers.size(); ++c) {
+      const CellStatistics& cell = st.cells[c][s];
+      md += "| " + st.scenes[s] + " | " + st.controllers[c] + " | " + std::to_string(cell.runs) + " | " +
+            std::to_string(cell.held) + " | " + std::to_string(cell.lost) + " | " + fixed(cell.median_ate_m, 2) +
+            " | " + fixed(cell.mean_ate_m, 2) + " | " + fixed(cell.median_ate_percent, 2) + " | " +
+            fixed(cell.median_cmplt, 0) + " |\n";
+    }
+  }
+  md += "\n## Paired comparison\n\n";
+  if (st.subject.empty()) return md + "No controller under test among the controllers (compare: {subject}).\n";
+  const std::string& u = st.subject;
+  md += u + "'s runs paired with each other controller's by scene and seed (both finished with an ATE). Ratios are " +
+        u + " / the other: the median of the per-pair ATE ratios, the sum of " + u +
+        "'s ATE over the sum of the other's, the median of the per-pair CMPLT ratios. p: two-sided Wilcoxon "
+        "signed-rank test on the paired ATE differences; zero differences are dropped (Wilcoxon's convention); "
+        "exact distribution for n <= 25 without ties, else the normal approximation with tie and continuity "
+        "correction.\n\n"
+        "With n pairs the smallest possible two-sided p is 2/2^n: 0.0625 with 5 pairs (5 seeds on one scene), which "
+        "is why the pooled line (all scenes) matters.\n\n"
+        "| against | scene | pairs | ATE ratio, median of pairs | ATE ratio, sums | " +
+        u + " lower | " + u + " lost | other lost | CMPLT ratio, median of pairs | p | test |\n" +
+        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BaselineComparison& b : st.comparisons) {
+    for (std::size_t s = 0; s < st.scenes.size(); ++s) md += comparisonRow(b.controller, st.scenes[s], b.per_scene[s]);
+    md += comparisonRow(b.controller, "**all scenes**", b.pooled);
+  }
+  return md;
+}
+
+evaluator::JsonObject statisticsJson(const ExperimentStatistics& st) {
+  evaluator::JsonObject per_scene;
+  for (std::size_t s = 0; s < st.scenes.size(); ++s) {
+    evaluator::JsonObject scene;
+    for (std::size_t c = 0; c < st.controllers.size(); ++c) scene.set(st.controllers[c], cellJson(st.cells[c][s]));
+    per_scene.set(st.scenes[s], scene);
+  }
+  evaluator::JsonObject paired;
+  for (const BaselineComparison& b : st.comparisons) {
+    evaluator::JsonObject scenes;
+    for (std::size_t s = 0; s < st.scenes.size(); ++s) scenes.set(st.scenes[s], comparisonJson(b.per_scene[s]));
+    evaluator::JsonObject against;
+    against.set("scenes", scenes).set("pooled", comparisonJson(b.pooled));
+    paired.set(b.controller, against);
+  }
+  evaluator::JsonObject json;
+  json.set("per_scene", per_scene)
+      .set("subject", st.subject)
+      .set("paired", paired)
+      .set("note",
+           "ratios are subject / other; p: two-sided Wilcoxon signed-rank on paired ATE differences (subject - "
+           "other), zero differences dropped, exact for n <= 25 without ties, else normal approximation with tie "
+           "and continuity correction");
+  return json;
+}
+
+}  // namespace uampc::app
