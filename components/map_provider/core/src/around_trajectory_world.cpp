@@ -83,12 +83,21 @@ class StretchedPath {
   double arc(std::size_t i) const { return arc_[i]; }
   std::size_t stretchOf(std::size_t sample) const { return stretch_of_[sample]; }
 
-  // The stretch of the path sample nearest to (x, y).
-  std::size_t stretchAt(double x, double y) const {
+  // The stretch a place belongs to: that of the nearest sample of the first pass of the path
+  // within `reach` of it (the nearest sample of all if none is). Where the path passes a place
+  // once this is simply its nearest sample's stretch; where it comes back, the first visit
+  // decides, so the start of a run looks as its first stretches say whatever comes later.
+  std::size_t stretchAt(double x, double y, double reach) const {
+    const Eigen::Vector2d place(x, y);
     std::size_t best = 0;
     double best_d2 = 1e300;
+    bool in_pass = false;
     for (std::size_t i = 0; i < samples_.size(); ++i) {
-      const double d2 = (samples_[i].head<2>() - Eigen::Vector2d(x, y)).squaredNorm();
+      const double d2 = (samples_[i].head<2>() - place).squaredNorm();
+      const bool within = d2 < reach * reach;
+      if (in_pass && !within) break;  // the first pass has gone by
+      if (within && !in_pass) best_d2 = 1e300;
+      in_pass |= within;
       if (d2 < best_d2) {
         best_d2 = d2;
         best = i;
@@ -137,7 +146,7 @@ void addLongWall(TriangleMesh& mesh, const StretchedPath& path, std::size_t k, d
     const double hx = 0.5 * chord.norm() + 0.5;  // overlapping a little, no gaps at bends
     const double yaw = std::atan2(along.y(), along.x());
     if (closerThan(p, centre.x(), centre.y(), hx, half_thickness, yaw, config.clearance)) continue;
-    if (path.stretchAt(centre.x(), centre.y()) != k) continue;
+    if (path.stretchAt(centre.x(), centre.y(), config.clearance + config.band) != k) continue;
     const double z0 = groundHeight(p, centre.x(), centre.y(), config.base_height) - 0.5;
     mesh.addOrientedBox(Eigen::Vector3f(centre.x(), centre.y(), z0 + 0.5 * (height + 0.5)),
                         Eigen::Vector3f(2 * hx, 2 * half_thickness, height + 0.5), static_cast<float>(yaw));
@@ -164,7 +173,7 @@ void addCarPark(TriangleMesh& mesh, const StretchedPath& path, std::size_t k, co
       const Eigen::Vector2d centre = p[i].head<2>() + side * distance * left;
       if (!freeOf(taken, centre.x(), centre.y(), radius)) continue;
       if (closerThan(p, centre.x(), centre.y(), length / 2, width / 2, yaw, config.clearance)) continue;
-      if (path.stretchAt(centre.x(), centre.y()) != k) continue;
+      if (path.stretchAt(centre.x(), centre.y(), config.clearance + config.band) != k) continue;
       taken.push_back({centre.x(), centre.y(), radius});
       const double z0 = groundHeight(p, centre.x(), centre.y(), config.base_height) - 0.5;
       mesh.addOrientedBox(Eigen::Vector3f(centre.x(), centre.y(), z0 + 0.5 * (height + 0.5)),
@@ -265,7 +274,7 @@ TriangleMesh makeAroundTrajectory(const std::vector<Eigen::Vector3d>& full_path,
       if (closerThan(path, cx, cy, hx, hy, yaw, config.clearance)) continue;
       // An object of an open stretch is not built (and gives its place back). In a rich world
       // no stretch is open, and the objects are those of the world before profiles existed.
-      if (stretched.stretches()[stretched.stretchAt(cx, cy)].open()) return false;
+      if (stretched.stretches()[stretched.stretchAt(cx, cy, config.clearance + config.band)].open()) return false;
       taken.push_back({cx, cy, radius});
       return true;
     }

@@ -55,7 +55,9 @@ std::vector<PathStretch> drawStretches(double path_length, const DensityProfileC
     s.begin = begin;
     s.end = std::min(path_length, begin + random.uniform(config.min_stretch, config.max_stretch));
     // Both draws are made for every stretch, so one stretch's kind never shifts the next ones'.
-    const bool open = random.chance(config.open_fraction);
+    // The first stretch is built-up: a run starts where the LO has a map to initialise on, as a
+    // recording starts where its rig can (a start on a lawn loses every controller at once).
+    const bool open = random.chance(config.open_fraction) && !stretches.empty();
     const int open_kind = random.integer(0, 3);
     if (open) {
       static constexpr StretchKind kOpenKinds[] = {StretchKind::kLawn, StretchKind::kCarPark, StretchKind::kOneWall,

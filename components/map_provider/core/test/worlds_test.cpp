@@ -265,29 +265,36 @@ Eigen::Vector3f normalOf(const TriangleMesh& mesh, const Eigen::Vector3i& t) {
 
 // Along a straight path on x, every open stretch's furniture (long walls following the path, cars
 // parked along or across it) and the flat ground have faces facing along x, y or z only; the
-// buildings (random yaw) and trees (cylinders and cones) of a built-up stretch do not.
+// buildings (random yaw) and trees (cylinders and cones) of a built-up stretch do not. With
+// open_fraction 1 only the first stretch is built-up (the start is always built-up).
 TEST(DensityProfile, OpenStretchesHoldOnlyTheirFurniture) {
   std::vector<Eigen::Vector3d> path;
   for (int i = 0; i <= 1200; ++i) path.emplace_back(i, 0.0, 5.0);  // ground at z = 4
+  const AroundTrajectoryConfig config = withOpenFraction(1.0);
+  const auto stretches = drawStretches(1200.0, config.density, 3);
   std::map<StretchKind, int> kinds;
-  for (const auto& s : drawStretches(1200.0, withOpenFraction(1.0).density, 3)) ++kinds[s.kind];
-  ASSERT_EQ(kinds.count(StretchKind::kBuiltUp), 0u);
-  ASSERT_EQ(kinds.size(), 4u) << "every open kind should appear along 1200 m";
+  for (const auto& s : stretches) ++kinds[s.kind];
+  ASSERT_EQ(stretches.front().kind, StretchKind::kBuiltUp);
+  ASSERT_EQ(kinds[StretchKind::kBuiltUp], 1);
+  ASSERT_EQ(kinds.size(), 5u) << "every open kind should appear along 1200 m";
+  // Objects of the first stretch stand within clearance + band + their own size of it.
+  const float open_from = static_cast<float>(stretches.front().end + config.clearance + config.band + 25.0);
 
-  auto tilted = [](const TriangleMesh& mesh) {
+  auto tiltedBeyond = [](const TriangleMesh& mesh, float x) {
     std::size_t count = 0;
     for (const auto& t : mesh.triangles) {
       const Eigen::Vector3f n = normalOf(mesh, t).cwiseAbs();
-      count += n.maxCoeff() < 0.9999f;
+      const float x_min = std::min({mesh.vertices[t[0]].x(), mesh.vertices[t[1]].x(), mesh.vertices[t[2]].x()});
+      count += n.maxCoeff() < 0.9999f && x_min > x;
     }
     return count;
   };
   const TriangleMesh rich = makeAroundTrajectory(path, withOpenFraction(0.0), 3);
-  EXPECT_GT(tilted(rich), 1000u);  // buildings and trees
+  EXPECT_GT(tiltedBeyond(rich, open_from), 1000u);  // buildings and trees
 
-  const AroundTrajectoryConfig config = withOpenFraction(1.0);
   const TriangleMesh open = makeAroundTrajectory(path, config, 3);
-  EXPECT_EQ(tilted(open), 0u);
+  EXPECT_GT(tiltedBeyond(open, -1e9f), 0u);  // the first stretch's
+  EXPECT_EQ(tiltedBeyond(open, open_from), 0u);
   std::size_t car_tops = 0, wall_faces = 0;
   for (const auto& t : open.triangles) {
     const Eigen::Vector3f n = normalOf(open, t);
@@ -315,6 +322,9 @@ TEST(DensityProfile, OpenShareOfALongPathIsTheOpenFraction) {
         const PathStretch& s = stretches[i];
         ASSERT_EQ(s.begin, end);
         ASSERT_LT(s.length(), config.max_stretch);
+        if (i == 0) {
+          ASSERT_FALSE(s.open());  // the start is built-up
+        }
         if (i + 1 < stretches.size()) {
           ASSERT_GE(s.length(), config.min_stretch);  // only the last is cut short
         }

@@ -53,7 +53,9 @@ double openFractionOfProfile(const std::string& name);
 void checkDensityProfile(const DensityProfileConfig& config);
 
 // The stretches covering [0, path_length), drawn from the seed (a stream of its own, so that the
-// objects of a rich world are drawn exactly as before).
+// objects of a rich world are drawn exactly as before). The first is always built-up. The draws of
+// lengths and kinds do not depend on open_fraction: for one seed, the open stretches of a smaller
+// fraction are open at a larger one too, and of the same kind.
 std::vector<PathStretch> drawStretches(double path_length, const DensityProfileConfig& config, std::uint64_t seed);
 
 }  // namespace uampc::world

@@ -69,7 +69,8 @@ struct AroundTrajectoryConfig {
   double ground_cell = 5.0;  // m, grid of the ground height field
   int segments = 8;
   // Which stretches of the path are built-up (the objects above) and which open. An object
-  // belongs to the stretch of its nearest path sample; objects of open stretches are not built.
+  // belongs to the stretch of its nearest path sample (on the path's first pass within
+  // clearance + band of it, where the path comes back); objects of open stretches are not built.
   DensityProfileConfig density;
   // Open stretches' furniture, all kept off the path by the clearance like everything else.
   double car_spacing = 15.0;   // m of car-park stretch per parked car (a 4.5 x 1.8 x 1.5 m box)
