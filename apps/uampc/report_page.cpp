@@ -53,8 +53,8 @@ class SceneFigures {
 
   std::vector<Figure> all() {
     std::vector<Figure> figures;
-    for (auto make : {&SceneFigures::ateOverTime, &SceneFigures::speedOverTime, &SceneFigures::topView,
-                      &SceneFigures::uncertaintyMap, &SceneFigures::tradeOff}) {
+    for (auto make : {&SceneFigures::atePerRun, &SceneFigures::ateOverTime, &SceneFigures::speedOverTime,
+                      &SceneFigures::topView, &SceneFigures::uncertaintyMap, &SceneFigures::tradeOff}) {
       if (auto f = (this->*make)(); !f.file.empty()) figures.push_back(f);
     }
     for (Figure& f : panoramaSnapshots()) figures.push_back(std::move(f));
@@ -92,6 +92,36 @@ class SceneFigures {
       return {};
     }
     return save(name, svg::render(plot), caption);
+  }
+
+  // Every finished run's ATE, one box per controller: how the seeds spread, not only their mean.
+  Figure atePerRun() {
+    svg::BoxPlot plot;
+    plot.title = scene_ + ": ATE of every run";
+    plot.y_label = "ATE, m";
+    plot.marked_label = "lost track";
+    int values = 0;
+    for (std::size_t c = 0; c < experiment_.controllers.size(); ++c) {
+      svg::Box box{experiment_.controllers[c].name, {}, {}, svg::paletteColour(c)};
+      for (const RunResult& r : results_) {
+        if (r.scene != scene_ || r.controller != box.label || !r.finished() || !std::isfinite(r.metrics.ate_m))
+          continue;
+        box.values.push_back(r.metrics.ate_m);
+        box.marked.push_back(std::isfinite(r.metrics.runaway_time_s));
+        ++values;
+      }
+      plot.boxes.push_back(std::move(box));
+    }
+    if (values == 0) {
+      note("no finished run with an ATE: no box plot");
+      return {};
+    }
+    return save("ate_boxes", svg::render(plot),
+                "ATE of every finished run (dots), per controller: the box spans the first to the third quartile, "
+                "the thick line is the median, whiskers reach the furthest run within 1.5 box heights; red rings "
+                "are runs that lost track. " +
+                    std::string(svg::usesLogScale(plot) ? "Logarithmic scale: the ATEs span more than a factor 20."
+                                                        : "Linear scale from zero."));
   }
 
   Figure ateOverTime() {

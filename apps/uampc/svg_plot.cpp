@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "paired_statistics.hpp"
+
 namespace uampc::app::svg {
 
 namespace {
@@ -182,6 +184,52 @@ std::string legend(const std::vector<Series>& series, double x, double y) {
   return s + "</g>\n";
 }
 
+// Frame, value ticks and labels of a plot whose x axis is categories (box plots): each category's
+// label under its position.
+std::string categoryAxes(const Frame& f, const std::vector<std::pair<double, std::string>>& categories,
+                         const std::vector<std::pair<double, std::string>>& y_ticks, const std::string& y_label) {
+  std::string s = "<g stroke=\"#333\" stroke-width=\"1\">\n<rect x=\"" + num(f.x0) + "\" y=\"" + num(f.y0) +
+                  "\" width=\"" + num(f.w) + "\" height=\"" + num(f.h) + "\" fill=\"none\"/>\n";
+  for (const auto& [t, _] : y_ticks)
+    s += "<line x1=\"" + num(f.x0 - 5) + "\" y1=\"" + num(f.py(t)) + "\" x2=\"" + num(f.x0) + "\" y2=\"" +
+         num(f.py(t)) + "\"/>\n";
+  s += "</g>\n<g fill=\"#333\">\n";
+  for (const auto& [x, label] : categories)
+    s += "<text x=\"" + num(f.px(x)) + "\" y=\"" + num(f.y0 + f.h + 18) + "\" text-anchor=\"middle\">" +
+         escapeXml(label) + "</text>\n";
+  for (const auto& [t, label] : y_ticks)
+    s += "<text x=\"" + num(f.x0 - 8) + "\" y=\"" + num(f.py(t) + 4) + "\" text-anchor=\"end\">" + escapeXml(label) +
+         "</text>\n";
+  s += "<text transform=\"translate(16," + num(f.y0 + f.h / 2) + ") rotate(-90)\" text-anchor=\"middle\">" +
+       escapeXml(y_label) + "</text>\n</g>\n";
+  return s;
+}
+
+// Ticks of a logarithmic axis over [lo, hi] in log10 units (whole decades): every power of ten,
+// and 2 and 5 times it when the axis spans at most three decades. Labels in the values' units.
+std::vector<std::pair<double, std::string>> logTicks(double lo, double hi) {
+  std::vector<std::pair<double, std::string>> ticks;
+  const bool dense = hi - lo <= 3;
+  for (int decade = static_cast<int>(lo); decade <= static_cast<int>(hi); ++decade) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      if (m > 1 && !dense) continue;
+      const double at = decade + std::log10(m);
+      if (at > hi + 1e-9) break;
+      char label[32];
+      std::snprintf(label, sizeof(label), "%g", m * std::pow(10.0, decade));
+      ticks.emplace_back(at, label);
+    }
+  }
+  return ticks;
+}
+
+// The golden-ratio sequence spreads the k-th dot of a box sideways in [-0.5, 0.5), evenly and the
+// same way every time (no random jitter: the figure is reproducible).
+double spread(std::size_t k) {
+  const double x = static_cast<double>(k) * 0.6180339887498949;
+  return x - std::floor(x) - 0.5;
+}
+
 }  // namespace
 
 std::vector<double> niceTicks(double lo, double hi, int target) {
@@ -341,6 +389,121 @@ std::string render(const HeatMap& map) {
   }
   s += "<text transform=\"translate(" + num(map.width - 10.0) + "," + num(f.y0 + f.h / 2) +
        ") rotate(-90)\" text-anchor=\"middle\" fill=\"#333\">" + escapeXml(map.value_label) + "</text>\n</g>\n";
+  return s + "</svg>\n";
+}
+
+}  // namespace uampc::app::svg
+
+namespace uampc::app::svg {
+
+BoxStatistics boxStatistics(const std::vector<double>& values) {
+  std::vector<double> finite;
+  for (double v : values) {
+    if (std::isfinite(v)) finite.push_back(v);
+  }
+  BoxStatistics b;
+  b.count = static_cast<int>(finite.size());
+  if (finite.empty()) return b;
+  b.q1 = quantile(finite, 0.25);
+  b.median = median(finite);
+  b.q3 = quantile(finite, 0.75);
+  const double reach = 1.5 * (b.q3 - b.q1);
+  b.whisker_low = std::numeric_limits<double>::infinity();
+  b.whisker_high = -b.whisker_low;
+  for (double v : finite) {
+    if (v >= b.q1 - reach) b.whisker_low = std::min(b.whisker_low, v);
+    if (v <= b.q3 + reach) b.whisker_high = std::max(b.whisker_high, v);
+  }
+  return b;
+}
+
+bool usesLogScale(const BoxPlot& plot) {
+  Range r;
+  for (const Box& box : plot.boxes) {
+    for (double v : box.values) {
+      if (!std::isfinite(v)) continue;
+      if (v <= 0) return false;
+      r.add(v);
+    }
+  }
+  return r.lo <= r.hi && r.hi > plot.log_above * r.lo;
+}
+
+std::string render(const BoxPlot& plot) {
+  const bool log = usesLogScale(plot);
+  auto axis = [log](double v) { return log ? std::log10(v) : v; };
+  bool any_marked = false;
+  Range yr;
+  for (const Box& box : plot.boxes) {
+    for (std::size_t k = 0; k < box.values.size(); ++k) {
+      if (!std::isfinite(box.values[k])) continue;
+      yr.add(axis(box.values[k]));
+      any_marked = any_marked || (k < box.marked.size() && box.marked[k]);
+    }
+  }
+  if (!log && yr.lo <= yr.hi && yr.lo > 0) yr.add(0);  // errors: from zero, so heights compare
+  yr.settle();
+  if (log) {
+    yr.lo = std::floor(yr.lo);
+    yr.hi = std::max(std::ceil(yr.hi), yr.lo + 1);
+  } else {
+    snapToTicks(yr);
+  }
+  const bool legend_shown = any_marked && !plot.marked_label.empty();
+  const double n = std::max<double>(1, plot.boxes.size());
+  const Frame f{
+      kLeft,       kTop, plot.width - kLeft - (legend_shown ? kLegendWidth : kRightPlain), plot.height - kTop - kBottom,
+      Range{0, n}, yr};
+  const auto y_ticks = log ? logTicks(yr.lo, yr.hi) : yTicks(f, {});
+  std::string s = header(plot.width, plot.height, plot.title) + "<g stroke=\"#e4e4e4\" stroke-width=\"1\">\n";
+  for (const auto& [t, _] : y_ticks)
+    s += "<line x1=\"" + num(f.x0) + "\" y1=\"" + num(f.py(t)) + "\" x2=\"" + num(f.x0 + f.w) + "\" y2=\"" +
+         num(f.py(t)) + "\"/>\n";
+  s += "</g>\n";
+  const double half = std::min(30.0, f.w / n * 0.3);  // half a box's width, px
+  const char* const kMarked = "#b00000";
+  std::vector<std::pair<double, std::string>> categories;
+  for (std::size_t i = 0; i < plot.boxes.size(); ++i) {
+    const Box& box = plot.boxes[i];
+    const double cx = f.px(i + 0.5);
+    categories.emplace_back(i + 0.5, box.label);
+    const BoxStatistics b = boxStatistics(box.values);
+    if (b.count == 0) continue;
+    auto hline = [&](double value, double w, const std::string& extra) {
+      return "<line x1=\"" + num(cx - w) + "\" y1=\"" + num(f.py(axis(value))) + "\" x2=\"" + num(cx + w) + "\" y2=\"" +
+             num(f.py(axis(value))) + "\"" + extra + "/>\n";
+    };
+    auto vline = [&](double from, double to) {
+      return "<line x1=\"" + num(cx) + "\" y1=\"" + num(f.py(axis(from))) + "\" x2=\"" + num(cx) + "\" y2=\"" +
+             num(f.py(axis(to))) + "\"/>\n";
+    };
+    s += "<g class=\"box\" stroke=\"" + box.colour + "\" stroke-width=\"1.5\">\n";
+    s += vline(b.whisker_low, b.q1) + vline(b.q3, b.whisker_high) + hline(b.whisker_low, half / 2, "") +
+         hline(b.whisker_high, half / 2, "");
+    const double top = f.py(axis(b.q3)), bottom = f.py(axis(b.q1));
+    s += "<rect x=\"" + num(cx - half) + "\" y=\"" + num(top) + "\" width=\"" + num(2 * half) + "\" height=\"" +
+         num(bottom - top) + "\" fill=\"" + box.colour + "\" fill-opacity=\"0.15\"/>\n";
+    s += hline(b.median, half, " class=\"median\" stroke-width=\"3\"") + "</g>\n<g fill=\"" + box.colour + "\">\n";
+    for (std::size_t k = 0; k < box.values.size(); ++k) {
+      if (!std::isfinite(box.values[k])) continue;
+      const std::string at =
+          "cx=\"" + num(cx + spread(k) * half * 1.4) + "\" cy=\"" + num(f.py(axis(box.values[k]))) + "\"";
+      if (k < box.marked.size() && box.marked[k]) {
+        s += "<circle class=\"marked\" " + at + " r=\"5\" fill=\"white\" fill-opacity=\"0.6\" stroke=\"" + kMarked +
+             "\" stroke-width=\"2\"/>\n";
+      } else {
+        s += "<circle class=\"value\" " + at + " r=\"3.5\" fill-opacity=\"0.85\"/>\n";
+      }
+    }
+    s += "</g>\n";
+  }
+  s += categoryAxes(f, categories, y_ticks, plot.y_label + (log ? " (log scale)" : ""));
+  if (legend_shown) {
+    const double x = f.x0 + f.w + 14, y = f.y0 + 12;
+    s += "<circle cx=\"" + num(x + 11) + "\" cy=\"" + num(y - 4) + "\" r=\"5\" fill=\"white\" stroke=\"" + kMarked +
+         "\" stroke-width=\"2\"/>\n<text x=\"" + num(x + 28) + "\" y=\"" + num(y) + "\">" +
+         escapeXml(plot.marked_label) + "</text>\n";
+  }
   return s + "</svg>\n";
 }
 

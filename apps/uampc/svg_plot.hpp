@@ -1,7 +1,7 @@
 // A small SVG plotting module for the experiment report: line plots and scatter plots with axes,
 // ticks and a legend (optionally with equal axis scales over a background of filled cells, for
-// top views), and heat maps with a colour bar. Output is a standalone SVG document whose root
-// carries width and height, so that an <img> gets a natural size.
+// top views), heat maps with a colour bar, and box plots with every value drawn as a dot. Output is a standalone SVG
+// document whose root carries width and height, so that an <img> gets a natural size.
 #pragma once
 
 #include <string>
@@ -41,6 +41,36 @@ struct HeatMap {
   std::vector<std::pair<double, std::string>> y_ticks;  // optional labelled ticks (e.g. in pi)
 };
 std::string render(const HeatMap& map);
+
+// Tukey's box of a group of values (NaN ignored): quartiles as R's quantile() (type 7), whiskers
+// to the most extreme values within 1.5 interquartile ranges of the box.
+struct BoxStatistics {
+  int count = 0;
+  double q1 = 0, median = 0, q3 = 0;
+  double whisker_low = 0, whisker_high = 0;
+};
+BoxStatistics boxStatistics(const std::vector<double>& values);
+
+struct Box {
+  std::string label;
+  std::vector<double> values;  // a group with no finite value gets its label but no box
+  std::vector<bool> marked;    // per value (or empty): drawn as a ring in the marked colour
+  std::string colour = "#1f77b4";
+};
+
+// One box per group side by side, each value a dot over its box (spread sideways so equal values
+// stay visible). The value axis is logarithmic when every value is positive and the largest is
+// more than log_above times the smallest: one run that ran away would squash the others flat.
+struct BoxPlot {
+  std::string title, y_label;
+  std::string marked_label;  // legend text of the marked values
+  int width = 760, height = 420;
+  double log_above = 20.0;
+  std::vector<Box> boxes;
+};
+// True when render() draws plot's value axis logarithmically.
+bool usesLogScale(const BoxPlot& plot);
+std::string render(const BoxPlot& plot);
 
 // Ticks at 1, 2 or 5 times a power of ten, about `target` of them, covering [lo, hi].
 std::vector<double> niceTicks(double lo, double hi, int target);

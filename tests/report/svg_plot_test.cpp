@@ -146,6 +146,66 @@ TEST(SvgPlot, HeatMapIsWellFormedWithAColourBar) {
   EXPECT_NE(text.find(">2\xcf\x80<"), std::string::npos);
 }
 
+std::size_t countOf(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(SvgPlot, BoxStatisticsAreTukeysBox) {
+  // R: quantile(c(1, 2, 3, 4, 100)) gives 2, 3, 4 for the quartiles; the upper fence is
+  // 4 + 1.5 * 2 = 7, so the whisker stops at 4 and 100 is beyond it; nothing is below 2 - 3.
+  const BoxStatistics b = boxStatistics({100, 3, 1, NAN, 4, 2});
+  EXPECT_EQ(b.count, 5);
+  EXPECT_DOUBLE_EQ(b.q1, 2);
+  EXPECT_DOUBLE_EQ(b.median, 3);
+  EXPECT_DOUBLE_EQ(b.q3, 4);
+  EXPECT_DOUBLE_EQ(b.whisker_low, 1);
+  EXPECT_DOUBLE_EQ(b.whisker_high, 4);
+  EXPECT_EQ(boxStatistics({NAN}).count, 0);
+}
+
+TEST(SvgPlot, BoxPlotDrawsABoxPerGroupEveryValueAndTheMarkedOnes) {
+  BoxPlot plot;
+  plot.title = "ATE";
+  plot.y_label = "ATE, m";
+  plot.marked_label = "lost track";
+  plot.boxes.push_back({"a & b", {1, 2, 3}, {false, false, true}, paletteColour(0)});
+  plot.boxes.push_back({"empty", {}, {}, paletteColour(1)});  // label, no box
+  plot.boxes.push_back({"c", {4, 5, 6, 7}, {}, paletteColour(2)});
+  EXPECT_FALSE(usesLogScale(plot));  // 7 / 1 < 20
+  const std::string text = render(plot);
+  expectWellFormed(text, "box");
+  EXPECT_EQ(countOf(text, "class=\"box\""), 2u);
+  EXPECT_EQ(countOf(text, "class=\"median\""), 2u);
+  EXPECT_EQ(countOf(text, "class=\"value\""), 6u);
+  EXPECT_EQ(countOf(text, "class=\"marked\""), 1u);
+  EXPECT_NE(text.find(">a &amp; b<"), std::string::npos);
+  EXPECT_NE(text.find(">empty<"), std::string::npos);
+  EXPECT_NE(text.find(">lost track<"), std::string::npos);
+  EXPECT_EQ(text.find("log scale"), std::string::npos);
+  EXPECT_NE(text.find(">0<"), std::string::npos);  // a linear axis from zero
+}
+
+TEST(SvgPlot, BoxPlotGoesLogarithmicBeyondAFactorTwenty) {
+  BoxPlot plot;
+  plot.y_label = "ATE, m";
+  plot.boxes.push_back({"held", {0.5, 0.6, 0.7}, {}, paletteColour(0)});
+  plot.boxes.push_back({"ran away", {0.8, 40}, {false, true}, paletteColour(1)});
+  EXPECT_TRUE(usesLogScale(plot));  // 40 / 0.5 = 80
+  const std::string text = render(plot);
+  expectWellFormed(text, "log_box");
+  EXPECT_NE(text.find("ATE, m (log scale)"), std::string::npos);
+  // Whole decades 0.1 .. 100, with 2 and 5 between.
+  for (const char* tick : {">0.1<", ">0.2<", ">1<", ">5<", ">100<"})
+    EXPECT_NE(text.find(tick), std::string::npos) << tick;
+  plot.boxes.push_back({"zero", {0.0}, {}, paletteColour(2)});
+  EXPECT_FALSE(usesLogScale(plot));  // a zero has no logarithm
+  plot.boxes.back().values = {10.0};
+  plot.log_above = 100;
+  EXPECT_FALSE(usesLogScale(plot));
+}
+
 TEST(SvgPlot, NiceTicks) {
   EXPECT_EQ(niceTicks(0, 10, 5), (std::vector<double>{0, 2, 4, 6, 8, 10}));
   const std::vector<double> expected{-0.3, -0.2, -0.1, 0, 0.1, 0.2, 0.3};
