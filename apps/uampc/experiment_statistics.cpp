@@ -61,15 +61,41 @@ std::string testText(const WilcoxonResult& w) {
   return text;
 }
 
-std::string comparisonRow(const std::string& controller, const std::string& scene, const PairedComparison& c) {
+std::vector<std::string> comparisonRow(const std::string& controller, const std::string& scene,
+                                       const PairedComparison& c) {
   const std::string lower =
       c.pairs ? std::to_string(static_cast<int>(std::lround(c.fraction_subject_lower * c.pairs))) + "/" +
                     std::to_string(c.pairs) + " (" + fixed(100.0 * c.fraction_subject_lower, 0) + "%)"
               : "n/a";
-  return "| " + controller + " | " + scene + " | " + std::to_string(c.pairs) + " | " + fixed(c.median_ate_ratio, 2) +
-         " | " + fixed(c.summed_ate_ratio, 2) + " | " + lower + " | " + std::to_string(c.subject_lost) + " | " +
-         std::to_string(c.baseline_lost) + " | " + fixed(c.median_cmplt_ratio, 2) + " | " + pText(c.wilcoxon.p_value) +
-         " | " + testText(c.wilcoxon) + " |\n";
+  return {controller,
+          scene,
+          std::to_string(c.pairs),
+          fixed(c.median_ate_ratio, 2),
+          fixed(c.summed_ate_ratio, 2),
+          lower,
+          std::to_string(c.subject_lost),
+          std::to_string(c.baseline_lost),
+          fixed(c.median_cmplt_ratio, 2),
+          pText(c.wilcoxon.p_value),
+          testText(c.wilcoxon)};
+}
+
+std::string markdownRow(const std::vector<std::string>& cells) {
+  std::string row = "|";
+  for (const auto& cell : cells) row += " " + cell + " |";
+  return row + "\n";
+}
+
+std::string markdownTable(const TextTable& table, std::size_t bold_column) {
+  std::string md = markdownRow(table.header) + "|";
+  for (std::size_t i = 0; i < table.header.size(); ++i) md += "---|";
+  md += "\n";
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    std::vector<std::string> cells = table.rows[r];
+    if (table.emphasised[r]) cells[bold_column] = "**" + cells[bold_column] + "**";
+    md += markdownRow(cells);
+  }
+  return md;
 }
 
 evaluator::JsonObject cellJson(const CellStatistics& c) {
@@ -150,40 +176,64 @@ ExperimentStatistics computeStatistics(const Experiment& experiment, const std::
   return st;
 }
 
-std::string statisticsMarkdown(const ExperimentStatistics& st) {
-  std::string md =
-      "## Per scene and controller\n\nFinished runs; held: never lost track; ATE % of distance: median over runs "
-      "of the ATE over the ground truth's path length; medians are not moved by one run that ran away.\n\n"
-      "| scene | controller | runs | held | lost | median ATE m | mean ATE m | ATE % of distance | median CMPLT |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+TextTable cellTable(const ExperimentStatistics& st) {
+  TextTable t;
+  t.header = {"scene",      "controller",        "runs",        "held", "lost", "median ATE m",
+              "mean ATE m", "ATE % of distance", "median CMPLT"};
   for (std::size_t s = 0; s < st.scenes.size(); ++s) {
     for (std::size_t c = 0; c < st.controllers.size(); ++c) {
       const CellStatistics& cell = st.cells[c][s];
-      md += "| " + st.scenes[s] + " | " + st.controllers[c] + " | " + std::to_string(cell.runs) + " | " +
-            std::to_string(cell.held) + " | " + std::to_string(cell.lost) + " | " + fixed(cell.median_ate_m, 2) +
-            " | " + fixed(cell.mean_ate_m, 2) + " | " + fixed(cell.median_ate_percent, 2) + " | " +
-            fixed(cell.median_cmplt, 0) + " |\n";
+      t.rows.push_back({st.scenes[s], st.controllers[c], std::to_string(cell.runs), std::to_string(cell.held),
+                        std::to_string(cell.lost), fixed(cell.median_ate_m, 2), fixed(cell.mean_ate_m, 2),
+                        fixed(cell.median_ate_percent, 2), fixed(cell.median_cmplt, 0)});
+      t.emphasised.push_back(false);
     }
   }
-  md += "\n## Paired comparison\n\n";
-  if (st.subject.empty()) return md + "No controller under test among the controllers (compare: {subject}).\n";
+  return t;
+}
+
+TextTable comparisonTable(const ExperimentStatistics& st) {
+  TextTable t;
+  if (st.subject.empty()) return t;
   const std::string& u = st.subject;
-  md += u + "'s runs paired with each other controller's by scene and seed (both finished with an ATE). Ratios are " +
-        u + " / the other: the median of the per-pair ATE ratios, the sum of " + u +
-        "'s ATE over the sum of the other's, the median of the per-pair CMPLT ratios. p: two-sided Wilcoxon "
-        "signed-rank test on the paired ATE differences; zero differences are dropped (Wilcoxon's convention); "
-        "exact distribution for n <= 25 without ties, else the normal approximation with tie and continuity "
-        "correction.\n\n"
-        "With n pairs the smallest possible two-sided p is 2/2^n: 0.0625 with 5 pairs (5 seeds on one scene), which "
-        "is why the pooled line (all scenes) matters.\n\n"
-        "| against | scene | pairs | ATE ratio, median of pairs | ATE ratio, sums | " +
-        u + " lower | " + u + " lost | other lost | CMPLT ratio, median of pairs | p | test |\n" +
-        "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  t.header = {"against",    "scene",     "pairs",      "ATE ratio, median of pairs",   "ATE ratio, sums",
+              u + " lower", u + " lost", "other lost", "CMPLT ratio, median of pairs", "p",
+              "test"};
   for (const BaselineComparison& b : st.comparisons) {
-    for (std::size_t s = 0; s < st.scenes.size(); ++s) md += comparisonRow(b.controller, st.scenes[s], b.per_scene[s]);
-    md += comparisonRow(b.controller, "**all scenes**", b.pooled);
+    for (std::size_t s = 0; s < st.scenes.size(); ++s) {
+      t.rows.push_back(comparisonRow(b.controller, st.scenes[s], b.per_scene[s]));
+      t.emphasised.push_back(false);
+    }
+    t.rows.push_back(comparisonRow(b.controller, "all scenes", b.pooled));
+    t.emphasised.push_back(true);
   }
-  return md;
+  return t;
+}
+
+std::string cellTableExplanation() {
+  return "Finished runs; held: never lost track; ATE % of distance: median over runs of the ATE over the ground "
+         "truth's path length; medians are not moved by one run that ran away.";
+}
+
+std::string comparisonExplanation(const std::string& u) {
+  return u + "'s runs paired with each other controller's by scene and seed (both finished with an ATE). Ratios are " +
+         u + " / the other: the median of the per-pair ATE ratios, the sum of " + u +
+         "'s ATE over the sum of the other's, the median of the per-pair CMPLT ratios. p: two-sided Wilcoxon "
+         "signed-rank test on the paired ATE differences; zero differences are dropped (Wilcoxon's convention); "
+         "exact distribution for n <= 25 without ties, else the normal approximation with tie and continuity "
+         "correction.";
+}
+
+const char* const kFewPairsNote =
+    "With n pairs the smallest possible two-sided p is 2/2^n: 0.0625 with 5 pairs (5 seeds on one scene), which is "
+    "why the pooled line (all scenes) matters.";
+
+std::string statisticsMarkdown(const ExperimentStatistics& st) {
+  std::string md = "## Per scene and controller\n\n" + cellTableExplanation() + "\n\n" +
+                   markdownTable(cellTable(st), 0) + "\n## Paired comparison\n\n";
+  if (st.subject.empty()) return md + "No controller under test among the controllers (compare: {subject}).\n";
+  return md + comparisonExplanation(st.subject) + "\n\n" + kFewPairsNote + "\n\n" +
+         markdownTable(comparisonTable(st), 1);
 }
 
 evaluator::JsonObject statisticsJson(const ExperimentStatistics& st) {

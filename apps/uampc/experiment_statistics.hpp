@@ -45,7 +45,21 @@ struct ExperimentStatistics {
 
 ExperimentStatistics computeStatistics(const Experiment& experiment, const std::vector<RunResult>& results);
 
-// results.md's sections "Runs that held and lost track" and "Paired comparison".
+// The two tables as cell texts, shared by results.md and the report page; emphasised rows are the
+// pooled ones (all scenes).
+struct TextTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<bool> emphasised;  // per row
+};
+TextTable cellTable(const ExperimentStatistics& statistics);
+TextTable comparisonTable(const ExperimentStatistics& statistics);  // no rows without a subject
+// What the tables' columns mean, for the text above them.
+std::string cellTableExplanation();
+std::string comparisonExplanation(const std::string& subject);
+extern const char* const kFewPairsNote;  // why the pooled line matters
+
+// results.md's sections "Per scene and controller" and "Paired comparison".
 std::string statisticsMarkdown(const ExperimentStatistics& statistics);
 // results.json's "statistics".
 evaluator::JsonObject statisticsJson(const ExperimentStatistics& statistics);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "experiment_statistics.hpp"
 #include "run_files.hpp"
 #include "svg_plot.hpp"
 
@@ -331,6 +332,27 @@ std::string summaryTable(const ResultsTable& t) {
   return h + "</table>\n";
 }
 
+std::string htmlTable(const TextTable& table) {
+  std::string h = "<table>\n<tr>";
+  for (const auto& cell : table.header) h += "<th>" + escapeXml(cell) + "</th>";
+  h += "</tr>\n";
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    h += table.emphasised[r] ? "<tr class=\"pooled\">" : "<tr>";
+    for (const auto& cell : table.rows[r]) h += "<td>" + escapeXml(cell) + "</td>";
+    h += "</tr>\n";
+  }
+  return h + "</table>\n";
+}
+
+// The per-scene figures and the paired comparison of results.md.
+std::string statisticsSection(const ExperimentStatistics& st) {
+  std::string h = "<h2>Per scene and controller</h2>\n<p>" + escapeXml(cellTableExplanation()) + "</p>\n" +
+                  htmlTable(cellTable(st)) + "<h2>Paired comparison</h2>\n";
+  if (st.subject.empty()) return h + "<p>No controller under test among the controllers.</p>\n";
+  return h + "<p>" + escapeXml(comparisonExplanation(st.subject)) + "</p>\n<p>" + escapeXml(kFewPairsNote) + "</p>\n" +
+         htmlTable(comparisonTable(st));
+}
+
 std::string runsTable(const std::vector<RunResult>& results) {
   std::string h =
       "<table>\n<tr><th>scene</th><th>controller</th><th>seed</th><th>status</th><th>ATE m</th>"
@@ -356,7 +378,7 @@ body { font-family: sans-serif; margin: 2em auto; max-width: 1100px; color: #222
 table { border-collapse: collapse; margin: 1em 0; font-size: 14px; }
 th, td { border: 1px solid #ccc; padding: 4px 8px; text-align: right; }
 th:first-child, td:first-child { text-align: left; }
-tr.subject { font-weight: bold; }
+tr.subject, tr.pooled { font-weight: bold; }
 td.failed { color: #b00; } td.not_run { color: #888; }
 figure { margin: 2em 0; } figcaption { color: #555; max-width: 760px; }
 img[src$=".png"] { width: 720px; image-rendering: pixelated; } /* 180 x 90 panoramas, enlarged */
@@ -403,7 +425,8 @@ ReportSummary writeReport(const Experiment& experiment, const std::vector<RunRes
                      std::to_string(table.seeds) +
                      " seed(s) per cell, means over seeds. ATE: RMSE of the unaligned "
                      "positions. CMPLT: 0.5 m voxels scanned per 5 s window (n/a: no complete window).</p>\n" +
-                     summaryTable(table) + "<p>" + escapeXml(headline(table)) + "</p>\n" + body + "<h2>Runs</h2>\n" +
+                     summaryTable(table) + "<p>" + escapeXml(headline(table)) + "</p>\n" +
+                     statisticsSection(computeStatistics(experiment, results)) + body + "<h2>Runs</h2>\n" +
                      runsTable(results) + "<h2>Notes</h2>\n<ul>\n";
   for (const auto& n : summary.notes) html += "<li>" + escapeXml(n) + "</li>\n";
   html += "</ul>\n<p id=\"figure-check\">figures loaded: not checked yet</p>\n" + std::string(kFigureCheck) +

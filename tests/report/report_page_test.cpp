@@ -30,6 +30,9 @@ TEST(ReportPage, WritesEveryFigureAndNotesWhatIsMissing) {
   }
   EXPECT_EQ(images, 20u);
   EXPECT_NE(html.find("<td>1.50</td><td>105</td>"), std::string::npos);  // the summary table
+  // The pooled paired comparison, as in results.md.
+  EXPECT_NE(html.find("<tr class=\"pooled\"><td>constant_3.6</td><td>all scenes</td><td>4</td><td>0.28</td>"),
+            std::string::npos);
   // Evenly spread: the first, two in between and the last snapshot.
   for (const char* shown : {"alpha_panorama_00000.0.png", "alpha_panorama_00001.5.png", "alpha_panorama_00004.5.png",
                             "alpha_panorama_00007.5.png"}) {
