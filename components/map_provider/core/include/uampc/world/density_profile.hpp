@@ -6,8 +6,10 @@
 // one side, or a street between two long plain walls.
 //
 // The named profiles' open fractions were chosen with constant motor speeds only (lo_replay,
-// LiDAR-only, the first 180 s of the three MCD trajectories), before UA-MPC ran on them; the
-// measurements and the reason are in README, "Scenes where the motor matters".
+// LiDAR-only, the first 180 s of the three MCD trajectories, seeds 1-2), before UA-MPC ran on
+// them: at 0.4 constant 3.6 rad/s held 5 of 6 runs (worst 0.07-0.76 m), so mixed = 0.4 (drifts,
+// mostly holds); at 0.7 it held 1 of 6 and 7.2 rad/s 3 of 6, so poor = 0.7 (harder, not
+// hopeless: the motor's speed decides). Every run is in README, "Scenes where the motor matters".
 #pragma once
 
 #include <cstdint>
