@@ -32,10 +32,11 @@ double MotorizedLidarOdometry::newestImuTime() const {
   return imu_.empty() ? -std::numeric_limits<double>::infinity() : imu_.back().time;
 }
 
-bool MotorizedLidarOdometry::implausibleMotion(const IteratedEkf& predicted, const BaseState& updated, double dt) const {
+bool MotorizedLidarOdometry::implausibleMotion(const IteratedEkf& predicted, const BaseState& updated,
+                                               double dt) const {
   // The update's change of velocity against the prediction's (constant-velocity or inertial) is
-  // what the scan demands of the frame. Allowed: the acceleration limit over the frame, plus 3 standard deviations of the predicted
-  // velocity (a velocity not known yet, as at the start, may change by what it is unsure of).
+  // what the scan demands of the frame. Allowed: the acceleration limit over the frame, plus 3 standard deviations of
+  // the predicted velocity (a velocity not known yet, as at the start, may change by what it is unsure of).
   const Matrix12d& P = predicted.covariance();
   const double linear_std = std::sqrt(P.diagonal().segment<3>(6).maxCoeff());
   const double angular_std = std::sqrt(P.diagonal().segment<3>(9).maxCoeff());
@@ -62,15 +63,27 @@ const char* toString(OdometryStatus status) {
   return "unknown";
 }
 
+UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
+  UpdateOptions options;
+  options.nearest_neighbours = config.nearest_neighbours;
+  options.plane_max_point_distance = config.plane_max_point_distance;
+  options.max_neighbour_distance = config.max_neighbour_distance;
+  options.measurement_variance = config.measurement_variance;
+  options.max_iterations = config.max_iterations;
+  options.min_correspondences = config.min_correspondences;
+  options.project_degenerate = config.degeneracy_aware;
+  options.degeneracy_threshold = config.degeneracy_threshold;
+  options.degeneracy_scales = config.degeneracy_scales;
+  return options;
+}
+
 MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
     : config_(config), map_(config.map_voxel_size, config.map_radius) {}
 
-OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
-                                                    const frames::MotorAngleTrack& motor) {
+OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const frames::MotorAngleTrack& motor) {
   OdometryResult result;
   result.points_in = scan.points_L.size();
-  DerotatedScan derotated =
-      derotate(scan, motor, config_.calibration, config_.min_range, config_.max_range);
+  DerotatedScan derotated = derotate(scan, motor, config_.calibration, config_.min_range, config_.max_range);
   result.dropped_non_finite = derotated.dropped_non_finite;
   result.dropped_range = derotated.dropped_range;
   result.dropped_outside_motor_track = derotated.dropped_outside_motor_track;
@@ -79,8 +92,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
                                    " points dropped: their time lies outside the motor track");
   }
   if (derotated.dropped_non_finite > 0) {
-    addWarning(result.warning,
-               std::to_string(derotated.dropped_non_finite) + " non-finite points dropped");
+    addWarning(result.warning, std::to_string(derotated.dropped_non_finite) + " non-finite points dropped");
   }
 
   auto fill = [&](const IteratedEkf& filter) {
@@ -126,15 +138,14 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
   const double dt = end_time - last_time_;
   if (!(dt > 0.0)) {
     result.status = OdometryStatus::kRejected;
-    addWarning(result.warning, "scan ends at " + std::to_string(end_time) +
-                                   " s, not after the previous one (" + std::to_string(last_time_) +
-                                   " s): ignored");
+    addWarning(result.warning, "scan ends at " + std::to_string(end_time) + " s, not after the previous one (" +
+                                   std::to_string(last_time_) + " s): ignored");
     fill(*filter_);
     return result;
   }
-  const std::vector<InertialStep> steps =
-      config_.use_imu ? inertialSteps(imu_, last_time_, end_time, motor, config_.calibration)
-                      : std::vector<InertialStep>{};
+  const std::vector<InertialStep> steps = config_.use_imu
+                                              ? inertialSteps(imu_, last_time_, end_time, motor, config_.calibration)
+                                              : std::vector<InertialStep>{};
   if (!steps.empty()) {
     filter_->predictInertial(steps, config_.imu_noise);
     result.inertial_prediction = true;
@@ -146,22 +157,11 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
   while (!imu_.empty() && imu_.front().time < last_time_ - 0.1) imu_.pop_front();
   const IteratedEkf predicted = *filter_;
 
-  const std::vector<TimedPoint> keypoints =
-      voxelDownsample(derotated.points, config_.scan_voxel_size);
+  const std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
   result.points_used = keypoints.size();
   UpdateSummary summary;
   if (!keypoints.empty()) {
-    UpdateOptions options;
-    options.nearest_neighbours = config_.nearest_neighbours;
-    options.plane_max_point_distance = config_.plane_max_point_distance;
-    options.max_neighbour_distance = config_.max_neighbour_distance;
-    options.measurement_variance = config_.measurement_variance;
-    options.max_iterations = config_.max_iterations;
-    options.min_correspondences = config_.min_correspondences;
-    options.project_degenerate = config_.degeneracy_aware;
-    options.degeneracy_threshold = config_.degeneracy_threshold;
-    options.degeneracy_scales = config_.degeneracy_scales;
-    summary = filter_->update(keypoints, map_, options);
+    summary = filter_->update(keypoints, map_, updateOptionsFrom(config_));
   }
   result.correspondences = summary.correspondences;
   result.iterations = summary.iterations;
@@ -186,8 +186,8 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
       why << "registration rejected: it needs an acceleration beyond " << config_.max_linear_acceleration
           << " m/s^2 or " << config_.max_angular_acceleration << " rad/s^2";
     } else {
-      why << "only " << summary.correspondences << " plane correspondences (need "
-          << config_.min_correspondences << ")";
+      why << "only " << summary.correspondences << " plane correspondences (need " << config_.min_correspondences
+          << ")";
     }
     why << ": pose predicted by the constant-velocity model, uncertainty grows";
     addWarning(result.warning, why.str());
@@ -198,16 +198,15 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     if (summary.pose_degeneracy.degenerate_directions > 0) {
       result.status = OdometryStatus::kDegenerate;
       std::ostringstream why;
-      why << "degenerate geometry: smallest pose information eigenvalue "
-          << result.min_information_eigenvalue << " < " << config_.degeneracy_threshold
-          << " (a direction is poorly constrained, e.g. a corridor or an open field)";
+      why << "degenerate geometry: smallest pose information eigenvalue " << result.min_information_eigenvalue << " < "
+          << config_.degeneracy_threshold << " (a direction is poorly constrained, e.g. a corridor or an open field)";
       addWarning(result.warning, why.str());
     } else {
       result.status = OdometryStatus::kTracking;
     }
     if (!summary.converged) {
-      addWarning(result.warning, "iterated EKF did not converge in " +
-                                     std::to_string(config_.max_iterations) + " iterations");
+      addWarning(result.warning,
+                 "iterated EKF did not converge in " + std::to_string(config_.max_iterations) + " iterations");
     }
   }
 
@@ -219,12 +218,10 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan,
     addWarning(result.warning, why.str());
   }
 
-  const double position_std =
-      std::sqrt(filter_->covariance().block<3, 3>(3, 3).diagonal().maxCoeff());
+  const double position_std = std::sqrt(filter_->covariance().block<3, 3>(3, 3).diagonal().maxCoeff());
   if (!(position_std <= config_.max_position_std)) {
     std::ostringstream why;
-    why << "position standard deviation " << position_std << " m exceeds "
-        << config_.max_position_std << " m";
+    why << "position standard deviation " << position_std << " m exceeds " << config_.max_position_std << " m";
     addWarning(result.warning, why.str());
   }
 

@@ -17,8 +17,8 @@ std::vector<double> gridValues(double lo, double hi, double step, bool periodic)
   std::vector<double> values;
   const double span = hi - lo;
   const bool full_circle = periodic && span >= kTwoPi - 1e-9;
-  const int count = full_circle ? static_cast<int>(std::round(kTwoPi / step))
-                                : static_cast<int>(std::floor(span / step + 1e-9)) + 1;
+  const int count =
+      full_circle ? static_cast<int>(std::round(kTwoPi / step)) : static_cast<int>(std::floor(span / step + 1e-9)) + 1;
   for (int i = 0; i < count; ++i) values.push_back(lo + i * step);
   return values;
 }
@@ -40,14 +40,16 @@ UncertaintyModel::UncertaintyModel(const Config& config) : config_(config) {
   if (config_.lookup_radius_px < 0) {
     throw std::invalid_argument("UncertaintyModel: lookup_radius_px must be >= 0");
   }
+  if (!(config_.range_weight_saturation >= 0.0) || !std::isfinite(config_.range_weight_saturation)) {
+    throw std::invalid_argument("UncertaintyModel: range_weight_saturation must be finite and >= 0");
+  }
 
   // Rays at theta = 0: the motor frame coincides with the base frame.
   const Eigen::Matrix3d R_BL0 = frames::lidarPoseInBase(0.0, config_.calibration).linear();
   for (double azimuth : gridValues(fov.azimuth_min, fov.azimuth_max, config_.azimuth_step, true)) {
-    for (double elevation :
-         gridValues(fov.elevation_min, fov.elevation_max, config_.elevation_step, false)) {
-      const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth),
-                                std::cos(elevation) * std::sin(azimuth), std::sin(elevation));
+    for (double elevation : gridValues(fov.elevation_min, fov.elevation_max, config_.elevation_step, false)) {
+      const Eigen::Vector3d d_L(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
+                                std::sin(elevation));
       const Eigen::Vector3d d_B = R_BL0 * d_L;
       rays_L_.push_back(d_L);
       ray_azimuth_at_zero_.push_back(std::atan2(d_B.y(), d_B.x()));
@@ -56,8 +58,7 @@ UncertaintyModel::UncertaintyModel(const Config& config) : config_(config) {
   }
 }
 
-Vector6d UncertaintyModel::pointToPlaneJacobian(const Eigen::Vector3d& p,
-                                                const Eigen::Vector3d& n) {
+Vector6d UncertaintyModel::pointToPlaneJacobian(const Eigen::Vector3d& p, const Eigen::Vector3d& n) {
   Vector6d J;
   J << p.cross(n), n;
   return J;
@@ -108,24 +109,37 @@ struct UncertaintyModel::PixelJacobians {
   }
 };
 
-std::int32_t UncertaintyModel::resolve(const PanoramicDepthMap& map, DepthMapNormals& normals,
-                                       int u, int v, PixelJacobians& pixels) const {
+double UncertaintyModel::rangeWeightSaturation(double voxel_size, double points_per_frame,
+                                               const LidarFieldOfView& fov) {
+  const double solid_angle =
+      (fov.azimuth_max - fov.azimuth_min) * (std::sin(fov.elevation_max) - std::sin(fov.elevation_min));
+  return voxel_size * std::sqrt(points_per_frame / solid_angle);
+}
+
+double UncertaintyModel::rayWeight(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const {
+  const double range_squared = double(p.squaredNorm());
+  const double cos_incidence = std::max(std::abs(double(p.dot(n))) / std::sqrt(range_squared), 0.05);
+  const double r_sat = config_.range_weight_saturation;
+  return std::min(1.0, range_squared / (r_sat * r_sat * cos_incidence));
+}
+
+std::int32_t UncertaintyModel::resolve(const PanoramicDepthMap& map, DepthMapNormals& normals, int u, int v,
+                                       PixelJacobians& pixels) const {
   const int pixel = map.lookup(u, v, config_.lookup_radius_px);
   if (pixel < 0) return PixelJacobians::kNoHit;
   const Eigen::Vector3f* n = normals.normal(pixel);
   if (n == nullptr) return PixelJacobians::kNoHit;
   const Eigen::Vector3f& p = map.point(pixel);
   Vector6d J;
-  J << double(p.y()) * n->z() - double(p.z()) * n->y(),
-      double(p.z()) * n->x() - double(p.x()) * n->z(),
+  J << double(p.y()) * n->z() - double(p.z()) * n->y(), double(p.z()) * n->x() - double(p.x()) * n->z(),
       double(p.x()) * n->y() - double(p.y()) * n->x(), n->x(), n->y(), n->z();
+  if (config_.range_weight_saturation > 0.0) J *= std::sqrt(rayWeight(p, *n));
   pixels.jacobians.push_back(J);
   return static_cast<std::int32_t>(pixels.jacobians.size() - 1);
 }
 
-Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals,
-                                      const RayTable& table, PixelJacobians& pixels,
-                                      double theta) const {
+Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals, const RayTable& table,
+                                      PixelJacobians& pixels, double theta) const {
   const int width = map.width();
   // theta in columns, reduced to [0, W): the same column arithmetic for any number of turns.
   double shift = theta * table.columns_per_rad;
@@ -164,8 +178,7 @@ Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNorm
   return lambda;
 }
 
-Matrix6d UncertaintyModel::information(const PanoramicDepthMap& map, DepthMapNormals& normals,
-                                       double theta) const {
+Matrix6d UncertaintyModel::information(const PanoramicDepthMap& map, DepthMapNormals& normals, double theta) const {
   return accumulate(map, normals, rayTable(map), PixelJacobians::forMap(map), theta);
 }
 
@@ -190,13 +203,11 @@ double UncertaintyModel::aOptimality(const Matrix6d& information) const {
   return trace;
 }
 
-double UncertaintyModel::uncertainty(const PanoramicDepthMap& map, DepthMapNormals& normals,
-                                     double theta) const {
+double UncertaintyModel::uncertainty(const PanoramicDepthMap& map, DepthMapNormals& normals, double theta) const {
   return aOptimality(information(map, normals, theta));
 }
 
-std::vector<double> UncertaintyModel::sample(const PanoramicDepthMap& map,
-                                             DepthMapNormals& normals, double theta_start,
+std::vector<double> UncertaintyModel::sample(const PanoramicDepthMap& map, DepthMapNormals& normals, double theta_start,
                                              double step, int count) const {
   const RayTable table = rayTable(map);
   PixelJacobians& pixels = PixelJacobians::forMap(map);

@@ -32,9 +32,8 @@ double lowSideAzimuth(const frames::MotorLidarCalibration& calibration, double t
   double best_azimuth = 0.0;
   for (int i = 0; i < 3600; ++i) {
     const double a = -kPi + i * 2.0 * kPi / 3600;
-    const Eigen::Vector3d d_B =
-        R_BL * Eigen::Vector3d(std::cos(elevation) * std::cos(a),
-                               std::cos(elevation) * std::sin(a), std::sin(elevation));
+    const Eigen::Vector3d d_B = R_BL * Eigen::Vector3d(std::cos(elevation) * std::cos(a),
+                                                       std::cos(elevation) * std::sin(a), std::sin(elevation));
     if (d_B.z() < best_z) {
       best_z = d_B.z();
       best_azimuth = std::atan2(d_B.y(), d_B.x());
@@ -65,9 +64,7 @@ TEST(UncertaintyModel, RayGridCoversTheMid360FieldOfView) {
 TEST(UncertaintyModel, TestHelperFindsTheLowSide) {
   const auto calibration = frames::MotorLidarCalibration::referenceRig();
   for (double target : {0.0, 1.0, kPi, -2.0}) {
-    EXPECT_LT(angleDistance(lowSideAzimuth(calibration, thetaLookingAt(calibration, target)),
-                            target),
-              0.01);
+    EXPECT_LT(angleDistance(lowSideAzimuth(calibration, thetaLookingAt(calibration, target)), target), 0.01);
   }
 }
 
@@ -84,18 +81,17 @@ TEST(UncertaintyModel, InformationMatchesExplicitRayCasting) {
   config.calibration = frames::MotorLidarCalibration::tiltedAboutX(30.37 * kPi / 180.0);
   const UncertaintyModel model(config);
   for (double theta : {0.123, 1.9, -2.71, 13.3}) {
-    const Eigen::Matrix3d R_BL =
-        frames::lidarPoseInBase(theta, model.config().calibration).linear();
+    const Eigen::Matrix3d R_BL = frames::lidarPoseInBase(theta, model.config().calibration).linear();
     Matrix6d expected = Matrix6d::Zero();
     for (const Eigen::Vector3d& d_L : model.raysLidar()) {
       const int centre = scene.map.pixelOf(R_BL * d_L);
-      const int pixel = scene.map.lookup(centre % scene.map.width(), centre / scene.map.width(),
-                                         model.config().lookup_radius_px);
+      const int pixel =
+          scene.map.lookup(centre % scene.map.width(), centre / scene.map.width(), model.config().lookup_radius_px);
       if (pixel < 0) continue;
       const Eigen::Vector3f* n = scene.normals.normal(pixel);
       if (n == nullptr) continue;
-      const Vector6d J = UncertaintyModel::pointToPlaneJacobian(
-          scene.map.point(pixel).cast<double>(), n->cast<double>());
+      const Vector6d J =
+          UncertaintyModel::pointToPlaneJacobian(scene.map.point(pixel).cast<double>(), n->cast<double>());
       expected += J * J.transpose();
     }
     const Matrix6d lambda = model.information(scene.map, scene.normals, theta);
@@ -109,8 +105,7 @@ TEST(UncertaintyModel, InformationMatchesExplicitRayCasting) {
 TEST(UncertaintyModel, UncertaintyDoesNotDependOnTheAxesOfTheJacobian) {
   std::mt19937 rng(7);
   std::normal_distribution<double> gauss;
-  const Eigen::Matrix3d R_WB = (Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, 2, 3).normalized()))
-                                   .toRotationMatrix();
+  const Eigen::Matrix3d R_WB = (Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, 2, 3).normalized())).toRotationMatrix();
   Matrix6d lambda_B = Matrix6d::Zero();
   Matrix6d lambda_W = Matrix6d::Zero();
   for (int k = 0; k < 50; ++k) {
@@ -122,8 +117,7 @@ TEST(UncertaintyModel, UncertaintyDoesNotDependOnTheAxesOfTheJacobian) {
     lambda_W += J_W * J_W.transpose();
   }
   const UncertaintyModel model;
-  EXPECT_NEAR(model.aOptimality(lambda_B), model.aOptimality(lambda_W),
-              1e-9 * model.aOptimality(lambda_B));
+  EXPECT_NEAR(model.aOptimality(lambda_B), model.aOptimality(lambda_W), 1e-9 * model.aOptimality(lambda_B));
   EXPECT_NEAR(model.aOptimality(lambda_B), lambda_B.inverse().trace(), 1e-9);
 }
 
@@ -150,9 +144,9 @@ TEST(UncertaintyModel, AddingInformationNeverIncreasesUncertainty) {
   Matrix6d lambda = Matrix6d::Zero();
   double previous = model.aOptimality(lambda);
   for (int k = 0; k < 40; ++k) {
-    const Vector6d J = UncertaintyModel::pointToPlaneJacobian(
-        {4 * gauss(rng), 4 * gauss(rng), gauss(rng)},
-        Eigen::Vector3d(gauss(rng), gauss(rng), 0.2 * gauss(rng)).normalized());
+    const Vector6d J =
+        UncertaintyModel::pointToPlaneJacobian({4 * gauss(rng), 4 * gauss(rng), gauss(rng)},
+                                               Eigen::Vector3d(gauss(rng), gauss(rng), 0.2 * gauss(rng)).normalized());
     lambda += J * J.transpose();
     const double u = model.aOptimality(lambda);
     EXPECT_LE(u, previous * (1 + 1e-12));
@@ -183,10 +177,8 @@ TEST(UncertaintyModel, CorridorEndWallBeatsLookingAlongTheWalls) {
   Scene scene(cloud);
   const UncertaintyModel model;
   const auto& calibration = model.config().calibration;
-  const double at_end_wall = model.uncertainty(scene.map, scene.normals,
-                                               thetaLookingAt(calibration, 0.0));
-  const double along_walls = model.uncertainty(scene.map, scene.normals,
-                                               thetaLookingAt(calibration, kPi));
+  const double at_end_wall = model.uncertainty(scene.map, scene.normals, thetaLookingAt(calibration, 0.0));
+  const double along_walls = model.uncertainty(scene.map, scene.normals, thetaLookingAt(calibration, kPi));
   EXPECT_LT(at_end_wall, 0.1 * along_walls) << at_end_wall << " vs " << along_walls;
   EXPECT_LT(at_end_wall, 0.1 * model.maxUncertainty());
   // And the best of a full turn is at most a few samples away from facing the end wall.
@@ -200,25 +192,22 @@ TEST(UncertaintyModel, CorridorEndWallBeatsLookingAlongTheWalls) {
       best_theta = theta;
     }
   }
-  EXPECT_LT(angleDistance(lowSideAzimuth(calibration, best_theta), 0.0), kPi / 2)
-      << "best theta " << best_theta;
+  EXPECT_LT(angleDistance(lowSideAzimuth(calibration, best_theta), 0.0), kPi / 2) << "best theta " << best_theta;
 }
 
 // Corridor with no end walls, plus a pillar standing out of the left wall at x = 4: a cross
 // feature. Facing it beats facing the empty corridor on the other side.
 TEST(UncertaintyModel, CorridorCrossFeatureBeatsLookingAlongTheWalls) {
   test::Cloud cloud = test::corridor(-60.0, 60.0);
-  test::addRectangle(cloud, {4.0, 1.4, -1.0}, {0, 0.6, 0}, {0, 0, 3}, 0.05);   // face to -x
-  test::addRectangle(cloud, {4.5, 1.4, -1.0}, {0, 0.6, 0}, {0, 0, 3}, 0.05);   // face to +x
-  test::addRectangle(cloud, {4.0, 1.4, -1.0}, {0.5, 0, 0}, {0, 0, 3}, 0.05);   // face to -y
+  test::addRectangle(cloud, {4.0, 1.4, -1.0}, {0, 0.6, 0}, {0, 0, 3}, 0.05);  // face to -x
+  test::addRectangle(cloud, {4.5, 1.4, -1.0}, {0, 0.6, 0}, {0, 0, 3}, 0.05);  // face to +x
+  test::addRectangle(cloud, {4.0, 1.4, -1.0}, {0.5, 0, 0}, {0, 0, 3}, 0.05);  // face to -y
   Scene scene(cloud);
   const UncertaintyModel model;
   const auto& calibration = model.config().calibration;
   const double pillar_azimuth = std::atan2(1.7, 4.0);
-  const double at_pillar = model.uncertainty(scene.map, scene.normals,
-                                             thetaLookingAt(calibration, pillar_azimuth));
-  const double away = model.uncertainty(scene.map, scene.normals,
-                                        thetaLookingAt(calibration, pillar_azimuth + kPi));
+  const double at_pillar = model.uncertainty(scene.map, scene.normals, thetaLookingAt(calibration, pillar_azimuth));
+  const double away = model.uncertainty(scene.map, scene.normals, thetaLookingAt(calibration, pillar_azimuth + kPi));
   EXPECT_LT(at_pillar, 0.5 * away) << at_pillar << " vs " << away;
 
   // Without the pillar, x is unconstrained everywhere: every direction is worse than the pillar.
@@ -279,6 +268,51 @@ TEST(UncertaintyModel, RejectsInvalidConfig) {
   EXPECT_THROW(UncertaintyModel{config}, std::invalid_argument);
   config = {};
   config.azimuth_step = -1.0;
+  EXPECT_THROW(UncertaintyModel{config}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace uampc::mpc
+
+namespace uampc::mpc {
+namespace {
+
+// The information along x from one large wall facing the base at distance `distance`.
+double wallInformationAlongX(double distance, double range_weight_saturation) {
+  test::Cloud wall;
+  test::addRectangle(wall, {distance, -20.0, -1.0}, {0.0, 40.0, 0.0}, {0.0, 0.0, 12.0}, 0.1);
+  Scene scene(wall);
+  UncertaintyModel::Config config;
+  config.range_weight_saturation = range_weight_saturation;
+  const UncertaintyModel model(config);
+  // Search the motor angle that sees the wall best: the test is about the weights, not the view.
+  double best = 0.0;
+  for (int k = 0; k < 72; ++k) best = std::max(best, model.information(scene.map, scene.normals, k * kPi / 36.0)(3, 3));
+  return best;
+}
+
+TEST(UncertaintyModelRangeWeight, SaturationRangeOfTheMid360) {
+  // 0.3 m voxels, 20 000 points per frame over 2 pi x (sin 52 deg + sin 7 deg) sr.
+  const double expected =
+      0.3 * std::sqrt(20000.0 / (2.0 * kPi * (std::sin(52.0 * kPi / 180.0) + std::sin(7.0 * kPi / 180.0))));
+  EXPECT_NEAR(UncertaintyModel::rangeWeightSaturation(0.3, 20000.0, LidarFieldOfView{}), expected, 1e-9);
+  EXPECT_NEAR(expected, 17.7, 0.05);
+}
+
+TEST(UncertaintyModelRangeWeight, NearSurfacesWeighLessFarOnesAsBefore) {
+  // A wall 3 m away fills many rays but few of the LO's voxels: straight ahead a ray weighs
+  // (3 / 17.7)^2 = 0.03, more at oblique incidence (the wide wall's far parts reach full weight
+  // beyond 75 degrees), 0.32 over the whole wall. A wall 25 m away is beyond r_sat: every ray
+  // counts fully.
+  const double near_ratio = wallInformationAlongX(3.0, 17.7) / wallInformationAlongX(3.0, 0.0);
+  EXPECT_LT(near_ratio, 0.5);
+  EXPECT_GT(near_ratio, 0.02);
+  EXPECT_NEAR(wallInformationAlongX(25.0, 17.7) / wallInformationAlongX(25.0, 0.0), 1.0, 1e-9);
+}
+
+TEST(UncertaintyModelRangeWeight, RefusesANegativeSaturation) {
+  UncertaintyModel::Config config;
+  config.range_weight_saturation = -1.0;
   EXPECT_THROW(UncertaintyModel{config}, std::invalid_argument);
 }
 

@@ -120,10 +120,10 @@ struct OdometryResult {
   int degenerate_state_directions = 0;  // of the 12-dimensional state, velocities included
   std::size_t correspondences = 0;
   int iterations = 0;
-  bool implausible_motion = false;     // this scan's update was rejected for its acceleration
-  std::size_t rejected_updates = 0;    // such rejections since the start
-  bool inertial_prediction = false;    // predicted with the IMU (else: constant velocity)
-  bool lost = false;                   // see OdometryStatus::kLost
+  bool implausible_motion = false;   // this scan's update was rejected for its acceleration
+  std::size_t rejected_updates = 0;  // such rejections since the start
+  bool inertial_prediction = false;  // predicted with the IMU (else: constant velocity)
+  bool lost = false;                 // see OdometryStatus::kLost
 
   std::size_t points_in = 0;
   std::size_t points_used = 0;  // after downsampling, fed to the filter
@@ -131,6 +131,10 @@ struct OdometryResult {
   std::size_t dropped_range = 0;
   std::size_t dropped_outside_motor_track = 0;
 };
+
+// The iterated update's options as registerScan sets them from the config (tools that register a
+// scan against the LO's map by hand, e.g. tools/u_check, use the same).
+UpdateOptions updateOptionsFrom(const OdometryConfig& config);
 
 class MotorizedLidarOdometry {
  public:
