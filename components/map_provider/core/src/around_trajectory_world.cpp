@@ -62,7 +62,7 @@ bool freeOf(const std::vector<Footprint>& taken, double cx, double cy, double ra
 }
 
 // The thinned path cut into its density profile's stretches: which stretch every sample, and so
-// every place (by its nearest sample), belongs to.
+// every place (see stretchAt), belongs to.
 class StretchedPath {
  public:
   StretchedPath(const std::vector<Eigen::Vector3d>& samples, const DensityProfileConfig& profile, std::uint64_t seed)
@@ -81,7 +81,6 @@ class StretchedPath {
   const std::vector<PathStretch>& stretches() const { return stretches_; }
   const std::vector<Eigen::Vector3d>& samples() const { return samples_; }
   double arc(std::size_t i) const { return arc_[i]; }
-  std::size_t stretchOf(std::size_t sample) const { return stretch_of_[sample]; }
 
   // The stretch a place belongs to: that of the nearest sample of the first pass of the path
   // within `reach` of it (the nearest sample of all if none is). Where the path passes a place

@@ -2,11 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "uampc/world/seeded_random.hpp"
 
 namespace uampc::world {
+namespace {
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+}  // namespace
 
 const char* toString(StretchKind kind) {
   switch (kind) {
@@ -36,11 +46,11 @@ double openFractionOfProfile(const std::string& name) {
 void checkDensityProfile(const DensityProfileConfig& config) {
   if (!(config.open_fraction >= 0.0 && config.open_fraction <= 1.0)) {
     throw std::invalid_argument("open_fraction must be between 0 and 1 (the share of path length that is open), got " +
-                                std::to_string(config.open_fraction));
+                                shortNumber(config.open_fraction));
   }
   if (!(config.min_stretch > 0.0 && config.max_stretch >= config.min_stretch)) {
     throw std::invalid_argument("density profile: stretch lengths need 0 < min_stretch <= max_stretch, got " +
-                                std::to_string(config.min_stretch) + " and " + std::to_string(config.max_stretch));
+                                shortNumber(config.min_stretch) + " and " + shortNumber(config.max_stretch));
   }
 }
 
