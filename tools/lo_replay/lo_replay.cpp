@@ -7,6 +7,8 @@
 //             [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1]
 //             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
 //             [--measurement-variance M2] [--profile rich|mixed|poor] [--open-fraction F]
+//             [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M]
+//             [--path-speed M_PER_S] [--poor-rows N]
 //
 // Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
 // generated around it (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD
@@ -62,7 +64,8 @@ int replay(int argc, char** argv) {
         "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
         "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
         "[--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] "
-        "[--profile rich|mixed|poor] [--open-fraction F]\n");
+        "[--profile rich|mixed|poor] [--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] "
+        "[--plane-distance M] [--path-speed M_PER_S] [--poor-rows N]\n");
     return 2;
   }
   const std::string source = argv[1];
@@ -80,6 +83,7 @@ int replay(int argc, char** argv) {
   int every = 1;
   bool use_imu = false;
   lo::OdometryConfig config;
+  raycaster::RayCasterConfig caster_config;  // noise-free unless asked
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     const char* value = argv[i + 1];
@@ -95,6 +99,16 @@ int replay(int argc, char** argv) {
       settings.attitude = value;
     else if (flag == "--door-spacing")
       settings.corridor_door_spacing = std::atof(value);
+    else if (flag == "--lidar-range-noise")
+      caster_config.range_noise_stddev = std::atof(value);
+    else if (flag == "--lidar-angular-noise-deg")
+      caster_config.angular_noise_stddev = std::atof(value) * M_PI / 180.0;
+    else if (flag == "--path-speed")
+      settings.path_speed = std::atof(value);
+    else if (flag == "--poor-rows")
+      settings.campus_poor_rows = std::atoi(value);
+    else if (flag == "--plane-distance")
+      config.plane_max_point_distance = std::atof(value);
     else if (flag == "--profile")
       settings.density_profile = value;
     else if (flag == "--open-fraction")
@@ -132,7 +146,8 @@ int replay(int argc, char** argv) {
   const world::World world = world::buildWorld(settings);
   const world::Trajectory& truth = world.trajectory;
   std::printf("# world: %s, %zu triangles\n", world.description.c_str(), world.mesh.size());
-  raycaster::RayCaster caster(world.mesh);
+  caster_config.seed = settings.seed;
+  raycaster::RayCaster caster(world.mesh, caster_config);
 
   const double frame = caster.frameDuration();
   const double end = std::min(truth.endTime() - 0.2, start + duration);

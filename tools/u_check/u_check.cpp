@@ -3,7 +3,8 @@
 //
 //   u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N]
 //           [--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG]
-//           [--position-sigma M] [--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight M] [--csv FILE]
+//           [--position-sigma M] [--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] [--csv
+//           FILE]
 //
 // Prints, per probe time, the LO's own error, the local map's size, the ranges of U and of the
 // measured figures, and Spearman's rank correlation of U with the posterior pose-covariance
@@ -11,7 +12,8 @@
 // probes where the LO held. The oracle columns rank the angles by the same criterion computed from
 // the information the LO's update really had: how good the criterion is, apart from how well U
 // predicts the view. --panorama and --ray-step change U's depth map and ray grid (defaults: the
-// mpc component's); --range-weight sets U's range_weight_saturation (uncertainty_model.hpp).
+// mpc component's); --range-weight-voxel is the mpc component's range_weight_voxel (0: the
+// paper's equal rays).
 // --csv writes one row per probe and angle.
 #include <cmath>
 #include <cstdio>
@@ -31,7 +33,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N] "
     "[--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG] [--position-sigma M] "
-    "[--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight M] [--csv FILE]\n";
+    "[--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] [--csv FILE]\n";
 
 double number(const std::string& flag, const std::string& text) {
   char* end = nullptr;
@@ -73,6 +75,7 @@ int run(int argc, char** argv) {
   tools::UncertaintyCheckConfig config;
   std::vector<double> times;
   std::string csv_path;
+  double range_weight_voxel = 0.3;  // the mpc component's default
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--at")
@@ -93,8 +96,8 @@ int run(int argc, char** argv) {
       settings.corridor_door_spacing = number(flag, value);
     else if (flag == "--csv")
       csv_path = value;
-    else if (flag == "--range-weight")
-      config.controller.uncertainty.range_weight_saturation = number(flag, value);
+    else if (flag == "--range-weight-voxel")
+      range_weight_voxel = number(flag, value);
     else if (flag == "--ray-step") {
       config.controller.uncertainty.azimuth_step = config.controller.uncertainty.elevation_step =
           number(flag, value) * M_PI / 180.0;
@@ -107,6 +110,12 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("unknown option " + flag + "\n" + kUsage);
   }
   if (times.empty()) throw std::invalid_argument(std::string("--at is required\n") + kUsage);
+  if (range_weight_voxel > 0.0) {  // as the mpc component sets it, for the simulated Mid-360
+    const raycaster::LidarModel mid360 = raycaster::livoxMid360();
+    config.controller.uncertainty.range_weight_saturation = mpc::UncertaintyModel::rangeWeightSaturation(
+        range_weight_voxel, mid360.points_per_second / mid360.frame_rate_hz,
+        config.controller.uncertainty.field_of_view);
+  }
 
   const world::World world = world::buildWorld(settings);
   tools::UncertaintyCheck check(world, config);

@@ -40,10 +40,13 @@ class MpcComponent : public Component {
     spec.param("horizon_dt", 0.1, "time between horizon steps, s").between(0.001, 10.0);
     spec.param("sample_step_deg", 5.0, "delta_theta between U samples, degrees").between(0.5, 90.0);
     spec.param("ray_step_deg", 5.0, "grid of the field-of-view rays for U, degrees").between(0.5, 30.0);
-    // 2 degrees per pixel: U's rays lie on a 5-degree grid, so 1-degree pixels (360 x 180) cost
-    // twice the time (8 ms instead of 5 per step with a 100k-point map) without adding information.
-    spec.param("panorama_width", 180, "panorama columns over 2 pi").between(16, 4096);
-    spec.param("panorama_height", 90, "panorama rows over pi").between(8, 2048);
+    const mpc::PanoramicDepthMap::Config panorama;  // its defaults, and why, are the core's
+    spec.param("panorama_width", panorama.width, "panorama columns over 2 pi").between(16, 4096);
+    spec.param("panorama_height", panorama.height, "panorama rows over pi").between(8, 2048);
+    spec.param("range_weight_voxel", 0.3,
+               "U weighs each ray by what an LO downsampling to voxels of this size keeps of it (the lo's "
+               "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; README, \"U checked against the LO\")")
+        .between(0.0, 10.0);
     spec.param("lidar_model", "livox_mid360", "field of view of U: livox_mid360, velodyne_vlp16 or livox_avia")
         .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia"});
     adapters::declareRigParameters(spec);
@@ -103,6 +106,11 @@ class MpcComponent : public Component {
       c.uncertainty.field_of_view = {-M_PI, M_PI, lo * kDeg, hi * kDeg};
     }
     c.depth_map.max_range = model.max_range;
+    const double voxel = ctx.paramDouble("range_weight_voxel");
+    if (voxel > 0.0) {
+      c.uncertainty.range_weight_saturation = mpc::UncertaintyModel::rangeWeightSaturation(
+          voxel, model.points_per_second / model.frame_rate_hz, c.uncertainty.field_of_view);
+    }
     return c;
   }
 
@@ -123,8 +131,10 @@ class MpcComponent : public Component {
     local_map_.reserve(points.positions.size());
     std::size_t bad = 0;
     for (const auto& p : points.positions) {
-      if (p.allFinite()) local_map_.push_back(p.cast<double>());
-      else ++bad;
+      if (p.allFinite())
+        local_map_.push_back(p.cast<double>());
+      else
+        ++bad;
     }
     if (bad) ctx_.log().warn("dropped ", bad, " non-finite points of the local map on ", ctx_.topicOf("local_map"));
     local_map_time_ = ctx_.now();

@@ -42,7 +42,18 @@ class RaycasterComponent : public Component {
     spec.param("min_range", 0.5, "model: spinning: minimum range, m").between(0.0, 1000.0);
     spec.param("max_range", 100.0, "model: spinning: maximum range, m").between(0.1, 10000.0);
     adapters::declareRigParameters(spec);
-    spec.param("range_noise", 0.0, "standard deviation of Gaussian range noise, m").between(0.0, 1.0);
+    // Noise defaults: the Mid-360's datasheet range precision (1 sigma), the default model's.
+    // Its angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with it the
+    // LiDAR-only LO loses track within 10-45 s on every MCD trajectory tried, even at 0.05
+    // degrees (README, "Sensor noise"); a scene may turn it on.
+    const raycaster::LidarModel mid360 = raycaster::livoxMid360();
+    spec.param("range_noise", mid360.range_precision,
+               "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
+        .between(0.0, 1.0);
+    spec.param("angular_noise_deg", 0.0,
+               "standard deviation of the reported direction of a return, per axis, degrees (the Mid-360 "
+               "datasheet: 0.15; off by default, see README)")
+        .between(0.0, 10.0);
     spec.param("dropout", 0.0, "probability that a return is lost").between(0.0, 1.0);
     spec.param("frame_id", "lidar", "frame_id of the published scans and IMU samples");
     const raycaster::ImuNoiseParameters icm40609;  // the Mid-360's IMU
@@ -87,12 +98,13 @@ class RaycasterComponent : public Component {
     raycaster::RayCasterConfig c;
     const std::string model = ctx.paramString("model");
     c.model = model == "spinning"
-                  ? raycaster::spinningLidar(ctx.paramDoubleList("elevations_deg"), ctx.paramDouble("points_per_second"),
-                                             ctx.paramDouble("frame_rate"), ctx.paramDouble("min_range"),
-                                             ctx.paramDouble("max_range"))
+                  ? raycaster::spinningLidar(ctx.paramDoubleList("elevations_deg"),
+                                             ctx.paramDouble("points_per_second"), ctx.paramDouble("frame_rate"),
+                                             ctx.paramDouble("min_range"), ctx.paramDouble("max_range"))
                   : raycaster::lidarModelByName(model);
     c.calibration = adapters::rigCalibration(ctx);
     c.range_noise_stddev = ctx.paramDouble("range_noise");
+    c.angular_noise_stddev = ctx.paramDouble("angular_noise_deg") * M_PI / 180.0;
     c.dropout_probability = ctx.paramDouble("dropout");
     c.seed = ctx.seed();
     return c;
@@ -129,7 +141,8 @@ class RaycasterComponent : public Component {
                                    " refers to a vertex it does not have");
         }
       }
-      mesh_.triangles.emplace_back(base + static_cast<int>(m.triangles()[i]), base + static_cast<int>(m.triangles()[i + 1]),
+      mesh_.triangles.emplace_back(base + static_cast<int>(m.triangles()[i]),
+                                   base + static_cast<int>(m.triangles()[i + 1]),
                                    base + static_cast<int>(m.triangles()[i + 2]));
     }
     for (std::size_t i = 0; i < m.points().size(); i += 3) {
@@ -148,8 +161,8 @@ class RaycasterComponent : public Component {
     const double t = fromMsg(p.header().stamp()).seconds();
     if (!poses_.empty() && t <= poses_.back().time) return;  // repeated or stale: nothing new
     if (!adapters::isFinitePose(p.pose())) {
-      throw std::runtime_error("invalid ground-truth pose on " + ctx_.topicOf("ground_truth") + " at t=" +
-                               std::to_string(t));
+      throw std::runtime_error("invalid ground-truth pose on " + ctx_.topicOf("ground_truth") +
+                               " at t=" + std::to_string(t));
     }
     const Eigen::Isometry3d T = adapters::toIsometry(p.pose());
     poses_.push_back({t, T.translation(), Eigen::Quaterniond(T.linear())});

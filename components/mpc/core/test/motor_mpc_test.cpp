@@ -12,8 +12,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 // Surrogate of U(theta) = mean - amplitude * cos(theta - best), sampled every 5 degrees from
 // theta_start: smallest uncertainty towards `best`.
-UncertaintySurrogate cosineSurrogate(double theta_start, double best, double mean = 2.0,
-                                     double amplitude = 1.0) {
+UncertaintySurrogate cosineSurrogate(double theta_start, double best, double mean = 2.0, double amplitude = 1.0) {
   const int n = 72;
   const double step = UncertaintySurrogate::turnStep(n);
   std::vector<double> samples(n);
@@ -27,8 +26,7 @@ struct BruteForce {
 };
 
 // Exhaustive search over a speed grid for every variable of the horizon.
-BruteForce bruteForce(const MotorMpc& mpc, const UncertaintySurrogate& surrogate, double theta,
-                      double grid_step) {
+BruteForce bruteForce(const MotorMpc& mpc, const UncertaintySurrogate& surrogate, double theta, double grid_step) {
   const MotorMpc::Config& c = mpc.config();
   const int n = mpc.variableCount();
   const int levels = static_cast<int>(std::round((c.omega_max - c.omega_min) / grid_step)) + 1;
@@ -126,9 +124,8 @@ TEST(MotorMpc, MatchesBruteForceOnSmallHorizons) {
     double best_offset;  // where U is smallest, relative to theta_now
     double grid;
   };
-  const Case cases[] = {{0, 10.0, 0.4, 0.001},  {0, 1000.0, 0.2, 0.001}, {1, 10.0, 0.5, 0.01},
-                        {1, 1000.0, 0.9, 0.01}, {1, 30.0, -0.6, 0.01},   {1, 100.0, 2.5, 0.01},
-                        {3, 50.0, 0.7, 0.2}};
+  const Case cases[] = {{0, 10.0, 0.4, 0.001}, {0, 1000.0, 0.2, 0.001}, {1, 10.0, 0.5, 0.01}, {1, 1000.0, 0.9, 0.01},
+                        {1, 30.0, -0.6, 0.01}, {1, 100.0, 2.5, 0.01},   {3, 50.0, 0.7, 0.2}};
   for (const Case& c : cases) {
     MotorMpc::Config config;
     config.horizon = c.horizon;
@@ -138,8 +135,8 @@ TEST(MotorMpc, MatchesBruteForceOnSmallHorizons) {
     const UncertaintySurrogate surrogate = cosineSurrogate(theta_now, theta_now + c.best_offset);
     const MotorMpc::Plan plan = mpc.solve(surrogate, theta_now);
     const BruteForce brute = bruteForce(mpc, surrogate, theta_now, c.grid);
-    SCOPED_TRACE("horizon " + std::to_string(c.horizon) + " alpha " + std::to_string(c.alpha) +
-                 " offset " + std::to_string(c.best_offset));
+    SCOPED_TRACE("horizon " + std::to_string(c.horizon) + " alpha " + std::to_string(c.alpha) + " offset " +
+                 std::to_string(c.best_offset));
     EXPECT_LE(plan.cost, brute.cost + 1e-4 * (1 + brute.cost));
     EXPECT_LT(plan.cost, plan.initial_cost + 1e-12);
     if (c.grid <= 0.01) {  // fine grid: the minimisers agree too

@@ -16,16 +16,23 @@ constexpr double kPi = 3.14159265358979323846;
 Eigen::Isometry3d somePose() {
   Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
   T_WB.linear() = (Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) *
-                   Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()) *
-                   Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()))
+                   Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitX()))
                       .toRotationMatrix();
   T_WB.translation() = Eigen::Vector3d(3.0, -2.0, 1.5);
   return T_WB;
 }
 
 // One pixel per point: the tests that count pixels switch splatting off.
-PanoramicDepthMap::Config unsplatted() {
+// The pixel arithmetic of these tests is written for 1-degree pixels.
+PanoramicDepthMap::Config oneDegree() {
   PanoramicDepthMap::Config config;
+  config.width = 360;
+  config.height = 180;
+  return config;
+}
+
+PanoramicDepthMap::Config unsplatted() {
+  PanoramicDepthMap::Config config = oneDegree();
   config.point_spacing = 0.0;
   return config;
 }
@@ -34,8 +41,7 @@ PanoramicDepthMap::Config unsplatted() {
 Eigen::Vector3d pixelCentreDirection(int u, int v, int width, int height) {
   const double azimuth = -kPi + (u + 0.5) * 2.0 * kPi / width;
   const double elevation = 0.5 * kPi - (v + 0.5) * kPi / height;
-  return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
-          std::sin(elevation)};
+  return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
 }
 
 TEST(PanoramicDepthMap, PointAtKnownDirectionLandsInExpectedPixel) {
@@ -60,7 +66,7 @@ TEST(PanoramicDepthMap, PointAtKnownDirectionLandsInExpectedPixel) {
 }
 
 TEST(PanoramicDepthMap, AxisDirectionsFollowEq5) {
-  PanoramicDepthMap map;  // 360 x 180
+  PanoramicDepthMap map(oneDegree());
   // Azimuth 0 (+x) is the middle column; +y (azimuth +pi/2) is three quarters across.
   EXPECT_EQ(map.pixelOf({1.0, 0.0, 0.01}), map.pixelIndex(180, 89));
   EXPECT_EQ(map.pixelOf({0.0, 1.0, -0.01}), map.pixelIndex(270, 90));
@@ -73,8 +79,7 @@ TEST(PanoramicDepthMap, NearestPointWinsWhateverTheOrder) {
   PanoramicDepthMap map(unsplatted());
   const Eigen::Isometry3d T_WB = somePose();
   const Eigen::Vector3d d = pixelCentreDirection(40, 60, 360, 180);
-  const std::vector<Eigen::Vector3d> far_first = {T_WB * (9.0 * d), T_WB * (3.0 * d),
-                                                  T_WB * (6.0 * d)};
+  const std::vector<Eigen::Vector3d> far_first = {T_WB * (9.0 * d), T_WB * (3.0 * d), T_WB * (6.0 * d)};
   map.render(far_first, T_WB);
   const int pixel = map.pixelIndex(40, 60);
   EXPECT_NEAR(map.range(pixel), 3.0, 1e-5);
@@ -106,15 +111,15 @@ TEST(PanoramicDepthMap, RangeWindowAndNonFinitePointsAreSkipped) {
   config.max_range = 10.0;
   PanoramicDepthMap map(config);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  map.render({Eigen::Vector3d(0.5, 0, 0), Eigen::Vector3d(0, 11, 0), Eigen::Vector3d(nan, 0, 1),
-              Eigen::Vector3d(0, 0, 9)},
-             Eigen::Isometry3d::Identity());
+  map.render(
+      {Eigen::Vector3d(0.5, 0, 0), Eigen::Vector3d(0, 11, 0), Eigen::Vector3d(nan, 0, 1), Eigen::Vector3d(0, 0, 9)},
+      Eigen::Isometry3d::Identity());
   EXPECT_EQ(map.occupiedCount(), 1U);
   EXPECT_EQ(map.pointIndex(map.pixelOf({0, 0, 1})), 3);
 }
 
 TEST(PanoramicDepthMap, ColumnWrapsMultiTurnAzimuth) {
-  PanoramicDepthMap map;
+  PanoramicDepthMap map(oneDegree());
   for (double azimuth : {-3.0, -0.4, 0.0, 1.3, 3.1}) {
     for (int turns : {-3, -1, 1, 7}) {
       EXPECT_EQ(map.column(azimuth + turns * 2.0 * kPi), map.column(azimuth));
@@ -136,14 +141,13 @@ TEST(PanoramicDepthMap, LookupFillsSmallHolesWithNearestNeighbour) {
 // A near point covers its footprint (0.5 * spacing / range each side), a far one a single pixel;
 // nearest still wins inside the footprint.
 TEST(PanoramicDepthMap, NearPointsAreSplattedOverTheirFootprint) {
-  PanoramicDepthMap::Config config;  // 1 degree pixels
+  PanoramicDepthMap::Config config = oneDegree();
   config.point_spacing = 0.3;
   config.max_splat_radius_px = 10;
   PanoramicDepthMap map(config);
   const Eigen::Vector3d d = pixelCentreDirection(100, 90, 360, 180);  // on the horizon
   // At 2 m, 0.15 m each side is 4.3 degrees: pixels 96..104 in both directions.
-  map.render({30.0 * d, 2.0 * d, 4.0 * pixelCentreDirection(103, 90, 360, 180)},
-             Eigen::Isometry3d::Identity());
+  map.render({30.0 * d, 2.0 * d, 4.0 * pixelCentreDirection(103, 90, 360, 180)}, Eigen::Isometry3d::Identity());
   for (int du = -4; du <= 4; ++du) {
     for (int dv = -4; dv <= 4; ++dv) {
       EXPECT_EQ(map.pointIndex(map.pixelIndex(100 + du, 90 + dv)), 1) << du << " " << dv;
@@ -172,7 +176,7 @@ TEST(PanoramicDepthMap, RejectsInvalidConfig) {
 
 TEST(DepthMapNormals, PlanesGiveTheirNormalFacingTheOrigin) {
   const test::Cloud cloud = test::corridor(-30.0, 30.0);
-  PanoramicDepthMap map;
+  PanoramicDepthMap map(oneDegree());
   map.render(cloud, Eigen::Isometry3d::Identity());
   DepthMapNormals normals;
   normals.reset(map);
@@ -180,10 +184,10 @@ TEST(DepthMapNormals, PlanesGiveTheirNormalFacingTheOrigin) {
     Eigen::Vector3d direction;
     Eigen::Vector3d expected;
   };
-  const Probe probes[] = {{{0.3, 1.0, 0.2}, {0, -1, 0}},     // left wall
-                          {{-0.5, -1.0, -0.1}, {0, 1, 0}},   // right wall
-                          {{0.4, 0.2, -1.0}, {0, 0, 1}},     // floor
-                          {{-0.6, 0.1, 1.0}, {0, 0, -1}}};   // ceiling
+  const Probe probes[] = {{{0.3, 1.0, 0.2}, {0, -1, 0}},    // left wall
+                          {{-0.5, -1.0, -0.1}, {0, 1, 0}},  // right wall
+                          {{0.4, 0.2, -1.0}, {0, 0, 1}},    // floor
+                          {{-0.6, 0.1, 1.0}, {0, 0, -1}}};  // ceiling
   for (const Probe& probe : probes) {
     const int pixel = map.pixelOf(probe.direction);
     ASSERT_TRUE(map.occupied(pixel));
@@ -207,7 +211,7 @@ TEST(DepthMapNormals, PlanesGiveTheirNormalFacingTheOrigin) {
 }
 
 TEST(DepthMapNormals, EmptyPixelHasNoNormal) {
-  PanoramicDepthMap map;
+  PanoramicDepthMap map(oneDegree());
   map.render({Eigen::Vector3d(5, 0, 0)}, Eigen::Isometry3d::Identity());
   DepthMapNormals normals;
   normals.reset(map);

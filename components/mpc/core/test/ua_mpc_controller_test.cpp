@@ -72,7 +72,8 @@ TEST(UaMpcController, UaMpcStepIsConsistent) {
   EXPECT_GE(decision.omega, mpc.omega_min);
   EXPECT_LE(decision.omega, mpc.omega_max);
   EXPECT_LE(decision.plan.cost, decision.plan.initial_cost);
-  EXPECT_EQ(controller.depthMap().depthImage().size(), 360U * 180U);
+  const PanoramicDepthMap::Config panorama;
+  EXPECT_EQ(controller.depthMap().depthImage().size(), std::size_t(panorama.width * panorama.height));
   EXPECT_GE(decision.timings.total_ms, decision.timings.solve_ms);
 
   // Same map seen from a different yaw, with theta shifted by the same angle: the LiDAR looks in

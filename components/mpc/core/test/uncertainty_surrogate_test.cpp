@@ -23,8 +23,7 @@ TEST(UncertaintySurrogate, EqualsSamplesAtSampleAnglesOnAnyTurn) {
   for (int s = 0; s < surrogate.count(); ++s) {
     for (int turns : {-3, -1, 0, 1, 5, 40}) {
       const double theta = 1.234 + s * surrogate.step() + turns * 2.0 * kPi;
-      EXPECT_NEAR(surrogate.value(theta), surrogate.samples()[s], 1e-9)
-          << "s=" << s << " turns=" << turns;
+      EXPECT_NEAR(surrogate.value(theta), surrogate.samples()[s], 1e-9) << "s=" << s << " turns=" << turns;
     }
   }
 }

@@ -12,6 +12,8 @@ LidarModel livoxMid360() {
   m.frame_rate_hz = 10.0;
   m.min_range = 1.5;
   m.max_range = 40.0;
+  m.range_precision = 0.02;
+  m.angular_precision_deg = 0.15;
   m.min_elevation_deg = -7.0;
   m.max_elevation_deg = 52.0;
   m.lasers = 4;
@@ -26,6 +28,7 @@ LidarModel velodyneVlp16() {
   for (int k = 0; k < 16; ++k) elevations.push_back(-15.0 + 2.0 * k);
   LidarModel m = spinningLidar(elevations, 288000.0, 10.0, 0.5, 100.0);
   m.name = "velodyne_vlp16";
+  m.range_precision = 0.03;
   return m;
 }
 
@@ -37,6 +40,8 @@ LidarModel livoxAvia() {
   m.frame_rate_hz = 10.0;
   m.min_range = 1.0;
   m.max_range = 200.0;
+  m.range_precision = 0.02;
+  m.angular_precision_deg = 0.05;
   m.lasers = 6;
   m.horizontal_fov_deg = 70.4;
   m.vertical_fov_deg = 77.2;
@@ -53,8 +58,8 @@ LidarModel lidarModelByName(const std::string& name) {
                               "' (expected livox_mid360, velodyne_vlp16 or livox_avia)");
 }
 
-LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_second,
-                         double frame_rate_hz, double min_range, double max_range) {
+LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_second, double frame_rate_hz,
+                         double min_range, double max_range) {
   LidarModel m;
   m.name = "spinning";
   m.kind = ScanPatternKind::kSpinning;

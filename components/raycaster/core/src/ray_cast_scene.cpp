@@ -41,9 +41,8 @@ struct RayCastScene::Embree {
   }
 };
 
-RayCastScene::RayCastScene(const world::TriangleMesh& mesh,
-                           const std::vector<Eigen::Vector3f>& points, float point_radius,
-                           int build_threads)
+RayCastScene::RayCastScene(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points,
+                           float point_radius, int build_threads)
     : embree_(std::make_unique<Embree>()) {
   if (mesh.empty() && points.empty()) throw std::runtime_error("RayCastScene: empty world");
   const std::string config = "threads=" + std::to_string(std::max(1, build_threads));
@@ -62,11 +61,10 @@ RayCastScene::RayCastScene(const world::TriangleMesh& mesh,
       }
     }
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                3 * sizeof(unsigned), mesh.triangles.size()));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(unsigned), mesh.triangles.size()));
     check(device, "allocating triangle buffers");
     for (std::size_t i = 0; i < nv; ++i) {
       v[3 * i] = mesh.vertices[i].x();
@@ -83,8 +81,8 @@ RayCastScene::RayCastScene(const world::TriangleMesh& mesh,
   }
   if (!points.empty()) {
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), points.size()));
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                          4 * sizeof(float), points.size()));
     check(device, "allocating point buffers");
     for (std::size_t i = 0; i < points.size(); ++i) {
       v[4 * i] = points[i].x();
@@ -162,8 +160,8 @@ void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hit
     rtcIntersect16(valid, embree_->scene, &context, &packet);
     for (std::size_t j = 0; j < count; ++j) {
       if (packet.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID) continue;
-      hits[first + j] = toHit(packet.ray.tfar[j], packet.hit.Ng_x[j], packet.hit.Ng_y[j],
-                              packet.hit.Ng_z[j], rays[first + j].direction);
+      hits[first + j] = toHit(packet.ray.tfar[j], packet.hit.Ng_x[j], packet.hit.Ng_y[j], packet.hit.Ng_z[j],
+                              rays[first + j].direction);
     }
   }
 }

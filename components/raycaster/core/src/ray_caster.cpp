@@ -8,6 +8,17 @@
 #include "uampc/world/seeded_random.hpp"
 
 namespace uampc::raycaster {
+namespace {
+
+// The cast direction d turned by the small angles `across` about two axes perpendicular to it.
+Eigen::Vector3f reportedDirection(const Eigen::Vector3f& d, const Eigen::Vector2d& across) {
+  const Eigen::Vector3f helper = std::abs(d.z()) < 0.9f ? Eigen::Vector3f::UnitZ() : Eigen::Vector3f::UnitX();
+  const Eigen::Vector3f e1 = d.cross(helper).normalized();
+  const Eigen::Vector3f e2 = d.cross(e1);
+  return (d + float(across.x()) * e1 + float(across.y()) * e2).normalized();
+}
+
+}  // namespace
 
 RayCaster::RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points,
                      RayCasterConfig config)
@@ -15,7 +26,7 @@ RayCaster::RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::V
   if (!(config_.model.max_range > config_.model.min_range) || config_.model.min_range < 0.0) {
     throw std::invalid_argument("RayCaster: need 0 <= min_range < max_range");
   }
-  if (config_.range_noise_stddev < 0.0 || config_.dropout_probability < 0.0 ||
+  if (config_.range_noise_stddev < 0.0 || !(config_.angular_noise_stddev >= 0.0) || config_.dropout_probability < 0.0 ||
       config_.dropout_probability > 1.0) {
     throw std::invalid_argument("RayCaster: noise must be >= 0 and dropout in [0, 1]");
   }
@@ -41,8 +52,8 @@ const std::vector<PatternPoint>& RayCaster::pattern(std::uint64_t frame_index) {
   return cached_pattern_;
 }
 
-Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
-                          const BasePoseAt& base_pose_at, const MotorAngleAt& motor_angle_at) {
+Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const BasePoseAt& base_pose_at,
+                          const MotorAngleAt& motor_angle_at) {
   const std::vector<PatternPoint>& points = pattern(frame_index);
   const auto max_range = static_cast<float>(config_.model.max_range);
   const auto min_range = static_cast<float>(config_.model.min_range);
@@ -77,15 +88,18 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
   world::SeededRandom random(world::mixSeed(config_.seed, frame_index));
   const bool noisy = config_.range_noise_stddev > 0.0;
   const bool lossy = config_.dropout_probability > 0.0;
+  const bool blurred = config_.angular_noise_stddev > 0.0;
   for (std::size_t k = 0; k < points.size(); ++k) {
     const double noise = noisy ? config_.range_noise_stddev * random.normal() : 0.0;
     const bool dropped = lossy && random.chance(config_.dropout_probability);
+    Eigen::Vector2d across = Eigen::Vector2d::Zero();
+    if (blurred) across = config_.angular_noise_stddev * Eigen::Vector2d(random.normal(), random.normal());
     const Hit& hit = hits_[k];
     if (!hit.valid || hit.distance < min_range || dropped) continue;
     const float range = hit.distance + static_cast<float>(noise);
     if (!(range > 0.0f)) continue;
     ScanPoint p;
-    p.position = points[k].direction * range;
+    p.position = (blurred ? reportedDirection(points[k].direction, across) : points[k].direction) * range;
     p.intensity = 255.0f * std::abs(hit.normal.dot(rays_[k].direction));
     p.time_offset = points[k].time_offset;
     p.ring = points[k].ring;
@@ -94,21 +108,20 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
   return scan;
 }
 
-Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start,
-                          const world::Trajectory& trajectory,
+Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const world::Trajectory& trajectory,
                           const frames::MotorAngleTrack& motor) {
   const std::vector<PatternPoint>& points = pattern(frame_index);
   const double frame_end = frame_start + lastTimeOffset(points);
   std::ostringstream msg;
   msg.precision(17);
   if (!trajectory.contains(frame_start) || !trajectory.contains(frame_end)) {
-    msg << "RayCaster: trajectory does not cover frame " << frame_index << " [" << frame_start
-        << ", " << frame_end << "] s";
+    msg << "RayCaster: trajectory does not cover frame " << frame_index << " [" << frame_start << ", " << frame_end
+        << "] s";
     throw std::out_of_range(msg.str());
   }
   if (!motor.covers(frame_start, frame_end)) {
-    msg << "RayCaster: motor readings do not cover frame " << frame_index << " [" << frame_start
-        << ", " << frame_end << "] s";
+    msg << "RayCaster: motor readings do not cover frame " << frame_index << " [" << frame_start << ", " << frame_end
+        << "] s";
     throw std::out_of_range(msg.str());
   }
   return castFrame(

@@ -12,8 +12,7 @@ double frac(double x) { return x - std::floor(x); }
 
 Eigen::Vector3f direction(double azimuth, double elevation) {
   const double c = std::cos(elevation);
-  return Eigen::Vector3d(c * std::cos(azimuth), c * std::sin(azimuth), std::sin(elevation))
-      .cast<float>();
+  return Eigen::Vector3d(c * std::cos(azimuth), c * std::sin(azimuth), std::sin(elevation)).cast<float>();
 }
 
 // Phase (in periods, [0, 1)) of a frequency f at time frame_index / frame_rate + t, computed in
@@ -24,8 +23,7 @@ double phase(double f, std::uint64_t frame_index, double frame_rate, double t) {
 
 void checkModel(const LidarModel& m) {
   if (!(m.points_per_second > 0.0) || !(m.frame_rate_hz > 0.0)) {
-    throw std::invalid_argument("LidarModel '" + m.name +
-                                "': points_per_second and frame_rate_hz must be positive");
+    throw std::invalid_argument("LidarModel '" + m.name + "': points_per_second and frame_rate_hz must be positive");
   }
   if (m.kind == ScanPatternKind::kSpinning && m.elevations_deg.empty()) {
     throw std::invalid_argument("LidarModel '" + m.name + "': spinning model without rings");
@@ -73,8 +71,8 @@ std::vector<PatternPoint> scanPattern(const LidarModel& m, std::uint64_t frame_i
         const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
         // One head turn per frame; the lasers sweep the elevation band as triangle waves.
         const double azimuth = 2.0 * M_PI * t * m.frame_rate_hz;
-        const double p = frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) +
-                              static_cast<double>(laser) / m.lasers);
+        const double p =
+            frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) + static_cast<double>(laser) / m.lasers);
         const double wave = p < 0.5 ? 2.0 * p : 2.0 - 2.0 * p;
         pattern[k] = {direction(azimuth, lo + (hi - lo) * wave), static_cast<float>(t),
                       static_cast<std::uint16_t>(laser)};
@@ -88,14 +86,12 @@ std::vector<PatternPoint> scanPattern(const LidarModel& m, std::uint64_t frame_i
         const double t = static_cast<double>(k) / m.points_per_second;
         const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
         // Two prisms turning opposite ways; their deflections add up to a point in the unit disk.
-        const double a1 = 2.0 * M_PI *
-                          (phase(m.prism1_hz, frame_index, m.frame_rate_hz, t) +
-                           static_cast<double>(laser) / m.lasers);
+        const double a1 =
+            2.0 * M_PI * (phase(m.prism1_hz, frame_index, m.frame_rate_hz, t) + static_cast<double>(laser) / m.lasers);
         const double a2 = -2.0 * M_PI * phase(m.prism2_hz, frame_index, m.frame_rate_hz, t);
         const double u = 0.5 * (std::cos(a1) + std::cos(a2));
         const double v = 0.5 * (std::sin(a1) + std::sin(a2));
-        pattern[k] = {direction(u * half_h, v * half_v), static_cast<float>(t),
-                      static_cast<std::uint16_t>(laser)};
+        pattern[k] = {direction(u * half_h, v * half_v), static_cast<float>(t), static_cast<std::uint16_t>(laser)};
       }
       break;
     }

@@ -22,9 +22,9 @@ world::TriangleMesh groundPlane(float half = 200.0f) {
 Eigen::Isometry3d movingBase(double t) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(1.5 * t, 0.3 * t, 2.0 + 0.1 * t);
-  T.linear() = (Eigen::AngleAxisd(0.4 * t, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
+  T.linear() =
+      (Eigen::AngleAxisd(0.4 * t, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   return T;
 }
 double spinningMotor(double t) { return 0.3 + 3.6 * t; }
@@ -46,8 +46,8 @@ MotorAngleTrack motorTrack(double t0, double t1) {
 
 // Expected range along the ray of a scan point, in double precision, to the planes of an
 // axis-aligned box room [lo, hi] seen from inside (or to z = 0 when there is no room).
-double expectedRangeInBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                          const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+double expectedRangeInBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo,
+                          const Eigen::Vector3d& hi) {
   double best = 1e30;
   for (int axis = 0; axis < 3; ++axis) {
     if (std::abs(d[axis]) < 1e-12) continue;
@@ -65,12 +65,11 @@ TEST(RayCaster, PlaneRangesAreExactAndDerotatedPointsLandOnThePlane) {
   const auto calibration = MotorLidarCalibration::referenceRig();
   for (const auto& p : scan.points) {
     const double t = start + p.time_offset;
-    const Eigen::Vector3d p_W = frames::lidarToWorld(p.position.cast<double>(), spinningMotor(t),
-                                                     calibration, movingBase(t));
+    const Eigen::Vector3d p_W =
+        frames::lidarToWorld(p.position.cast<double>(), spinningMotor(t), calibration, movingBase(t));
     ASSERT_LT(std::abs(p_W.z()), 1e-3) << "point at t=" << p.time_offset;
     // Range in double precision, along the same ray.
-    const Eigen::Isometry3d T_WL =
-        movingBase(t) * frames::lidarPoseInBase(spinningMotor(t), calibration);
+    const Eigen::Isometry3d T_WL = movingBase(t) * frames::lidarPoseInBase(spinningMotor(t), calibration);
     const Eigen::Vector3d d = T_WL.linear() * p.position.cast<double>().normalized();
     const double range = -T_WL.translation().z() / d.z();
     ASSERT_NEAR(p.position.norm(), range, 1e-3);
@@ -117,12 +116,12 @@ TEST(RayCaster, WorksFromTrajectoryAndEncoderTrackAndTheMotorTurnsDuringTheFrame
   double worst_frozen = 0.0;
   for (const auto& p : scan.points) {
     const double t = start + p.time_offset;
-    const Eigen::Vector3d p_W = frames::lidarToWorld(p.position.cast<double>(), *motor.thetaAt(t),
-                                                     calibration, trajectory.poseAt(t));
+    const Eigen::Vector3d p_W =
+        frames::lidarToWorld(p.position.cast<double>(), *motor.thetaAt(t), calibration, trajectory.poseAt(t));
     ASSERT_LT(std::abs(p_W.z()), 1e-3);
     // De-rotating with the angle at the frame start instead is wrong: the motor moved.
-    const Eigen::Vector3d frozen = frames::lidarToWorld(
-        p.position.cast<double>(), *motor.thetaAt(start), calibration, trajectory.poseAt(t));
+    const Eigen::Vector3d frozen =
+        frames::lidarToWorld(p.position.cast<double>(), *motor.thetaAt(start), calibration, trajectory.poseAt(t));
     worst_frozen = std::max(worst_frozen, std::abs(frozen.z()));
   }
   EXPECT_GT(worst_frozen, 0.1);
@@ -175,15 +174,42 @@ TEST(RayCaster, NoiseAndDropoutAreSeededAndHaveTheRightSize) {
 
   config.seed = 5;
   RayCaster other(groundPlane(), config);
-  EXPECT_NE(other.castFrame(2, 0.0, movingBase, spinningMotor).points[0].position,
-            b.points[0].position);
+  EXPECT_NE(other.castFrame(2, 0.0, movingBase, spinningMotor).points[0].position, b.points[0].position);
 
   RayCasterConfig lossy_config;
   lossy_config.dropout_probability = 0.3;
   RayCaster lossy(groundPlane(), lossy_config);
-  const double kept =
-      static_cast<double>(lossy.castFrame(2, 0.0, movingBase, spinningMotor).points.size()) / n;
+  const double kept = static_cast<double>(lossy.castFrame(2, 0.0, movingBase, spinningMotor).points.size()) / n;
   EXPECT_NEAR(kept, 0.7, 0.02);
+}
+
+TEST(RayCaster, AngularNoiseTurnsTheReportedDirectionNotTheRange) {
+  RayCaster clean(groundPlane(), RayCasterConfig{});
+  RayCasterConfig config;
+  config.angular_noise_stddev = 0.15 * M_PI / 180.0;  // the Mid-360 datasheet
+  config.seed = 4;
+  RayCaster blurred(groundPlane(), config);
+  const Scan a = clean.castFrame(2, 0.0, movingBase, spinningMotor);
+  const Scan b = blurred.castFrame(2, 0.0, movingBase, spinningMotor);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  double sum2 = 0.0;
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    const Eigen::Vector3f& p = a.points[i].position;
+    const Eigen::Vector3f& q = b.points[i].position;
+    EXPECT_NEAR(q.norm(), p.norm(), 1e-4f * p.norm());  // same range
+    const double angle = std::atan2(double(p.cross(q).norm()), double(p.dot(q)));
+    sum2 += angle * angle;
+  }
+  // Two axes of sigma each: the angle between cast and reported direction has RMS sqrt(2) sigma.
+  const double rms = std::sqrt(sum2 / double(a.points.size()));
+  EXPECT_NEAR(rms, std::sqrt(2.0) * config.angular_noise_stddev, 0.05 * config.angular_noise_stddev);
+  config.angular_noise_stddev = -1.0;
+  EXPECT_THROW(RayCaster(groundPlane(), config), std::invalid_argument);
+}
+
+TEST(LidarModel, DatasheetPrecisionOfTheMid360) {
+  EXPECT_DOUBLE_EQ(livoxMid360().range_precision, 0.02);
+  EXPECT_DOUBLE_EQ(livoxMid360().angular_precision_deg, 0.15);
 }
 
 TEST(RayCaster, PacketsAndSingleRaysAgree) {
@@ -219,8 +245,7 @@ TEST(RayCaster, PointMapsAreHitAsSmallSpheres) {
   ASSERT_GT(scan.points.size(), 100u);
   const auto calibration = MotorLidarCalibration::referenceRig();
   for (const auto& p : scan.points) {
-    const Eigen::Vector3d p_W =
-        frames::lidarToWorld(p.position.cast<double>(), 0.0, calibration, base(0.0));
+    const Eigen::Vector3d p_W = frames::lidarToWorld(p.position.cast<double>(), 0.0, calibration, base(0.0));
     ASSERT_GT(p_W.z(), -1e-3);
     ASSERT_LT(p_W.z(), 0.04 + 1e-3);
   }

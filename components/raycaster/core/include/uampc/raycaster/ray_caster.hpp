@@ -25,11 +25,13 @@ namespace uampc::raycaster {
 struct RayCasterConfig {
   LidarModel model = livoxMid360();
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
-  double range_noise_stddev = 0.0;   // m, Gaussian, added along the ray
-  double dropout_probability = 0.0;  // chance that a return is lost
-  std::uint64_t seed = 0;            // noise and dropout; frame k uses a seed mixed from (seed, k)
-  float point_radius = 0.05f;        // m, spheres for point maps (see RayCastScene)
-  bool use_packets = true;           // cast in packets of 16 rays (same result, faster)
+  double range_noise_stddev = 0.0;    // m, Gaussian, added along the ray
+  double angular_noise_stddev = 0.0;  // rad, Gaussian, per axis across the ray: the direction a
+                                      // return is reported in, not the one it was cast along
+  double dropout_probability = 0.0;   // chance that a return is lost
+  std::uint64_t seed = 0;             // noise and dropout; frame k uses a seed mixed from (seed, k)
+  float point_radius = 0.05f;         // m, spheres for point maps (see RayCastScene)
+  bool use_packets = true;            // cast in packets of 16 rays (same result, faster)
 };
 
 // One return, in the LiDAR frame at its own time (DESIGN.md section 4 scan fields).
@@ -52,8 +54,7 @@ using MotorAngleAt = std::function<double(double t)>;           // theta at time
 
 class RayCaster {
  public:
-  RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points,
-            RayCasterConfig config);
+  RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points, RayCasterConfig config);
   explicit RayCaster(const world::TriangleMesh& mesh, RayCasterConfig config = {})
       : RayCaster(mesh, {}, std::move(config)) {}
 
@@ -78,7 +79,7 @@ class RayCaster {
   // cast twice (a retry, a test), so this saves regenerating it.
   std::uint64_t cached_frame_ = ~std::uint64_t{0};
   std::vector<PatternPoint> cached_pattern_;
-  std::vector<Ray> rays_;  // reused between frames
+  std::vector<Ray> rays_;         // reused between frames
   frames::PoseKnots lidar_pose_;  // T_WL over the frame being cast
   std::vector<Hit> hits_;
   const std::vector<PatternPoint>& pattern(std::uint64_t frame_index);
