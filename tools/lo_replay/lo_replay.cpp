@@ -29,6 +29,7 @@
 #include <exception>
 #include <string>
 
+#include "simulated_lidar.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -39,8 +40,6 @@ using namespace uampc;
 namespace {
 
 double degrees(double rad) { return rad * 180.0 / M_PI; }
-
-double rotationAngle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
 
 }  // namespace
 
@@ -69,16 +68,7 @@ int replay(int argc, char** argv) {
     return 2;
   }
   const std::string source = argv[1];
-  world::WorldSettings settings;
-  if (source == "corridor" || source == "multilevel" || source == "campus") {
-    settings.world = source;
-  } else {
-    settings.world = "around_trajectory";
-    settings.trajectory = "file";
-    settings.trajectory_file = source;
-    settings.interpolation = "smooth";
-    settings.smoothing = 0.5;
-  }
+  world::WorldSettings settings = tools::worldSettingsFor(source);
   double start = 0.0, duration = 30.0, motor_speed = 3.6;
   int every = 1;
   bool use_imu = false;
@@ -151,8 +141,7 @@ int replay(int argc, char** argv) {
 
   const double frame = caster.frameDuration();
   const double end = std::min(truth.endTime() - 0.2, start + duration);
-  frames::MotorAngleTrack motor(1e9);
-  for (double t = 0.0; t <= end + 1.0; t += 0.005) motor.add({t, motor_speed * t, motor_speed});
+  const frames::MotorAngleTrack motor = tools::constantSpeedMotor(motor_speed, 0.0, end + 1.0);
 
   config.use_imu = use_imu;
   raycaster::ImuSimulatorConfig imu_config;
@@ -171,22 +160,9 @@ int replay(int argc, char** argv) {
       "z]  status\n");
   std::uint64_t k = static_cast<std::uint64_t>(std::llround(start / frame));
   for (double t0 = k * frame; t0 + frame <= end; t0 = (++k) * frame) {
-    const raycaster::Scan cast = caster.castFrame(k, t0, truth, motor);
-    lo::Scan scan;
-    scan.stamp = cast.stamp;
-    for (const auto& p : cast.points) {
-      scan.points_L.push_back(p.position);
-      scan.time_offsets.push_back(p.time_offset);
-    }
+    const lo::Scan scan = tools::toOdometryScan(caster.castFrame(k, t0, truth, motor));
     if (!started) {
-      double last = 0.0;
-      for (float o : scan.time_offsets) last = std::max(last, double(o));
-      const double t_end = scan.stamp + last, h = 0.01;
-      config.initial_pose = truth.poseAt(t_end);
-      const Eigen::Isometry3d before = truth.poseAt(t_end - h);
-      config.initial_velocity_W = (config.initial_pose.translation() - before.translation()) / h;
-      const Eigen::AngleAxisd turn(before.linear().transpose() * config.initial_pose.linear());
-      config.initial_angular_velocity_B = turn.axis() * turn.angle() / h;
+      tools::startAtTruth(config, truth, tools::scanEndTime(scan));
       odometry = lo::MotorizedLidarOdometry(config);
       started = true;
     }
@@ -196,7 +172,7 @@ int replay(int argc, char** argv) {
     }
     const lo::OdometryResult r = odometry.registerScan(scan, motor);
     const Eigen::Isometry3d T = truth.poseAt(r.time);
-    const double rot_err = degrees(rotationAngle(T.linear().transpose() * r.T_WB.linear()));
+    const double rot_err = degrees(tools::rotationAngle(T.linear().transpose() * r.T_WB.linear()));
     const double pos_err = (T.translation() - r.T_WB.translation()).norm();
     const double w_est =
         degrees(Eigen::AngleAxisd(previous_estimate.linear().transpose() * r.T_WB.linear()).angle()) / frame;
