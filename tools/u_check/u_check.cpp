@@ -14,7 +14,8 @@
 // predicts the view. --panorama and --ray-step change U's depth map and ray grid (defaults: the
 // mpc component's); --range-weight-voxel is the mpc component's range_weight_voxel (0: the
 // paper's equal rays).
-// --csv writes one row per probe and angle.
+// --csv writes one row per probe and angle; --svg PREFIX draws log U against each measured figure
+// (PREFIX_trace.svg, PREFIX_mse.svg), one colour per probe where the LO held.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "simulated_lidar.hpp"
+#include "svg_plot.hpp"
 #include "uncertainty_check.hpp"
 
 using namespace uampc;
@@ -33,7 +35,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N] "
     "[--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG] [--position-sigma M] "
-    "[--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] [--csv FILE]\n";
+    "[--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] [--csv FILE] [--svg PREFIX]\n";
 
 double number(const std::string& flag, const std::string& text) {
   char* end = nullptr;
@@ -66,6 +68,38 @@ void printProbe(const tools::ProbeResult& r) {
               r.spearman_oracle_error, r.lo_lost ? "  LO lost: ignored" : "");
 }
 
+// log10 U against log10 of a measured figure, one colour per probe (the figure of README's
+// "U checked against the LO").
+void writeFigure(const std::string& path, const std::string& source, const std::vector<tools::ProbeResult>& probes,
+                 bool posterior_trace) {
+  app::svg::LinePlot plot;
+  plot.title = source + ": U against the LO's " +
+               (posterior_trace ? "posterior pose covariance" : "Monte Carlo registration error");
+  plot.x_label = "log10 U (predicted, controller)";
+  plot.y_label = posterior_trace ? "log10 trace of posterior pose covariance" : "log10 mean square error";
+  for (std::size_t i = 0; i < probes.size(); ++i) {
+    const tools::ProbeResult& r = probes[i];
+    app::svg::Series series;
+    char label[96];
+    std::snprintf(label, sizeof label, "t = %.1f s, Spearman %.2f", r.time,
+                  posterior_trace ? r.spearman_trace : r.spearman_error);
+    series.label = label;
+    series.points = true;
+    series.width = 2.5;
+    series.colour = app::svg::paletteColour(i);
+    for (const auto& a : r.angles) {
+      series.x.push_back(std::log10(a.predicted));
+      series.y.push_back(std::log10(posterior_trace ? a.posterior_trace : a.mean_square_error));
+    }
+    plot.series.push_back(series);
+  }
+  FILE* file = std::fopen(path.c_str(), "w");
+  if (!file) throw std::runtime_error("cannot write " + path);
+  const std::string svg = app::svg::render(plot);
+  std::fwrite(svg.data(), 1, svg.size(), file);
+  std::fclose(file);
+}
+
 int run(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0 || std::string(argv[1]) == "--help") {
     std::fprintf(stderr, "%s", kUsage);
@@ -76,6 +110,7 @@ int run(int argc, char** argv) {
   std::vector<double> times;
   std::string csv_path;
   double range_weight_voxel = 0.3;  // the mpc component's default
+  std::string svg_prefix;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
     if (flag == "--at")
@@ -96,6 +131,8 @@ int run(int argc, char** argv) {
       settings.corridor_door_spacing = number(flag, value);
     else if (flag == "--csv")
       csv_path = value;
+    else if (flag == "--svg")
+      svg_prefix = value;
     else if (flag == "--range-weight-voxel")
       range_weight_voxel = number(flag, value);
     else if (flag == "--ray-step") {
@@ -135,12 +172,14 @@ int run(int argc, char** argv) {
       "rho_mse  orc_tr  orc_mse\n");
   double sum_trace = 0.0, sum_error = 0.0, sum_oracle_trace = 0.0, sum_oracle_error = 0.0;
   int held = 0;
+  std::vector<tools::ProbeResult> probes;  // where the LO held, for the figures
   for (double t : times) {
     if (t + 1.0 > world.trajectory.endTime()) {
       std::printf("# %.1f s skipped: the path ends at %.1f s\n", t, world.trajectory.endTime());
       continue;
     }
     const tools::ProbeResult r = check.probe(t);
+    if (!r.lo_lost) probes.push_back(r);
     printProbe(r);
     std::fflush(stdout);
     if (!r.lo_lost && std::isfinite(r.spearman_trace) && std::isfinite(r.spearman_error)) {
@@ -156,6 +195,10 @@ int run(int argc, char** argv) {
     }
   }
   if (csv) std::fclose(csv);
+  if (!svg_prefix.empty()) {
+    writeFigure(svg_prefix + "_trace.svg", argv[1], probes, true);
+    writeFigure(svg_prefix + "_mse.svg", argv[1], probes, false);
+  }
   if (held > 0) {
     std::printf(
         "summary: %s, %d of %zu probes held: mean Spearman(U, trace) %.3f, (U, mse) %.3f; oracle: (trace) %.3f, (mse) "
