@@ -56,8 +56,8 @@ Eigen::Isometry3d basePose() {
   return T_WB;
 }
 
-// Args: local-map points, panorama degrees per pixel (2 is what the mpc component ships: the U
-// rays lie on a 5-degree grid, so 1-degree pixels cost more without adding information).
+// Args: local-map points, panorama degrees per pixel (1 is what the mpc component ships, see
+// PanoramicDepthMap::Config; 2 is the cheaper setting it replaced).
 void BM_ControlStep(benchmark::State& state) {
   const Cloud cloud = hall(static_cast<std::size_t>(state.range(0)));
   uampc::mpc::UaMpcController::Config config;
