@@ -21,6 +21,7 @@
 #include "uampc/evaluator/csv_writer.hpp"
 #include "uampc/evaluator/depth_colouring.hpp"
 #include "uampc/evaluator/json_writer.hpp"
+#include "uampc/evaluator/motor_activity.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/report_files.hpp"
 #include "uampc/evaluator/trajectory_evaluator.hpp"
@@ -80,8 +81,8 @@ class EvaluatorComponent : public Component {
       ctx.log().warn("no output directory (uampc launch --out DIR): figures are logged but no files written");
     } else {
       std::filesystem::create_directories(out);
-      motor_csv_ = std::make_unique<evaluator::CsvWriter>(out + "/motor.csv",
-                                                          std::vector<std::string>{"time", "theta", "omega", "command"});
+      motor_csv_ = std::make_unique<evaluator::CsvWriter>(
+          out + "/motor.csv", std::vector<std::string>{"time", "theta", "omega", "command"});
       timings_ = open(out + "/timings.csv", "time,source,name,value\n");
       uncertainty_ = open(out + "/uncertainty.csv", "time,theta_start,delta_theta,command,samples...\n");
     }
@@ -125,8 +126,7 @@ class EvaluatorComponent : public Component {
       const double t = fromMsg(m.header().stamp()).seconds();
       const double omega = m.velocity().empty() ? 0.0 : m.velocity()[0];
       motor_.add({t, m.position()[0], omega});
-      motor_speed_sum_ += omega;
-      ++motor_samples_;
+      motor_activity_.add(t, omega, command_);
       if (motor_csv_) motor_csv_->addRow({t, m.position()[0], omega, command_});
       flush();
     });
@@ -177,7 +177,13 @@ class EvaluatorComponent : public Component {
     root.set("cmplt", evaluator::toJson(cmplt));
     root.set("cmplt_ground_truth", evaluator::toJson(cmplt_gt));
     evaluator::JsonObject motor;
-    motor.set("mean_speed", motor_samples_ ? motor_speed_sum_ / motor_samples_ : 0.0);
+    const evaluator::MotorActivityReport activity = motor_activity_.report();
+    motor.set("mean_speed", activity.mean_speed);
+    motor.set("speed_std", activity.speed_std);
+    // Changes over one 0.1 s control period: how much the command chatters, and how much of it
+    // the motor follows after the bridge's limits.
+    motor.set("command_change_rms", activity.command_change_rms);
+    motor.set("speed_change_rms", activity.speed_change_rms);
     root.set("motor", motor);
     // The LO's own account of its losses of track (its "lost" flag on /lo/metrics).
     evaluator::JsonObject lo;
@@ -241,9 +247,9 @@ class EvaluatorComponent : public Component {
     std::filesystem::create_directories(directory);
     char name[64];
     std::snprintf(name, sizeof(name), "panorama_%07.1f.png", t);
-    evaluator::writePng((directory / name).string(),
-                        evaluator::colourDepth(depth, static_cast<int>(m.width()), static_cast<int>(m.height()),
-                                               panorama_max_range_));
+    evaluator::writePng(
+        (directory / name).string(),
+        evaluator::colourDepth(depth, static_cast<int>(m.width()), static_cast<int>(m.height()), panorama_max_range_));
     while (next_panorama_ <= t) next_panorama_ += panorama_period_;
   }
 
@@ -322,8 +328,7 @@ class EvaluatorComponent : public Component {
   double panorama_max_range_ = 0.0;
   double next_panorama_ = 0.0;
   bool warned_panorama_ = false;
-  double motor_speed_sum_ = 0.0;
-  long motor_samples_ = 0;
+  evaluator::MotorActivity motor_activity_{0.1};
 };
 
 }  // namespace uampc

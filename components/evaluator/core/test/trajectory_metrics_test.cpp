@@ -9,6 +9,7 @@
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/relative_pose_error.hpp"
+#include "uampc/evaluator/motor_activity.hpp"
 #include "uampc/evaluator/speed_error.hpp"
 #include "uampc/evaluator/trajectory_evaluator.hpp"
 #include "uampc/evaluator/umeyama.hpp"
@@ -331,6 +332,41 @@ TEST(SpeedError, FindsWhenTheEstimatedSpeedRunsAwayAndIgnoresFrameJitter) {
   const SpeedErrorReport steady = speedError(estimates, truths);
   EXPECT_FALSE(steady.first_runaway_time.has_value());
   EXPECT_LT(steady.max, 0.05);
+}
+
+}  // namespace
+}  // namespace uampc::evaluator
+
+namespace uampc::evaluator {
+namespace {
+
+TEST(MotorActivity, ChangesPerControlPeriodNotPerEncoderSample) {
+  // A command alternating 3 and 5 rad/s every 0.1 s, the motor following it exactly, states at
+  // 200 Hz: every period changes by 2 rad/s, whatever the encoder rate.
+  MotorActivity activity(0.1);
+  for (int i = 0; i < 2000; ++i) {
+    const double t = i * 0.005;
+    const double command = (static_cast<int>(std::floor(t / 0.1 + 1e-9)) % 2 == 0) ? 3.0 : 5.0;
+    activity.add(t, command, command);
+  }
+  const MotorActivityReport r = activity.report();
+  EXPECT_NEAR(r.mean_speed, 4.0, 1e-9);
+  EXPECT_NEAR(r.speed_std, 1.0, 1e-9);
+  EXPECT_NEAR(r.command_change_rms, 2.0, 1e-9);
+  EXPECT_NEAR(r.speed_change_rms, 2.0, 1e-9);
+  EXPECT_EQ(r.periods, 99u);
+}
+
+TEST(MotorActivity, ConstantSpeedDoesNotChangeAndBadSamplesAreIgnored) {
+  MotorActivity activity(0.1);
+  for (int i = 0; i < 400; ++i) activity.add(i * 0.005, 3.6, 3.6);
+  activity.add(NAN, 100.0, 100.0);
+  activity.add(0.5, 100.0, 100.0);  // not after the last state
+  const MotorActivityReport r = activity.report();
+  EXPECT_NEAR(r.mean_speed, 3.6, 1e-12);
+  EXPECT_EQ(r.command_change_rms, 0.0);
+  EXPECT_EQ(r.speed_change_rms, 0.0);
+  EXPECT_THROW(MotorActivity(0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -1,0 +1,100 @@
+#include "control_replay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "uampc/mpc/uncertainty_surrogate.hpp"
+
+namespace uampc::tools {
+namespace {
+
+std::vector<double> parseRow(const std::string& line, const std::string& where) {
+  std::vector<double> values;
+  std::stringstream stream(line);
+  for (std::string cell; std::getline(stream, cell, ',');) {
+    char* end = nullptr;
+    const double v = std::strtod(cell.c_str(), &end);
+    if (cell.empty() || *end != '\0' || !std::isfinite(v)) {
+      throw std::runtime_error(where + ": '" + cell + "' is not a finite number");
+    }
+    values.push_back(v);
+  }
+  return values;
+}
+
+double rms(const std::vector<double>& v) {
+  double sum = 0.0;
+  for (std::size_t i = 1; i < v.size(); ++i) sum += (v[i] - v[i - 1]) * (v[i] - v[i - 1]);
+  return v.size() > 1 ? std::sqrt(sum / double(v.size() - 1)) : 0.0;
+}
+
+// Samples at absolute angles: bin k of a turn holds the sample at angle k * step (mod 2 pi).
+int binOf(double theta, double step, int bins) {
+  const int k = static_cast<int>(std::lround(theta / step)) % bins;
+  return k < 0 ? k + bins : k;
+}
+
+}  // namespace
+
+std::vector<ControlRecord> readControlRecords(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::vector<ControlRecord> records;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (number == 1 || line.empty()) continue;  // header
+    const std::string where = path + ":" + std::to_string(number);
+    const std::vector<double> v = parseRow(line, where);
+    if (v.size() < 6)
+      throw std::runtime_error(where + ": expected time, theta_start, delta_theta, command and U samples");
+    ControlRecord r{v[0], v[1], v[2], v[3], std::vector<double>(v.begin() + 4, v.end())};
+    if (!(r.sample_step > 0.0) || std::abs(r.sample_step * double(r.samples.size()) - 2.0 * M_PI) > 1e-6) {
+      throw std::runtime_error(where + ": the samples do not cover one turn at delta_theta");
+    }
+    records.push_back(std::move(r));
+  }
+  return records;
+}
+
+ReplayStats replayControl(const std::vector<ControlRecord>& records, const ReplayOptions& options) {
+  if (!(options.filter_weight > 0.0) || options.filter_weight > 1.0) {
+    throw std::invalid_argument("filter weight must be in (0, 1]");
+  }
+  const mpc::MotorMpc mpc(options.mpc);
+  ReplayStats stats;
+  std::vector<double> recorded, filtered;
+  for (const ControlRecord& r : records) {
+    const int bins = static_cast<int>(r.samples.size());
+    std::vector<double> samples = r.samples;
+    if (options.filter_weight < 1.0) {
+      if (filtered.size() != r.samples.size()) filtered.assign(r.samples.size(), -1.0);
+      for (int s = 0; s < bins; ++s) {
+        double& f = filtered[binOf(r.theta_start + s * r.sample_step, r.sample_step, bins)];
+        f = f < 0.0 ? r.samples[s] : (1.0 - options.filter_weight) * f + options.filter_weight * r.samples[s];
+        samples[s] = f;
+      }
+    }
+    const mpc::UncertaintySurrogate surrogate(r.theta_start, r.sample_step, samples);
+    const double command = mpc.solve(surrogate, r.theta_start).speeds.front();
+    stats.commands.push_back(command);
+    recorded.push_back(r.command);
+    stats.max_difference = std::max(stats.max_difference, std::abs(command - r.command));
+    stats.replayed_mean += command;
+    if (command <= options.mpc.omega_min + 1e-3 || command >= options.mpc.omega_max - 1e-3) stats.at_bounds += 1.0;
+  }
+  stats.steps = records.size();
+  if (stats.steps > 0) {
+    stats.replayed_mean /= double(stats.steps);
+    stats.at_bounds /= double(stats.steps);
+  }
+  stats.recorded_change_rms = rms(recorded);
+  stats.replayed_change_rms = rms(stats.commands);
+  return stats;
+}
+
+}  // namespace uampc::tools
