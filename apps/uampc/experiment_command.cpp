@@ -33,8 +33,13 @@ struct ExperimentOptions {
   int jobs = std::max(1u, std::thread::hardware_concurrency());
   int domain_base = 100;
   bool dry_run = false;
+  bool help = false;
   std::vector<std::string> overrides;
 };
+
+const char* const kExperimentUsage =
+    "usage: uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N] "
+    "[--set NAME=VALUE ...] [--dry-run]\n";
 
 bool parse(const std::vector<std::string>& args, ExperimentOptions& o, std::string& error) {
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -68,6 +73,9 @@ bool parse(const std::vector<std::string>& args, ExperimentOptions& o, std::stri
       o.data_directory = fs::absolute(*v).lexically_normal().string();
     } else if (a == "--dry-run") {
       o.dry_run = true;
+    } else if (a == "--help" || a == "-h") {
+      o.help = true;
+      return true;
     } else if (a == "--jobs") {
       if (!integer(1, 133, o.jobs)) return false;
     } else if (a == "--domain-base") {
@@ -138,10 +146,12 @@ int experimentCommand(const std::vector<std::string>& args) {
   ExperimentOptions options;
   std::string error;
   if (!parse(args, options, error)) {
-    std::cerr << "uampc: " << error << "\n"
-              << "usage: uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N] "
-                 "[--set NAME=VALUE ...] [--dry-run]\n";
+    std::cerr << "uampc: " << error << "\n" << kExperimentUsage;
     return 2;
+  }
+  if (options.help) {  // the whole description is in `uampc --help`
+    std::cout << kExperimentUsage << "(see uampc --help for what it does)\n";
+    return 0;
   }
   std::map<std::string, std::string> variables;
   if (!options.data_directory.empty()) variables["data_dir"] = options.data_directory;

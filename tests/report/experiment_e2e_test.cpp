@@ -81,5 +81,11 @@ TEST(ExperimentEndToEnd, AnInvalidOverrideStopsBeforeAnythingRuns) {
   EXPECT_FALSE(fs::exists(dir + "/out/runs"));
 }
 
+TEST(ExperimentEndToEnd, HelpPrintsTheUsageAndRunsNothing) {
+  const CommandResult r = runUampc("experiment --help");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("usage: uampc experiment EXPERIMENT.yaml --out DIR"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace uampc::test
