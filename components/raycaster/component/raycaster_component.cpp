@@ -44,8 +44,8 @@ class RaycasterComponent : public Component {
     adapters::declareRigParameters(spec);
     // Noise defaults: the Mid-360's datasheet range precision (1 sigma), the default model's.
     // Its angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with it the
-    // LiDAR-only LO loses track within 10-45 s on every MCD trajectory tried, even at 0.05
-    // degrees (README, "Sensor noise"); a scene may turn it on.
+    // LiDAR-only LO loses the MCD worlds' open stretches within 10-45 s and the rich campus at
+    // 3 m/s (README, "Sensor noise"); a scene may turn it on.
     const raycaster::LidarModel mid360 = raycaster::livoxMid360();
     spec.param("range_noise", mid360.range_precision,
                "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
