@@ -30,6 +30,7 @@
 #include <string>
 
 #include "simulated_lidar.hpp"
+#include "tool_main.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -45,14 +46,7 @@ double degrees(double rad) { return rad * 180.0 / M_PI; }
 
 int replay(int argc, char** argv);
 
-int main(int argc, char** argv) {
-  try {
-    return replay(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lo_replay: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return tools::runTool("lo_replay", replay, argc, argv); }
 
 int replay(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0) {

@@ -9,10 +9,10 @@
 // commands (0 with the run's own options: the solve is deterministic).
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <string>
 
 #include "control_replay.hpp"
+#include "tool_main.hpp"
 
 using namespace uampc;
 
@@ -59,11 +59,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "mpc_replay: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return uampc::tools::runTool("mpc_replay", run, argc, argv); }

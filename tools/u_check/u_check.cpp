@@ -19,13 +19,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "simulated_lidar.hpp"
 #include "svg_plot.hpp"
+#include "tool_main.hpp"
 #include "uncertainty_check.hpp"
 
 using namespace uampc;
@@ -213,11 +213,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "u_check: %s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return uampc::tools::runTool("u_check", run, argc, argv); }

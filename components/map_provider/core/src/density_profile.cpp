@@ -6,18 +6,9 @@
 #include <stdexcept>
 
 #include "uampc/world/seeded_random.hpp"
+#include "uampc/world/short_number.hpp"
 
 namespace uampc::world {
-namespace {
-
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-}  // namespace
-
 const char* toString(StretchKind kind) {
   switch (kind) {
     case StretchKind::kBuiltUp:

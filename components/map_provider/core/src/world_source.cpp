@@ -5,17 +5,12 @@
 
 #include "uampc/world/generated_paths.hpp"
 #include "uampc/world/procedural_worlds.hpp"
+#include "uampc/world/short_number.hpp"
 #include "uampc/world/trajectory_io.hpp"
 
 namespace uampc::world {
 
 namespace {
-
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
 
 Trajectory readFileTrajectory(const WorldSettings& s) {
   if (s.trajectory_file.empty()) throw std::runtime_error("trajectory: file needs trajectory_file");
