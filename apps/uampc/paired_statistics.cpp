@@ -13,26 +13,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kLargestExactN = 25;
 
-// Ranks of values (1-based), ties given their average rank; sets `ties` to sum(t^3 - t) over
-// groups of t equal values.
-std::vector<double> averageRanks(const std::vector<double>& values, double& ties) {
-  std::vector<std::size_t> order(values.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
-  std::vector<double> ranks(values.size());
-  ties = 0.0;
-  for (std::size_t begin = 0; begin < order.size();) {
-    std::size_t end = begin + 1;
-    while (end < order.size() && values[order[end]] == values[order[begin]]) ++end;
-    const double rank = (begin + 1 + end) / 2.0;  // average of ranks begin+1 .. end
-    for (std::size_t k = begin; k < end; ++k) ranks[order[k]] = rank;
-    const double t = static_cast<double>(end - begin);
-    ties += t * t * t - t;
-    begin = end;
-  }
-  return ranks;
-}
-
 // Number of sign patterns of ranks 1..n whose positive ranks sum to s, for s = 0 .. n(n+1)/2.
 // At most 2^25 patterns: exact in a double.
 std::vector<double> signedRankCounts(int n) {
@@ -67,6 +47,41 @@ double normalTwoSidedP(int n, double w_plus, double ties) {
 }
 
 }  // namespace
+
+// Ranks of values (1-based), ties given their average rank; sets `ties` to sum(t^3 - t) over
+// groups of t equal values.
+std::vector<double> averageRanks(const std::vector<double>& values, double& ties) {
+  std::vector<std::size_t> order(values.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  std::vector<double> ranks(values.size());
+  ties = 0.0;
+  for (std::size_t begin = 0; begin < order.size();) {
+    std::size_t end = begin + 1;
+    while (end < order.size() && values[order[end]] == values[order[begin]]) ++end;
+    const double rank = (begin + 1 + end) / 2.0;  // average of ranks begin+1 .. end
+    for (std::size_t k = begin; k < end; ++k) ranks[order[k]] = rank;
+    const double t = static_cast<double>(end - begin);
+    ties += t * t * t - t;
+    begin = end;
+  }
+  return ranks;
+}
+
+double spearman(const std::vector<double>& a, const std::vector<double>& b) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (a.size() != b.size() || a.size() < 2) return nan;
+  double ties_a = 0.0, ties_b = 0.0;
+  const std::vector<double> ra = averageRanks(a, ties_a), rb = averageRanks(b, ties_b);
+  const double mean = (double(a.size()) + 1.0) / 2.0;  // of ranks 1..n, ties or not
+  double ab = 0.0, aa = 0.0, bb = 0.0;
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    ab += (ra[i] - mean) * (rb[i] - mean);
+    aa += (ra[i] - mean) * (ra[i] - mean);
+    bb += (rb[i] - mean) * (rb[i] - mean);
+  }
+  return aa > 0.0 && bb > 0.0 ? ab / std::sqrt(aa * bb) : nan;
+}
 
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return kNaN;

@@ -25,6 +25,14 @@ namespace uampc::app {
 double quantile(std::vector<double> values, double q);
 double median(std::vector<double> values);
 
+// Ranks of values (1-based), ties given their average rank; sets `ties` to sum(t^3 - t) over
+// groups of t equal values (the tie correction of rank tests).
+std::vector<double> averageRanks(const std::vector<double>& values, double& ties);
+
+// Spearman's rank correlation (Pearson's on the average ranks); NaN when a series is constant,
+// the sizes differ or are below 2.
+double spearman(const std::vector<double>& a, const std::vector<double>& b);
+
 struct WilcoxonResult {
   int n = 0;              // non-zero differences used
   int zeros_dropped = 0;  // differences exactly 0

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
+#include "paired_statistics.hpp"
 #include "simulated_lidar.hpp"
 #include "uampc/lo/derotation.hpp"
 #include "uampc/lo/voxel_downsample.hpp"
@@ -14,35 +14,6 @@
 
 namespace uampc::tools {
 namespace {
-
-std::vector<double> averageRanks(const std::vector<double>& values) {
-  std::vector<std::size_t> order(values.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return values[i] < values[j]; });
-  std::vector<double> ranks(values.size());
-  for (std::size_t i = 0; i < order.size();) {
-    std::size_t j = i;
-    while (j + 1 < order.size() && values[order[j + 1]] == values[order[i]]) ++j;
-    const double rank = 0.5 * double(i + j) + 1.0;  // tied values share their mean rank
-    for (std::size_t k = i; k <= j; ++k) ranks[order[k]] = rank;
-    i = j + 1;
-  }
-  return ranks;
-}
-
-double pearson(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = double(a.size());
-  const double mean_a = std::accumulate(a.begin(), a.end(), 0.0) / n;
-  const double mean_b = std::accumulate(b.begin(), b.end(), 0.0) / n;
-  double ab = 0.0, aa = 0.0, bb = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    ab += (a[i] - mean_a) * (b[i] - mean_b);
-    aa += (a[i] - mean_a) * (a[i] - mean_a);
-    bb += (b[i] - mean_b) * (b[i] - mean_b);
-  }
-  if (aa <= 0.0 || bb <= 0.0) return std::numeric_limits<double>::quiet_NaN();
-  return ab / std::sqrt(aa * bb);
-}
 
 lo::BaseState stateOf(const lo::OdometryResult& r) {
   lo::BaseState x;
@@ -60,11 +31,6 @@ Eigen::Matrix3d expSO3(const Eigen::Vector3d& phi) {
 }
 
 }  // namespace
-
-double spearman(const std::vector<double>& a, const std::vector<double>& b) {
-  if (a.size() != b.size() || a.size() < 2) return std::numeric_limits<double>::quiet_NaN();
-  return pearson(averageRanks(a), averageRanks(b));
-}
 
 UncertaintyCheck::UncertaintyCheck(const world::World& world, const UncertaintyCheckConfig& config)
     : world_(world), config_(config), caster_(world.mesh) {
@@ -175,10 +141,10 @@ ProbeResult UncertaintyCheck::probe(double t) {
     trace.push_back(a.posterior_trace);
     error.push_back(a.mean_square_error);
   }
-  result.spearman_trace = spearman(predicted, trace);
-  result.spearman_error = spearman(predicted, error);
-  result.spearman_oracle_trace = spearman(oracle, trace);
-  result.spearman_oracle_error = spearman(oracle, error);
+  result.spearman_trace = app::spearman(predicted, trace);
+  result.spearman_error = app::spearman(predicted, error);
+  result.spearman_oracle_trace = app::spearman(oracle, trace);
+  result.spearman_oracle_error = app::spearman(oracle, error);
   return result;
 }
 

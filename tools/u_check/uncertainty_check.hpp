@@ -17,7 +17,7 @@
 //      runs, and its distance from the unperturbed registration is taken (not from ground truth:
 //      the map is the LO's, drifted with it); its mean square, rotation^2 (rad^2) + position^2
 //      (m^2), over the trials: what is left of a wrong start.
-// 4. Spearman's rank correlation of U with each measured figure over the angles.
+// 4. Spearman's rank correlation of U with each measured figure over the angles (app::spearman).
 #pragma once
 
 #include <cstdint>
@@ -72,10 +72,6 @@ struct ProbeResult {
   double spearman_oracle_trace = 0.0;  // Spearman(oracle, posterior trace)
   double spearman_oracle_error = 0.0;  // Spearman(oracle, mean square error)
 };
-
-// Spearman's rank correlation with average ranks for ties; NaN when a series is constant or the
-// sizes differ or are below 2.
-double spearman(const std::vector<double>& a, const std::vector<double>& b);
 
 class UncertaintyCheck {
  public:

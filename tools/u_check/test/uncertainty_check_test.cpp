@@ -1,4 +1,4 @@
-// The U check measures what it claims: ranks with ties, and on the campus' poor row (where the
+// The U check measures what it claims: on the campus' poor row (where the
 // motor angle decides what the LO sees) the registration keeps much more of a wrong start at
 // some angles than at others, and U ranks the angles the same way.
 #include "uncertainty_check.hpp"
@@ -12,22 +12,6 @@
 
 namespace uampc::tools {
 namespace {
-
-TEST(Spearman, RanksNotValues) {
-  EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {10, 200, 3000, 40000}), 1.0);
-  EXPECT_DOUBLE_EQ(spearman({1, 2, 3, 4}, {4, 3, 2, 1}), -1.0);
-}
-
-TEST(Spearman, TiesShareTheirMeanRank) {
-  // Ranks (1, 2.5, 2.5, 4) against (1, 2, 3, 4): 4.5 / sqrt(4.5 * 5) = 0.9487.
-  EXPECT_NEAR(spearman({1, 2, 2, 3}, {1, 2, 3, 4}), 4.5 / std::sqrt(22.5), 1e-12);
-}
-
-TEST(Spearman, UndefinedIsNaN) {
-  EXPECT_TRUE(std::isnan(spearman({1, 1, 1}, {1, 2, 3})));
-  EXPECT_TRUE(std::isnan(spearman({1, 2}, {1, 2, 3})));
-  EXPECT_TRUE(std::isnan(spearman({1}, {1})));
-}
 
 TEST(UncertaintyCheck, RefusesProbesWithoutWarmUpOrPastThePath) {
   const world::World world = world::buildWorld(worldSettingsFor("corridor"));
