@@ -3,8 +3,8 @@
 //
 //   u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N]
 //           [--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG]
-//           [--position-sigma M] [--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] [--csv
-//           FILE]
+//           [--position-sigma M] [--door-spacing M] [--profile P] [--open-fraction F] [--panorama WxH] [--ray-step DEG]
+//           [--range-weight-voxel M] [--csv FILE]
 //
 // Prints, per probe time, the LO's own error, the local map's size, the ranges of U and of the
 // measured figures, and Spearman's rank correlation of U with the posterior pose-covariance
@@ -35,7 +35,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N] "
     "[--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG] [--position-sigma M] "
-    "[--door-spacing M] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] [--csv FILE] [--svg PREFIX]\n";
+    "[--door-spacing M] [--profile P] [--open-fraction F] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] "
+    "[--csv FILE] [--svg PREFIX]\n";
 
 double number(const std::string& flag, const std::string& text) {
   char* end = nullptr;
@@ -129,6 +130,10 @@ int run(int argc, char** argv) {
       config.start_position_sigma = number(flag, value);
     else if (flag == "--door-spacing")
       settings.corridor_door_spacing = number(flag, value);
+    else if (flag == "--profile")
+      settings.density_profile = value;
+    else if (flag == "--open-fraction")
+      settings.open_fraction = number(flag, value);
     else if (flag == "--csv")
       csv_path = value;
     else if (flag == "--svg")
