@@ -65,6 +65,13 @@ ReplayStats replayControl(const std::vector<ControlRecord>& records, const Repla
   if (!(options.filter_weight > 0.0) || options.filter_weight > 1.0) {
     throw std::invalid_argument("filter weight must be in (0, 1]");
   }
+  if (options.sample_stride < 1) throw std::invalid_argument("sample stride must be at least 1");
+  for (const ControlRecord& r : records) {
+    if (r.samples.size() % static_cast<std::size_t>(options.sample_stride) != 0) {
+      throw std::invalid_argument("sample stride " + std::to_string(options.sample_stride) + " does not divide the " +
+                                  std::to_string(r.samples.size()) + " samples of a turn");
+    }
+  }
   const mpc::MotorMpc mpc(options.mpc);
   ReplayStats stats;
   std::vector<double> recorded, filtered;
@@ -79,7 +86,11 @@ ReplayStats replayControl(const std::vector<ControlRecord>& records, const Repla
         samples[s] = f;
       }
     }
-    const mpc::UncertaintySurrogate surrogate(r.theta_start, r.sample_step, samples);
+    std::vector<double> strided;
+    for (std::size_t s = 0; s < samples.size(); s += static_cast<std::size_t>(options.sample_stride)) {
+      strided.push_back(samples[s]);
+    }
+    const mpc::UncertaintySurrogate surrogate(r.theta_start, r.sample_step * options.sample_stride, strided);
     const double command = mpc.solve(surrogate, r.theta_start).speeds.front();
     stats.commands.push_back(command);
     recorded.push_back(r.command);

@@ -29,6 +29,9 @@ struct ReplayOptions {
   // Exponential filter of the U samples over control steps, per absolute motor angle:
   // F <- (1 - w) F + w U with w = filter_weight; 1 keeps every step's samples as they are.
   double filter_weight = 1.0;
+  // Every sample_stride-th U sample only: a coarser delta_theta (the controller's sample_step_deg
+  // times this), from the same recorded samples.
+  int sample_stride = 1;
 };
 
 struct ReplayStats {

@@ -2,7 +2,7 @@
 // options (control_replay.hpp). A development tool.
 //
 //   mpc_replay RUN_DIR/uncertainty.csv [--alpha A] [--beta B] [--horizon M] [--horizon-dt S]
-//              [--filter W]
+//              [--filter W] [--sample-stride K]
 //
 // Prints the steps, the recorded and replayed command change per step (RMS), the replayed mean
 // command, the share of steps at the speed bounds, and the largest difference from the recorded
@@ -29,7 +29,7 @@ int run(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0 || std::string(argv[1]) == "--help") {
     std::fprintf(stderr,
                  "usage: mpc_replay RUN_DIR/uncertainty.csv [--alpha A] [--beta B] [--horizon M] [--horizon-dt S] "
-                 "[--filter W]\n");
+                 "[--filter W] [--sample-stride K]\n");
     return argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2;
   }
   tools::ReplayOptions options;  // the mpc component's defaults
@@ -44,6 +44,8 @@ int run(int argc, char** argv) {
       options.mpc.horizon = static_cast<int>(v);
     else if (flag == "--horizon-dt")
       options.mpc.dt = v;
+    else if (flag == "--sample-stride")
+      options.sample_stride = static_cast<int>(v);
     else if (flag == "--filter")
       options.filter_weight = v;
     else

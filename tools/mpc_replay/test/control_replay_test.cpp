@@ -66,6 +66,23 @@ TEST(ControlReplay, FilteringTheSamplesOverStepsCalmsTheCommand) {
   EXPECT_THROW(replayControl(records, filtered), std::invalid_argument);
 }
 
+TEST(ControlReplay, ACoarserSampleStepUsesEveryKthSample) {
+  const std::vector<ControlRecord> records = readControlRecords(writeRun(40));
+  ReplayOptions coarse;
+  coarse.sample_stride = 2;  // 10-degree samples
+  const ReplayStats stats = replayControl(records, coarse);
+  // The same as solving on every other sample by hand.
+  const mpc::MotorMpc mpc;
+  std::vector<double> half;
+  for (int s = 0; s < kSamples; s += 2) half.push_back(records[7].samples[s]);
+  const double expected =
+      mpc.solve(mpc::UncertaintySurrogate(records[7].theta_start, 2 * kStep, half), records[7].theta_start)
+          .speeds.front();
+  EXPECT_DOUBLE_EQ(stats.commands[7], expected);
+  coarse.sample_stride = 5;  // does not divide 72
+  EXPECT_THROW(replayControl(records, coarse), std::invalid_argument);
+}
+
 TEST(ControlReplay, MalformedRowsNameTheirLine) {
   const std::string path = ::testing::TempDir() + "/broken_uncertainty.csv";
   {
