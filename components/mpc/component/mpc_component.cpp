@@ -27,22 +27,27 @@ class MpcComponent : public Component {
     spec.output<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,
                                          "panoramic depth map (32FC1, m; 0 = empty)");
     spec.output<msg::Metrics>("timing", "/mpc/timing", QosPreset::kSensor, "computation time per stage, s");
-    spec.param("mode", "ua_mpc", "ua_mpc, constant or zero").oneOf({"ua_mpc", "constant", "zero"});
-    spec.param("constant_speed", 3.6, "mode constant: the speed, rad/s (the paper's baseline: 3.6)")
+    // Defaults are the core's (one source): UaMpcController::Config and the configs it holds.
+    const mpc::UaMpcController::Config core;
+    constexpr double kDeg = 180.0 / M_PI;
+    spec.param("mode", mpc::modeName(core.mode), "ua_mpc, constant or zero").oneOf({"ua_mpc", "constant", "zero"});
+    spec.param("constant_speed", core.constant_speed, "mode constant: the speed, rad/s (the paper's baseline: 3.6)")
         .between(-100.0, 100.0);
     spec.param("rate", 10.0, "control rate, Hz").between(0.1, 1000.0);
-    spec.param("alpha", 1000.0, "weight of the uncertainty term (used as is: cost = alpha * U'^2)").atLeast(0.0);
-    spec.param("beta", 1.0, "weight of the preferred-speed term (cost = beta * (omega - omega_pre)^2)").atLeast(0.0);
-    spec.param("omega_pre", 3.6, "preferred speed and initial guess, rad/s").between(-100.0, 100.0);
-    spec.param("omega_min", 0.0, "lower speed bound, rad/s").between(-100.0, 100.0);
-    spec.param("omega_max", 7.2, "upper speed bound, rad/s").between(-100.0, 100.0);
-    spec.param("horizon", 10, "M: the MPC optimises M + 1 future speeds").between(1, 200);
-    spec.param("horizon_dt", 0.1, "time between horizon steps, s").between(0.001, 10.0);
-    spec.param("sample_step_deg", 5.0, "delta_theta between U samples, degrees").between(0.5, 90.0);
-    spec.param("ray_step_deg", 5.0, "grid of the field-of-view rays for U, degrees").between(0.5, 30.0);
-    const mpc::PanoramicDepthMap::Config panorama;  // its defaults, and why, are the core's
-    spec.param("panorama_width", panorama.width, "panorama columns over 2 pi").between(16, 4096);
-    spec.param("panorama_height", panorama.height, "panorama rows over pi").between(8, 2048);
+    spec.param("alpha", core.mpc.alpha, "weight of the uncertainty term (used as is: cost = alpha * U'^2)")
+        .atLeast(0.0);
+    spec.param("beta", core.mpc.beta, "weight of the preferred-speed term (cost = beta * (omega - omega_pre)^2)")
+        .atLeast(0.0);
+    spec.param("omega_pre", core.mpc.omega_pre, "preferred speed and initial guess, rad/s").between(-100.0, 100.0);
+    spec.param("omega_min", core.mpc.omega_min, "lower speed bound, rad/s").between(-100.0, 100.0);
+    spec.param("omega_max", core.mpc.omega_max, "upper speed bound, rad/s").between(-100.0, 100.0);
+    spec.param("horizon", core.mpc.horizon, "M: the MPC optimises M + 1 future speeds").between(1, 200);
+    spec.param("horizon_dt", core.mpc.dt, "time between horizon steps, s").between(0.001, 10.0);
+    spec.param("sample_step_deg", core.sample_step * kDeg, "delta_theta between U samples, degrees").between(0.5, 90.0);
+    spec.param("ray_step_deg", core.uncertainty.azimuth_step * kDeg, "grid of the field-of-view rays for U, degrees")
+        .between(0.5, 30.0);
+    spec.param("panorama_width", core.depth_map.width, "panorama columns over 2 pi").between(16, 4096);
+    spec.param("panorama_height", core.depth_map.height, "panorama rows over pi").between(8, 2048);
     spec.param("range_weight_voxel", 0.3,
                "U weighs each ray by what an LO downsampling to voxels of this size keeps of it (the lo's "
                "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; README, \"U checked against the LO\")")

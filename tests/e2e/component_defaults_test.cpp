@@ -1,0 +1,76 @@
+// One source for every default: what the installed components declare (`uampc components
+// --json`, the same declarations a scene is validated against) equals their cores' configs.
+// Before, mpc's panorama was 180 x 90 in the component and 360 x 180 in the core, so the core's
+// tests and benchmarks measured another setup than the scenes ran.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <string>
+
+#include "command_runner.hpp"
+#include "uampc/lo/motorized_lidar_odometry.hpp"
+#include "uampc/mpc/ua_mpc_controller.hpp"
+
+namespace uampc::test {
+namespace {
+
+// name -> default of one component type's parameters.
+YAML::Node defaultsOf(const YAML::Node& components, const std::string& type) {
+  YAML::Node defaults;
+  for (const auto& c : components) {
+    if (c["type"].as<std::string>() != type) continue;
+    for (const auto& p : c["parameters"]) defaults[p["name"].as<std::string>()] = p["default"];
+  }
+  return defaults;
+}
+
+YAML::Node installedComponents() {
+  const CommandResult r = runUampc("components --json");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return YAML::Load(r.output);  // JSON is YAML
+}
+
+TEST(ComponentDefaults, MpcDeclaresItsCoresDefaults) {
+  const YAML::Node mpc = defaultsOf(installedComponents(), "mpc");
+  ASSERT_TRUE(mpc.size() > 0) << "no mpc component installed";
+  const mpc::UaMpcController::Config core;
+  const double deg = 180.0 / M_PI;
+  EXPECT_EQ(mpc["mode"].as<std::string>(), mpc::modeName(core.mode));
+  EXPECT_DOUBLE_EQ(mpc["constant_speed"].as<double>(), core.constant_speed);
+  EXPECT_DOUBLE_EQ(mpc["alpha"].as<double>(), core.mpc.alpha);
+  EXPECT_DOUBLE_EQ(mpc["beta"].as<double>(), core.mpc.beta);
+  EXPECT_DOUBLE_EQ(mpc["omega_pre"].as<double>(), core.mpc.omega_pre);
+  EXPECT_DOUBLE_EQ(mpc["omega_min"].as<double>(), core.mpc.omega_min);
+  EXPECT_DOUBLE_EQ(mpc["omega_max"].as<double>(), core.mpc.omega_max);
+  EXPECT_EQ(mpc["horizon"].as<int>(), core.mpc.horizon);
+  EXPECT_DOUBLE_EQ(mpc["horizon_dt"].as<double>(), core.mpc.dt);
+  EXPECT_NEAR(mpc["sample_step_deg"].as<double>(), core.sample_step * deg, 1e-9);
+  EXPECT_NEAR(mpc["ray_step_deg"].as<double>(), core.uncertainty.azimuth_step * deg, 1e-9);
+  EXPECT_EQ(mpc["panorama_width"].as<int>(), core.depth_map.width);
+  EXPECT_EQ(mpc["panorama_height"].as<int>(), core.depth_map.height);
+}
+
+TEST(ComponentDefaults, LoDeclaresItsCoresDefaults) {
+  const YAML::Node lo = defaultsOf(installedComponents(), "lo");
+  ASSERT_TRUE(lo.size() > 0) << "no lo component installed";
+  const lo::OdometryConfig core;
+  EXPECT_DOUBLE_EQ(lo["scan_voxel_size"].as<double>(), core.scan_voxel_size);
+  EXPECT_DOUBLE_EQ(lo["map_voxel_size"].as<double>(), core.map_voxel_size);
+  EXPECT_DOUBLE_EQ(lo["map_radius"].as<double>(), core.map_radius);
+  EXPECT_DOUBLE_EQ(lo["measurement_variance"].as<double>(), core.measurement_variance);
+  EXPECT_DOUBLE_EQ(lo["linear_process_noise"].as<double>(), core.linear_process_noise);
+  EXPECT_DOUBLE_EQ(lo["angular_process_noise"].as<double>(), core.angular_process_noise);
+  EXPECT_EQ(lo["max_iterations"].as<int>(), core.max_iterations);
+  EXPECT_EQ(lo["degeneracy_aware"].as<bool>(), core.degeneracy_aware);
+  EXPECT_DOUBLE_EQ(lo["degeneracy_threshold"].as<double>(), core.degeneracy_threshold);
+  EXPECT_DOUBLE_EQ(lo["max_linear_acceleration"].as<double>(), core.max_linear_acceleration);
+  EXPECT_DOUBLE_EQ(lo["max_angular_acceleration"].as<double>(), core.max_angular_acceleration);
+  EXPECT_DOUBLE_EQ(lo["lost_after"].as<double>(), core.lost_after);
+  EXPECT_EQ(lo["use_imu"].as<bool>(), core.use_imu);
+  EXPECT_DOUBLE_EQ(lo["min_range"].as<double>(), core.min_range);
+  EXPECT_DOUBLE_EQ(lo["max_range"].as<double>(), core.max_range);
+}
+
+}  // namespace
+}  // namespace uampc::test
