@@ -1,4 +1,4 @@
-// An experiment: the paper's evaluation as one YAML file (DESIGN.md section 1). It names scenes,
+// An experiment: the paper's evaluation as one YAML file (docs/design.md section 1). It names scenes,
 // controllers and seeds; `uampc experiment` runs every combination with `uampc launch`.
 //
 //   name: paper_table              # optional; defaults to the file name

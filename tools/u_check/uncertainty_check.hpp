@@ -1,5 +1,5 @@
 // The U check: does the controller's predicted uncertainty U(theta) rank the motor angles the way
-// the LO's registration actually fares at them? (issue 12, item 1; DESIGN.md section 1, step 4)
+// the LO's registration actually fares at them? (issue 12, item 1; docs/design.md section 1, UA-MPC step 3)
 //
 // At a probe time t on a world's path:
 // 1. The LO runs LiDAR-only from t - warmup to t with the motor at a constant speed, started at

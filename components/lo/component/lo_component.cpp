@@ -1,4 +1,4 @@
-// lo: LiDAR odometry for a motorized LiDAR (DESIGN.md sections 1 and 2). Takes scans in the LiDAR
+// lo: LiDAR odometry for a motorized LiDAR (docs/design.md sections 1 and 2). Takes scans in the LiDAR
 // frame with per-point times and the encoder states, runs uampc_lo_core, and publishes the base
 // odometry with covariance, the registered scan and the local map (world frame), and its figures
 // (degeneracy, correspondences, processing time).

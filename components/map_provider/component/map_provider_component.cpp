@@ -1,4 +1,4 @@
-// map_provider: the simulated world and the ground truth (DESIGN.md section 2).
+// map_provider: the simulated world and the ground truth (docs/design.md section 2).
 // Publishes the world's surfaces once (latched, in chunks) for ray-casters in any process, a
 // point-cloud sample of it for viewers and tools, and the ground-truth base pose at sim time.
 #include <algorithm>

@@ -1,4 +1,4 @@
-// motor_bridge: the only component that touches the motor (DESIGN.md section 2).
+// motor_bridge: the only component that touches the motor (docs/design.md section 2).
 // Subscribes speed commands, drives the motor, publishes encoder states as sensor_msgs/JointState
 // (position = encoder angle theta, multi-turn; velocity = omega), and falls back to a safe speed
 // when commands stop arriving. Backend "sim" is the simulated motor of uampc_motor_core.

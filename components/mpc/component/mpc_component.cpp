@@ -1,4 +1,4 @@
-// mpc: the motor controller (DESIGN.md section 1; the paper's Section II). Mode ua_mpc runs
+// mpc: the motor controller (docs/design.md section 1; the paper's Section II). Mode ua_mpc runs
 // UA-MPC on the LO's local map and pose; modes constant and zero are the paper's baselines.
 // Every control period it publishes the motor command, the uncertainty profile (U samples, the
 // planned horizon, predicted U), the panoramic depth map as a 32FC1 image, and its timings.

@@ -1,4 +1,4 @@
-// raycaster: the simulated motorized LiDAR (DESIGN.md section 2, Eq. 1).
+// raycaster: the simulated motorized LiDAR (docs/design.md section 2, Eq. 1).
 // Rebuilds the world from map_provider's chunks, buffers ground-truth poses and encoder states,
 // and renders frame k (covering [k/rate, (k+1)/rate)) as soon as both cover it: every point at
 // its own time, with the motor turning during the frame. Publishes one PointCloud2 per frame in

@@ -1,5 +1,5 @@
 // One Fast DDS participant per process, with its topics and registered types, and the translation
-// from our QoS presets and ROS 2 topic names to DDS (DESIGN.md section 4).
+// from our QoS presets and ROS 2 topic names to DDS (docs/design.md section 4).
 #pragma once
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>

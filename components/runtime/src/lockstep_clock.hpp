@@ -1,4 +1,4 @@
-// The lockstep clock (DESIGN.md section 3): publishes sim time on /clock and advances only when
+// The lockstep clock (docs/design.md section 3): publishes sim time on /clock and advances only when
 // every process of the scene has acknowledged the current step.
 #pragma once
 

@@ -38,7 +38,7 @@ const Recording& shortRecording() {
   return recording;
 }
 
-// Argument: scan voxel size in mm (300 is the default of DESIGN.md's LO settings).
+// Argument: scan voxel size in mm (300 is the default: docs/design.md section 1).
 void BM_RegisterScan20k(benchmark::State& state) {
   const Recording& recording = shortRecording();
   OdometryConfig config;

@@ -1,6 +1,6 @@
 // sensor_msgs/PointCloud2 <-> plain vectors, in one place.
 //
-// uampc's scans carry the fields of DESIGN.md section 4: x, y, z, intensity, t (float32, seconds
+// uampc's scans carry the fields of docs/design.md section 4: x, y, z, intensity, t (float32, seconds
 // since the header stamp), ring (uint16); 22 bytes per point, little-endian, unorganised (height 1).
 // The reader also accepts other drivers' layouts: the per-point time may be called t, time,
 // timestamp or offset_time, in float32 or float64 seconds or integer nanoseconds (uint32, int32,

@@ -1,4 +1,4 @@
-// QoS presets (DESIGN.md section 4). A port names a preset; the runtime turns it into DDS QoS.
+// QoS presets (docs/design.md section 4). A port names a preset; the runtime turns it into DDS QoS.
 // In lockstep mode every preset becomes reliable keep-all, so that no sample the loop depends on
 // is lost; transient-local stays transient-local.
 #pragma once

@@ -1,5 +1,5 @@
 // A scene: one YAML file that says which components run, with which parameters, wired to which
-// topics, under which clock, in which processes (DESIGN.md section 5). See config/scenes/README.md
+// topics, under which clock, in which processes (docs/design.md section 5). See config/scenes/README.md
 // for the format. loadScene() validates everything before anything starts and reports every
 // problem with file:line:column.
 #pragma once

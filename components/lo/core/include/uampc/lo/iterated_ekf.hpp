@@ -82,7 +82,7 @@ struct UpdateSummary {
   int iterations = 0;
   std::size_t correspondences = 0;
   // Information of the pose from the last linearisation, unit weight, [rotation, translation]:
-  // Lambda = sum_i J_i J_i^T (as in DESIGN.md section 1, step 4).
+  // Lambda = sum_i J_i J_i^T (as in docs/design.md section 1, UA-MPC step 3).
   Matrix6d pose_information = Matrix6d::Zero();
   // Eigen-analyses at the last linearisation: of the pose alone (what is reported) and of the
   // whole state (the directions the measurements were kept out of).

@@ -25,7 +25,7 @@
 
 namespace uampc::lo {
 
-// Defaults are the LO settings of DESIGN.md section 1 where it names them.
+// Defaults are the LO settings of docs/design.md section 1 where it names them.
 struct OdometryConfig {
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
   Eigen::Isometry3d initial_pose = Eigen::Isometry3d::Identity();  // T_WB of the first scan
@@ -112,8 +112,8 @@ struct OdometryResult {
   // Every usable point in the world frame, placed with the base pose at its own time (deskewed).
   std::vector<Eigen::Vector3f> registered_points_W;
 
-  // Smallest eigenvalue of the scaled unit-weight pose information sum_i J_i J_i^T (DESIGN.md
-  // step 4; scaled as in degeneracy.hpp); near zero means some direction is unobservable. 0 when
+  // Smallest eigenvalue of the scaled unit-weight pose information sum_i J_i J_i^T (docs/design.md
+  // section 1, UA-MPC step 3; scaled as in degeneracy.hpp); near zero means some direction is unobservable. 0 when
   // there was no update. degeneracy has every eigenvalue and the degenerate directions.
   double min_information_eigenvalue = 0.0;
   PoseDegeneracy degeneracy;
