@@ -291,4 +291,16 @@ Experiment loadExperiment(const std::string& path, const std::map<std::string, s
   return ExperimentValidator(file, variables).validate(root);
 }
 
+std::vector<std::string> sceneNames(const Experiment& experiment) {
+  std::vector<std::string> names;
+  for (const auto& s : experiment.scenes) names.push_back(s.name);
+  return names;
+}
+
+std::vector<std::string> controllerNames(const Experiment& experiment) {
+  std::vector<std::string> names;
+  for (const auto& c : experiment.controllers) names.push_back(c.name);
+  return names;
+}
+
 }  // namespace uampc::app

@@ -60,6 +60,10 @@ struct Experiment {
   std::string baseline = "constant_3.6";  // the paper's constant-speed baseline
 };
 
+// The scenes' and controllers' names, in the file's order (the rows and columns of every table).
+std::vector<std::string> sceneNames(const Experiment& experiment);
+std::vector<std::string> controllerNames(const Experiment& experiment);
+
 // The paper's comparison: UA-MPC, constant speed at half, once and twice omega_pre, zero speed.
 std::vector<ExperimentController> defaultControllers();
 

@@ -133,8 +133,8 @@ evaluator::JsonObject comparisonJson(const PairedComparison& c) {
 
 ExperimentStatistics computeStatistics(const Experiment& experiment, const std::vector<RunResult>& results) {
   ExperimentStatistics st;
-  for (const auto& s : experiment.scenes) st.scenes.push_back(s.name);
-  for (const auto& c : experiment.controllers) st.controllers.push_back(c.name);
+  st.scenes = sceneNames(experiment);
+  st.controllers = controllerNames(experiment);
   // Finished runs by (scene, controller, seed): the pairing key.
   std::map<std::tuple<std::string, std::string, std::uint64_t>, const RunResult*> finished;
   for (const RunResult& r : results) {

@@ -55,8 +55,8 @@ std::string lossesOfTrack(const ResultsTable& t) {
 
 ResultsTable summarize(const Experiment& experiment, const std::vector<RunResult>& results) {
   ResultsTable t;
-  for (const auto& s : experiment.scenes) t.scenes.push_back(s.name);
-  for (const auto& c : experiment.controllers) t.controllers.push_back(c.name);
+  t.scenes = sceneNames(experiment);
+  t.controllers = controllerNames(experiment);
   t.seeds = static_cast<int>(experiment.seeds.size());
   t.subject = experiment.subject;
   t.baseline = experiment.baseline;

@@ -1,11 +1,26 @@
-// The main() of a development tool: run it, and turn an exception into "NAME: message" and exit
-// code 1 (bad command lines return 2 from run themselves).
+// What every development tool's command line needs: a main() that turns an exception into
+// "NAME: message" and exit code 1 (bad command lines return 2 from run themselves), and a flag's
+// number read strictly (a typo must not silently become 0, as atof makes it).
 #pragma once
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <stdexcept>
+#include <string>
 
 namespace uampc::tools {
+
+// The whole of `text` as a finite number; throws std::invalid_argument naming the flag otherwise.
+inline double number(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value)) {
+    throw std::invalid_argument(flag + ": '" + text + "' is not a finite number");
+  }
+  return value;
+}
 
 inline int runTool(const char* name, int (*run)(int, char**), int argc, char** argv) {
   try {

@@ -72,55 +72,55 @@ int replay(int argc, char** argv) {
     const std::string flag = argv[i];
     const char* value = argv[i + 1];
     if (flag == "--start")
-      start = std::atof(value);
+      start = tools::number(flag, value);
     else if (flag == "--duration")
-      duration = std::atof(value);
+      duration = tools::number(flag, value);
     else if (flag == "--motor")
-      motor_speed = std::atof(value);
+      motor_speed = tools::number(flag, value);
     else if (flag == "--seed")
-      settings.seed = std::strtoul(value, nullptr, 10);
+      settings.seed = static_cast<std::uint64_t>(tools::number(flag, value));
     else if (flag == "--attitude")
       settings.attitude = value;
     else if (flag == "--door-spacing")
-      settings.corridor_door_spacing = std::atof(value);
+      settings.corridor_door_spacing = tools::number(flag, value);
     else if (flag == "--lidar-range-noise")
-      caster_config.range_noise_stddev = std::atof(value);
+      caster_config.range_noise_stddev = tools::number(flag, value);
     else if (flag == "--lidar-angular-noise-deg")
-      caster_config.angular_noise_stddev = std::atof(value) * M_PI / 180.0;
+      caster_config.angular_noise_stddev = tools::number(flag, value) * M_PI / 180.0;
     else if (flag == "--path-speed")
-      settings.path_speed = std::atof(value);
+      settings.path_speed = tools::number(flag, value);
     else if (flag == "--poor-rows")
-      settings.campus_poor_rows = std::atoi(value);
+      settings.campus_poor_rows = static_cast<int>(tools::number(flag, value));
     else if (flag == "--plane-distance")
-      config.plane_max_point_distance = std::atof(value);
+      config.plane_max_point_distance = tools::number(flag, value);
     else if (flag == "--profile")
       settings.density_profile = value;
     else if (flag == "--open-fraction")
-      settings.open_fraction = std::atof(value);
+      settings.open_fraction = tools::number(flag, value);
     else if (flag == "--every")
-      every = std::atoi(value);
+      every = static_cast<int>(tools::number(flag, value));
     else if (flag == "--linear-noise")
-      config.linear_process_noise = std::atof(value);
+      config.linear_process_noise = tools::number(flag, value);
     else if (flag == "--angular-noise")
-      config.angular_process_noise = std::atof(value);
+      config.angular_process_noise = tools::number(flag, value);
     else if (flag == "--iterations")
-      config.max_iterations = std::atoi(value);
+      config.max_iterations = static_cast<int>(tools::number(flag, value));
     else if (flag == "--scan-voxel")
-      config.scan_voxel_size = std::atof(value);
+      config.scan_voxel_size = tools::number(flag, value);
     else if (flag == "--map-voxel")
-      config.map_voxel_size = std::atof(value);
+      config.map_voxel_size = tools::number(flag, value);
     else if (flag == "--imu")
-      use_imu = std::atoi(value) != 0;
+      use_imu = static_cast<int>(tools::number(flag, value)) != 0;
     else if (flag == "--degeneracy-threshold")
-      config.degeneracy_threshold = std::atof(value);
+      config.degeneracy_threshold = tools::number(flag, value);
     else if (flag == "--degeneracy-length")
-      config.degeneracy_scales.length = std::atof(value);
+      config.degeneracy_scales.length = tools::number(flag, value);
     else if (flag == "--measurement-variance")
-      config.measurement_variance = std::atof(value);
+      config.measurement_variance = tools::number(flag, value);
     else if (flag == "--degeneracy-period")
-      config.degeneracy_scales.period = std::atof(value);
+      config.degeneracy_scales.period = tools::number(flag, value);
     else if (flag == "--degeneracy-aware")
-      config.degeneracy_aware = std::atoi(value) != 0;
+      config.degeneracy_aware = static_cast<int>(tools::number(flag, value)) != 0;
     else {
       std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
       return 2;
@@ -152,6 +152,8 @@ int replay(int argc, char** argv) {
   std::printf(
       "#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y "
       "z]  status\n");
+  const char* debug_env = std::getenv("LO_REPLAY_DEBUG");  // read once, not per frame
+  const double debug_from = debug_env ? tools::number("LO_REPLAY_DEBUG", debug_env) : INFINITY;
   std::uint64_t k = static_cast<std::uint64_t>(std::llround(start / frame));
   for (double t0 = k * frame; t0 + frame <= end; t0 = (++k) * frame) {
     const lo::Scan scan = tools::toOdometryScan(caster.castFrame(k, t0, truth, motor));
@@ -179,7 +181,7 @@ int replay(int argc, char** argv) {
     const Eigen::Vector3d v_true = (T.translation() - truth.poseAt(r.time - 0.01).translation()) / 0.01;
     const double v_err = (r.linear_velocity_W - v_true).norm();
     worst_speed = std::max(worst_speed, v_err);
-    if (std::getenv("LO_REPLAY_DEBUG") && r.time >= std::atof(std::getenv("LO_REPLAY_DEBUG"))) {
+    if (r.time >= debug_from) {
       const auto& e = r.degeneracy.eigenvalues;
       std::printf("   v_est %.3f %.3f %.3f v_true %.3f %.3f %.3f std(v) %.3f %.3f\n", r.linear_velocity_W.x(),
                   r.linear_velocity_W.y(), r.linear_velocity_W.z(), v_true.x(), v_true.y(), v_true.z(),

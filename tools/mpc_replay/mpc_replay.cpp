@@ -18,13 +18,6 @@ using namespace uampc;
 
 namespace {
 
-double number(const std::string& flag, const char* text) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (*text == '\0' || *end != '\0') throw std::invalid_argument(flag + ": '" + text + "' is not a number");
-  return v;
-}
-
 int run(int argc, char** argv) {
   if (argc < 2 || argc % 2 != 0 || std::string(argv[1]) == "--help") {
     std::fprintf(stderr,
@@ -35,7 +28,7 @@ int run(int argc, char** argv) {
   tools::ReplayOptions options;  // the mpc component's defaults
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
-    const double v = number(flag, argv[i + 1]);
+    const double v = tools::number(flag, argv[i + 1]);
     if (flag == "--alpha")
       options.mpc.alpha = v;
     else if (flag == "--beta")

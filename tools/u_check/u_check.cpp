@@ -38,19 +38,10 @@ constexpr const char* kUsage =
     "[--door-spacing M] [--profile P] [--open-fraction F] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] "
     "[--csv FILE] [--svg PREFIX]\n";
 
-double number(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value)) {
-    throw std::invalid_argument(flag + ": '" + text + "' is not a number");
-  }
-  return value;
-}
-
 std::vector<double> numberList(const std::string& flag, const std::string& text) {
   std::vector<double> values;
   std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) values.push_back(number(flag, item));
+  for (std::string item; std::getline(stream, item, ',');) values.push_back(tools::number(flag, item));
   if (values.empty()) throw std::invalid_argument(flag + ": no times given");
   return values;
 }
@@ -117,37 +108,37 @@ int run(int argc, char** argv) {
     if (flag == "--at")
       times = numberList(flag, value);
     else if (flag == "--seed")
-      settings.seed = config.seed = static_cast<std::uint64_t>(number(flag, value));
+      settings.seed = config.seed = static_cast<std::uint64_t>(tools::number(flag, value));
     else if (flag == "--motor")
-      config.motor_speed = number(flag, value);
+      config.motor_speed = tools::number(flag, value);
     else if (flag == "--warmup")
-      config.warmup = number(flag, value);
+      config.warmup = tools::number(flag, value);
     else if (flag == "--trials")
-      config.trials = static_cast<int>(number(flag, value));
+      config.trials = static_cast<int>(tools::number(flag, value));
     else if (flag == "--rotation-sigma")
-      config.start_rotation_sigma = number(flag, value) * M_PI / 180.0;
+      config.start_rotation_sigma = tools::number(flag, value) * M_PI / 180.0;
     else if (flag == "--position-sigma")
-      config.start_position_sigma = number(flag, value);
+      config.start_position_sigma = tools::number(flag, value);
     else if (flag == "--door-spacing")
-      settings.corridor_door_spacing = number(flag, value);
+      settings.corridor_door_spacing = tools::number(flag, value);
     else if (flag == "--profile")
       settings.density_profile = value;
     else if (flag == "--open-fraction")
-      settings.open_fraction = number(flag, value);
+      settings.open_fraction = tools::number(flag, value);
     else if (flag == "--csv")
       csv_path = value;
     else if (flag == "--svg")
       svg_prefix = value;
     else if (flag == "--range-weight-voxel")
-      range_weight_voxel = number(flag, value);
+      range_weight_voxel = tools::number(flag, value);
     else if (flag == "--ray-step") {
       config.controller.uncertainty.azimuth_step = config.controller.uncertainty.elevation_step =
-          number(flag, value) * M_PI / 180.0;
+          tools::number(flag, value) * M_PI / 180.0;
     } else if (flag == "--panorama") {
       const auto x = value.find('x');
       if (x == std::string::npos) throw std::invalid_argument("--panorama: expected WxH, e.g. 180x90");
-      config.controller.depth_map.width = static_cast<int>(number(flag, value.substr(0, x)));
-      config.controller.depth_map.height = static_cast<int>(number(flag, value.substr(x + 1)));
+      config.controller.depth_map.width = static_cast<int>(tools::number(flag, value.substr(0, x)));
+      config.controller.depth_map.height = static_cast<int>(tools::number(flag, value.substr(x + 1)));
     } else
       throw std::invalid_argument("unknown option " + flag + "\n" + kUsage);
   }

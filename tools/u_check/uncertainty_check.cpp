@@ -9,6 +9,7 @@
 #include "paired_statistics.hpp"
 #include "simulated_lidar.hpp"
 #include "uampc/lo/derotation.hpp"
+#include "uampc/lo/so3.hpp"
 #include "uampc/lo/voxel_downsample.hpp"
 #include "uampc/world/seeded_random.hpp"
 
@@ -22,12 +23,6 @@ lo::BaseState stateOf(const lo::OdometryResult& r) {
   x.v_W = r.linear_velocity_W;
   x.w_B = r.angular_velocity_B;
   return x;
-}
-
-Eigen::Matrix3d expSO3(const Eigen::Vector3d& phi) {
-  const double angle = phi.norm();
-  if (angle < 1e-12) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(angle, phi / angle).toRotationMatrix();
 }
 
 }  // namespace
@@ -118,7 +113,7 @@ ProbeResult UncertaintyCheck::probe(double t) {
       lo::BaseState start = predicted.state();
       const Eigen::Vector3d dphi(random.normal(), random.normal(), random.normal());
       const Eigen::Vector3d dr(random.normal(), random.normal(), random.normal());
-      start.R_WB = start.R_WB * expSO3(config_.start_rotation_sigma * dphi);
+      start.R_WB = start.R_WB * lo::expSO3(config_.start_rotation_sigma * dphi);
       start.r_WB += config_.start_position_sigma * dr;
       lo::IteratedEkf perturbed(start, predicted.covariance());
       perturbed.update(keypoints, odometry.localMap(), options);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 #include <utility>
 
@@ -47,13 +48,24 @@ TrajectoryReport TrajectoryEvaluator::report() const {
   report.invalid = invalid_;
   report.ate = ate_.report();
   for (const double d : config_.rpe_segment_lengths) report.rpe.push_back(rpe_.report(d));
-  report.speed_error = speedError(estimates_, ground_truths_);
-  report.distance = pathLength(ground_truths_);
+  // Pairs may come in any order; the figures below need time order. Sorted once, for both.
+  std::vector<std::size_t> order(estimates_.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [this](std::size_t a, std::size_t b) { return estimates_[a].time < estimates_[b].time; });
+  std::vector<TimedPose> estimates, truths;
+  estimates.reserve(order.size());
+  truths.reserve(order.size());
+  for (std::size_t i : order) {
+    estimates.push_back(estimates_[i]);
+    truths.push_back(ground_truths_[i]);
+  }
+  report.speed_error = speedError(estimates, truths);
+  report.distance = pathLength(truths);
   return report;
 }
 
-double pathLength(std::vector<TimedPose> poses) {
-  std::stable_sort(poses.begin(), poses.end(), [](const TimedPose& a, const TimedPose& b) { return a.time < b.time; });
+double pathLength(const std::vector<TimedPose>& poses) {
   double length = 0.0;
   for (std::size_t i = 1; i < poses.size(); ++i)
     length += (poses[i].pose.translation() - poses[i - 1].pose.translation()).norm();

@@ -7,9 +7,9 @@
 #include <random>
 
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
+#include "uampc/evaluator/motor_activity.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/relative_pose_error.hpp"
-#include "uampc/evaluator/motor_activity.hpp"
 #include "uampc/evaluator/speed_error.hpp"
 #include "uampc/evaluator/trajectory_evaluator.hpp"
 #include "uampc/evaluator/umeyama.hpp"
@@ -199,6 +199,17 @@ TEST(TrajectoryEvaluator, DistanceIsTheGroundTruthPathOverTheEvaluatedSpanOnly) 
   EXPECT_NEAR(evaluator.report().distance, 15.0, 1e-9);
   TrajectoryEvaluator nothing([&truth](double t) { return truth(t); });
   EXPECT_EQ(nothing.report().distance, 0.0);
+}
+
+TEST(TrajectoryEvaluator, SpeedErrorIsTakenInTimeOrderWhateverOrderTheEstimatesCame) {
+  // The estimate follows the truth (1 m/s east) but climbs at 0.1 m/s; given newest first.
+  const PoseInterpolator truth({{0.0, poseOf({0, 0, 0}, 0)}, {30.0, poseOf({30, 0, 0}, 0)}});
+  TrajectoryEvaluator evaluator([&truth](double t) { return truth(t); });
+  for (int k = 250; k >= 0; --k) evaluator.addEstimate(0.1 * k, poseOf({0.1 * k, 0, 0.01 * k}, 0));
+  const TrajectoryReport report = evaluator.report();
+  EXPECT_NEAR(report.speed_error.max, 0.1, 1e-6);
+  EXPECT_FALSE(report.speed_error.first_runaway_time.has_value());
+  EXPECT_NEAR(report.distance, 25.0, 1e-9);
 }
 
 // ---------------------------------------------------------------- ATE

@@ -35,9 +35,9 @@ struct TrajectoryReport {
   double distance = 0.0;
 };
 
-// Length of the polyline through the poses' positions in time order (any order given), m. At the
+// Length of the polyline through the poses' positions, given in time order, m. At the
 // estimates' rate (10 Hz) the chords differ from the arc by far less than the ATE's precision.
-double pathLength(std::vector<TimedPose> poses);
+double pathLength(const std::vector<TimedPose>& poses);
 
 class TrajectoryEvaluator {
  public:
