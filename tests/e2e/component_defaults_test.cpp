@@ -49,6 +49,7 @@ TEST(ComponentDefaults, MpcDeclaresItsCoresDefaults) {
   EXPECT_NEAR(mpc["ray_step_deg"].as<double>(), core.uncertainty.azimuth_step * deg, 1e-9);
   EXPECT_EQ(mpc["panorama_width"].as<int>(), core.depth_map.width);
   EXPECT_EQ(mpc["panorama_height"].as<int>(), core.depth_map.height);
+  EXPECT_DOUBLE_EQ(mpc["range_weight_voxel"].as<double>(), core.range_weight_voxel);
 }
 
 TEST(ComponentDefaults, LoDeclaresItsCoresDefaults) {

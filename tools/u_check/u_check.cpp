@@ -101,7 +101,6 @@ int run(int argc, char** argv) {
   tools::UncertaintyCheckConfig config;
   std::vector<double> times;
   std::string csv_path;
-  double range_weight_voxel = 0.3;  // the mpc component's default
   std::string svg_prefix;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string flag = argv[i], value = argv[i + 1];
@@ -130,7 +129,7 @@ int run(int argc, char** argv) {
     else if (flag == "--svg")
       svg_prefix = value;
     else if (flag == "--range-weight-voxel")
-      range_weight_voxel = tools::number(flag, value);
+      config.controller.range_weight_voxel = tools::number(flag, value);
     else if (flag == "--ray-step") {
       config.controller.uncertainty.azimuth_step = config.controller.uncertainty.elevation_step =
           tools::number(flag, value) * M_PI / 180.0;
@@ -143,12 +142,6 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("unknown option " + flag + "\n" + kUsage);
   }
   if (times.empty()) throw std::invalid_argument(std::string("--at is required\n") + kUsage);
-  if (range_weight_voxel > 0.0) {  // as the mpc component sets it, for the simulated Mid-360
-    const raycaster::LidarModel mid360 = raycaster::livoxMid360();
-    config.controller.uncertainty.range_weight_saturation = mpc::UncertaintyModel::rangeWeightSaturation(
-        range_weight_voxel, mid360.points_per_second / mid360.frame_rate_hz,
-        config.controller.uncertainty.field_of_view);
-  }
 
   const world::World world = world::buildWorld(settings);
   tools::UncertaintyCheck check(world, config);

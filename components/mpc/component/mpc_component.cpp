@@ -48,7 +48,7 @@ class MpcComponent : public Component {
         .between(0.5, 30.0);
     spec.param("panorama_width", core.depth_map.width, "panorama columns over 2 pi").between(16, 4096);
     spec.param("panorama_height", core.depth_map.height, "panorama rows over pi").between(8, 2048);
-    spec.param("range_weight_voxel", 0.3,
+    spec.param("range_weight_voxel", core.range_weight_voxel,
                "U weighs each ray by what an LO downsampling to voxels of this size keeps of it (the lo's "
                "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; README, \"U checked against the LO\")")
         .between(0.0, 10.0);
@@ -111,11 +111,8 @@ class MpcComponent : public Component {
       c.uncertainty.field_of_view = {-M_PI, M_PI, lo * kDeg, hi * kDeg};
     }
     c.depth_map.max_range = model.max_range;
-    const double voxel = ctx.paramDouble("range_weight_voxel");
-    if (voxel > 0.0) {
-      c.uncertainty.range_weight_saturation = mpc::UncertaintyModel::rangeWeightSaturation(
-          voxel, model.points_per_second / model.frame_rate_hz, c.uncertainty.field_of_view);
-    }
+    c.range_weight_voxel = ctx.paramDouble("range_weight_voxel");
+    c.lidar_points_per_frame = model.points_per_second / model.frame_rate_hz;
     return c;
   }
 

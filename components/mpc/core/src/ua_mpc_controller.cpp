@@ -18,9 +18,12 @@ double millisecondsSince(Clock::time_point start) {
 
 const char* modeName(Mode mode) {
   switch (mode) {
-    case Mode::kUaMpc: return "ua_mpc";
-    case Mode::kConstant: return "constant";
-    case Mode::kZero: return "zero";
+    case Mode::kUaMpc:
+      return "ua_mpc";
+    case Mode::kConstant:
+      return "constant";
+    case Mode::kZero:
+      return "zero";
   }
   return "unknown";
 }
@@ -29,23 +32,31 @@ Mode parseMode(const std::string& name) {
   for (Mode mode : {Mode::kUaMpc, Mode::kConstant, Mode::kZero}) {
     if (name == modeName(mode)) return mode;
   }
-  throw std::invalid_argument("unknown mpc mode '" + name +
-                              "'; expected one of: ua_mpc, constant, zero");
+  throw std::invalid_argument("unknown mpc mode '" + name + "'; expected one of: ua_mpc, constant, zero");
 }
 
 UaMpcController::UaMpcController() : UaMpcController(Config{}) {}
 
+namespace {
+UaMpcController::Config withRangeWeighting(UaMpcController::Config config) {
+  if (config.range_weight_voxel > 0.0) {
+    config.uncertainty.range_weight_saturation = UncertaintyModel::rangeWeightSaturation(
+        config.range_weight_voxel, config.lidar_points_per_frame, config.uncertainty.field_of_view);
+  }
+  return config;
+}
+}  // namespace
+
 UaMpcController::UaMpcController(const Config& config)
-    : config_(config),
+    : config_(withRangeWeighting(config)),
       sample_count_(UncertaintySurrogate::samplesPerTurn(config.sample_step)),
       depth_map_(config.depth_map),
       normals_(config.normals),
-      uncertainty_(config.uncertainty),
+      uncertainty_(config_.uncertainty),
       mpc_(config.mpc) {}
 
 UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
-                                                 const std::vector<Eigen::Vector3d>& local_map_W,
-                                                 double theta_now) {
+                                                const std::vector<Eigen::Vector3d>& local_map_W, double theta_now) {
   const Clock::time_point start = Clock::now();
   Decision decision;
   decision.mode = config_.mode;
@@ -57,8 +68,12 @@ UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
       decision.omega = std::clamp(config_.mpc.omega_pre, config_.mpc.omega_min,
                                   config_.mpc.omega_max);  // fallback if nothing is seen
       break;
-    case Mode::kConstant: decision.omega = config_.constant_speed; break;
-    case Mode::kZero: decision.omega = 0.0; break;
+    case Mode::kConstant:
+      decision.omega = config_.constant_speed;
+      break;
+    case Mode::kZero:
+      decision.omega = 0.0;
+      break;
   }
   const bool want_samples = config_.mode == Mode::kUaMpc || config_.profile_in_baselines;
 
@@ -71,8 +86,7 @@ UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
     if (!decision.local_map_empty) {
       t = Clock::now();
       normals_.reset(depth_map_);
-      decision.samples = uncertainty_.sample(depth_map_, normals_, theta_now,
-                                             decision.sample_step, sample_count_);
+      decision.samples = uncertainty_.sample(depth_map_, normals_, theta_now, decision.sample_step, sample_count_);
       decision.timings.uncertainty_ms = millisecondsSince(t);
 
       if (config_.mode == Mode::kUaMpc) {

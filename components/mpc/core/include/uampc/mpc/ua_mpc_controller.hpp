@@ -31,10 +31,15 @@ class UaMpcController {
  public:
   struct Config {
     Mode mode = Mode::kUaMpc;
-    double constant_speed = 3.6;                            // rad/s, for Mode::kConstant
+    double constant_speed = 3.6;                                // rad/s, for Mode::kConstant
     double sample_step = 5.0 * 3.14159265358979323846 / 180.0;  // rad, delta_theta of the samples;
-                                                            // rounded so that a whole turn fits
-    bool profile_in_baselines = false;  // also compute the U samples in constant/zero modes
+                                                                // rounded so that a whole turn fits
+    bool profile_in_baselines = false;                          // also compute the U samples in constant/zero modes
+    // U's range weighting (uncertainty_model.hpp), set from what the LO and the LiDAR are: the
+    // LO's scan voxel (m; 0 leaves uncertainty.range_weight_saturation as given, 0 by default:
+    // the paper's equal rays) and the LiDAR's points per frame (Mid-360: 200k/s at 10 Hz).
+    double range_weight_voxel = 0.3;
+    double lidar_points_per_frame = 20000.0;
     PanoramicDepthMap::Config depth_map;
     DepthMapNormals::Config normals;
     UncertaintyModel::Config uncertainty;
@@ -49,13 +54,13 @@ class UaMpcController {
   };
 
   struct Decision {
-    double omega = 0.0;             // rad/s, the command to execute now
+    double omega = 0.0;  // rad/s, the command to execute now
     Mode mode = Mode::kUaMpc;
-    bool local_map_empty = false;   // no local-map point within the depth map's range window
-    double sample_start = 0.0;      // theta_now, angle of samples[0]
-    double sample_step = 0.0;       // rad, delta_theta actually used (2 pi / samples.size())
-    std::vector<double> samples;    // U_s, empty when not computed
-    MotorMpc::Plan plan;            // empty unless mode == kUaMpc and the map was not empty
+    bool local_map_empty = false;  // no local-map point within the depth map's range window
+    double sample_start = 0.0;     // theta_now, angle of samples[0]
+    double sample_step = 0.0;      // rad, delta_theta actually used (2 pi / samples.size())
+    std::vector<double> samples;   // U_s, empty when not computed
+    MotorMpc::Plan plan;           // empty unless mode == kUaMpc and the map was not empty
     Timings timings;
   };
 
@@ -66,8 +71,7 @@ class UaMpcController {
   // T_WB: base pose from the LO; local_map_W: the LO's local map in the world frame; theta_now:
   // encoder angle (rad, multi-turn allowed). With an empty local map, UA-MPC returns omega_pre
   // (clamped to the speed bounds) and sets local_map_empty.
-  Decision step(const Eigen::Isometry3d& T_WB, const std::vector<Eigen::Vector3d>& local_map_W,
-                double theta_now);
+  Decision step(const Eigen::Isometry3d& T_WB, const std::vector<Eigen::Vector3d>& local_map_W, double theta_now);
 
   // The panorama of the last step (for publishing as a 32FC1 image).
   const PanoramicDepthMap& depthMap() const { return depth_map_; }
