@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Fingerprints of every shipped scene's lockstep outputs, to check that a refactoring changes no
+# behaviour: run it before and after, and diff the two listings.
+#
+#   tools/scene_fingerprints/scene_fingerprints.sh [SECONDS] > before.txt   (default 20 s of sim time)
+#
+# Each scene runs for SECONDS of simulated time with --out; every output file is hashed, except the
+# values of timings.csv (wall-clock processing times, the one part of a run that is not
+# deterministic): of it only the time, source and name columns are hashed.
+set -euo pipefail
+shopt -s nullglob
+cd "$(dirname "$0")/../.."
+seconds="${1:-20}"
+uampc="${UAMPC:-./build/bin/uampc}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+for scene in config/scenes/*.yaml; do
+  name="$(basename "$scene" .yaml)"
+  if ! "$uampc" launch "$scene" --set clock.duration="$seconds" --out "$work/$name" >"$work/$name.log" 2>&1; then
+    echo "$name: FAILED (log follows)"; tail -5 "$work/$name.log"; continue
+  fi
+  files=("$work/$name"/*)
+  [ ${#files[@]} -gt 0 ] || echo "$name: (no output files)"
+  for file in "${files[@]}"; do
+    case "$(basename "$file")" in
+      timings.csv) hash="$(cut -d, -f1-3 "$file" | sha256sum | cut -c1-16)" ;;
+      *) hash="$(sha256sum "$file" | cut -c1-16)" ;;
+    esac
+    echo "$name/$(basename "$file") $hash"
+  done
+done
