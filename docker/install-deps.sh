@@ -11,8 +11,8 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # algorithms
   libeigen3-dev libpcl-dev libceres-dev liboctomap-dev libembree-dev
-  # configuration
-  libyaml-cpp-dev
+  # configuration, JSON files, the command line
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   # tests and benchmarks; Cyclone DDS proves our wire format to another vendor
   libgtest-dev libgmock-dev libbenchmark-dev cyclonedds-dev cyclonedds-tools
   # the experiment report is checked in headless Chromium; xmllint checks its SVG figures
