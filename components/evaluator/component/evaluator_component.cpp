@@ -113,10 +113,9 @@ class EvaluatorComponent : public Component {
         scan.start = std::min(scan.start, scan.stamp + t);
         scan.end = std::max(scan.end, scan.stamp + t);
       }
-      if (non_finite > 0 && !warned_non_finite_times_) {
-        warned_non_finite_times_ = true;
-        ctx_.log().warn("scans on ", ctx_.topicOf("scan"), " have points with non-finite times (", non_finite,
-                        " in this one); they are not placed with ground truth (said once)");
+      if (non_finite > 0) {
+        non_finite_times_log_.warn(ctx_.log(), "scans on ", ctx_.topicOf("scan"), " have points with non-finite times (",
+                                   non_finite, " in this one); they are not placed with ground truth (said once)");
       }
       pending_scans_.push_back(std::move(scan));
       flush();
@@ -233,12 +232,10 @@ class EvaluatorComponent : public Component {
     const std::size_t pixels = static_cast<std::size_t>(m.width()) * m.height();
     if (m.encoding() != "32FC1" || m.is_bigendian() != 0 || pixels == 0 || m.step() != m.width() * 4 ||
         m.data().size() != pixels * 4) {
-      if (!warned_panorama_) {
-        ctx_.log().warn("ignoring panoramas on ", ctx_.topicOf("panorama"), ": expected little-endian 32FC1 with step ",
-                        "= 4 * width and 4 * width * height bytes, got ", m.encoding(), " ", m.width(), " x ",
-                        m.height(), ", step ", m.step(), ", ", m.data().size(), " bytes");
-        warned_panorama_ = true;
-      }
+      bad_panorama_log_.warn(ctx_.log(), "ignoring panoramas on ", ctx_.topicOf("panorama"),
+                             ": expected little-endian 32FC1 with step = 4 * width and 4 * width * height bytes, got ",
+                             m.encoding(), " ", m.width(), " x ", m.height(), ", step ", m.step(), ", ",
+                             m.data().size(), " bytes");
       return;
     }
     std::vector<float> depth(pixels);
@@ -308,7 +305,7 @@ class EvaluatorComponent : public Component {
   Context& ctx_;
   frames::MotorLidarCalibration calibration_;
   frames::PoseKnots lidar_pose_;  // T_WL over the raw scan being placed
-  bool warned_non_finite_times_ = false;
+  RateLimitedLog non_finite_times_log_ = RateLimitedLog::once();
   evaluator::PoseInterpolator ground_truth_;
   evaluator::TrajectoryEvaluator trajectory_;
   evaluator::Completeness cmplt_;
@@ -327,7 +324,7 @@ class EvaluatorComponent : public Component {
   double panorama_period_ = 0.0;
   double panorama_max_range_ = 0.0;
   double next_panorama_ = 0.0;
-  bool warned_panorama_ = false;
+  RateLimitedLog bad_panorama_log_ = RateLimitedLog::once();
   evaluator::MotorActivity motor_activity_{0.1};
 };
 

@@ -12,6 +12,8 @@
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
+#include "uampc/lo/scan_readiness.hpp"
+#include "uampc/lo/start_poses.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 
@@ -107,8 +109,7 @@ class LoComponent : public Component {
       processReady();
     });
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("initial_pose", [this](const geometry_msgs::msg::PoseStamped& p) {
-      if (initial_poses_.size() > 4000) initial_poses_.pop_front();
-      if (!odometry_) initial_poses_.push_back(p);
+      if (!odometry_) start_poses_.add(fromMsg(p.header().stamp()).seconds(), adapters::toIsometry(p.pose()));
     });
   }
 
@@ -174,10 +175,9 @@ class LoComponent : public Component {
       if (pending_imu_.size() > 400) pending_imu_.pop_front();  // 2 s at 200 Hz: the first scan needs less
       taken = true;
     }
-    if (!taken && !warned_bad_imu_) {
-      ctx_.log().warn("IMU readings on ", ctx_.topicOf("imu"),
-                      " with non-finite values or out of time order are skipped (said once)");
-      warned_bad_imu_ = true;
+    if (!taken) {
+      bad_imu_log_.warn(ctx_.log(), "IMU readings on ", ctx_.topicOf("imu"),
+                        " with non-finite values or out of time order are skipped (said once)");
     }
   }
 
@@ -196,12 +196,9 @@ class LoComponent : public Component {
   void processReady() {
     while (!pending_.empty()) {
       const lo::Scan& scan = pending_.front();
-      const double end = scanEnd(scan);
-      const bool imu_covered = !config_.use_imu || newestImuTime() >= end;
-      const bool covered = motor_.covers(scan.stamp, end) && imu_covered;
-      const bool waited = !motor_.empty() && motor_.newest().time > end + max_motor_wait_;
-      if (!covered && !waited) return;
-      if (init_from_pose_ && !odometry_ && !initialise(end)) return;
+      const double imu_until = config_.use_imu ? newestImuTime() : std::numeric_limits<double>::infinity();
+      if (!lo::readyToRegister(scan, motor_, imu_until, max_motor_wait_)) return;
+      if (init_from_pose_ && !odometry_ && !initialise(lo::scanEndTime(scan))) return;
       if (!odometry_) {
         odometry_ = std::make_unique<lo::MotorizedLidarOdometry>(config_);
         for (const lo::ImuReading& r : pending_imu_) odometry_->addImu(r);
@@ -212,32 +209,21 @@ class LoComponent : public Component {
     }
   }
 
-  // The start pose: the initial_pose sample at the first scan's end, the time the LO's pose refers
-  // to (ground truth in simulation), so that unaligned ATE compares like with like; and the
-  // velocity there, differentiated from the sample before it, because the first scan is deskewed
-  // with it (a real robot without such a source starts at rest: init_from_pose false).
+  // The start pose and velocity from initial_pose at the first scan's end (lo/start_poses.hpp).
   bool initialise(double scan_end) {
-    for (std::size_t i = 1; i < initial_poses_.size(); ++i) {
-      const double t = fromMsg(initial_poses_[i].header().stamp()).seconds();
-      if (t + 1e-9 < scan_end) continue;
-      const double t0 = fromMsg(initial_poses_[i - 1].header().stamp()).seconds();
-      const Eigen::Isometry3d T1 = adapters::toIsometry(initial_poses_[i].pose());
-      const Eigen::Isometry3d T0 = adapters::toIsometry(initial_poses_[i - 1].pose());
-      config_.initial_pose = T1;
-      if (t > t0) {
-        config_.initial_velocity_W = (T1.translation() - T0.translation()) / (t - t0);
-        const Eigen::AngleAxisd turn(T0.linear().transpose() * T1.linear());
-        config_.initial_angular_velocity_B = turn.axis() * turn.angle() / (t - t0);
+    const std::optional<lo::StartState> start = start_poses_.at(scan_end);
+    if (!start) {
+      if (ctx_.now().seconds() > 2.0) {
+        no_pose_log_.warn(ctx_.log(), "waiting for a pose on ", ctx_.topicOf("initial_pose"),
+                          " to start from (init_from_pose: true); scans are queued");
       }
-      initial_poses_.clear();
-      return true;
+      return false;
     }
-    if (!warned_no_pose_ && ctx_.now().seconds() > 2.0) {
-      ctx_.log().warn("waiting for a pose on ", ctx_.topicOf("initial_pose"),
-                      " to start from (init_from_pose: true); scans are queued");
-      warned_no_pose_ = true;
-    }
-    return false;
+    config_.initial_pose = start->T_WB;
+    config_.initial_velocity_W = start->velocity_W;
+    config_.initial_angular_velocity_B = start->angular_velocity_B;
+    start_poses_.clear();
+    return true;
   }
 
   void process(const lo::Scan& scan) {
@@ -249,9 +235,9 @@ class LoComponent : public Component {
       return;
     }
     if (!r.warning.empty()) warnRepeated(r.warning);
-    if (r.dropped_non_finite && !warned_nan_) {
-      ctx_.log().warn("scans on ", ctx_.topicOf("scan"), " contain non-finite points; they are dropped and counted");
-      warned_nan_ = true;
+    if (r.dropped_non_finite) {
+      non_finite_log_.warn(ctx_.log(), "scans on ", ctx_.topicOf("scan"),
+                           " contain non-finite points; they are dropped and counted");
     }
     const Time stamp = Time::fromSeconds(r.time);
     publishOdometry(r, stamp);
@@ -265,12 +251,6 @@ class LoComponent : public Component {
     publishMetrics(r, stamp, seconds);
   }
 
-  static double scanEnd(const lo::Scan& scan) {
-    double end = scan.stamp;
-    for (float t : scan.time_offsets) end = std::max(end, scan.stamp + t);
-    return end;
-  }
-
   // A warning that repeats every scan would drown the log: each kind (its text without numbers)
   // is said the 1st, 10th, 100th ... time.
   void warnRepeated(const std::string& warning) {
@@ -278,46 +258,23 @@ class LoComponent : public Component {
     for (char c : warning) {
       if (!std::isdigit(static_cast<unsigned char>(c)) && c != '.' && c != '-') kind += c;
     }
-    const long n = ++warning_counts_[kind];
-    for (long k = 1; k <= n; k *= 10) {
-      if (k == n) {
-        ctx_.log().warn(warning, n > 1 ? " (" + std::to_string(n) + " times so far)" : std::string());
-        return;
-      }
-    }
+    RateLimitedLog& log = repeated_logs_.try_emplace(kind, RateLimitedLog::atPowersOf(10)).first->second;
+    if (!log.due()) return;
+    const long n = log.occurrences();
+    ctx_.log().warn(warning, n > 1 ? " (" + std::to_string(n) + " times so far)" : std::string());
   }
 
   void publishOdometry(const lo::OdometryResult& r, Time stamp) {
-    nav_msgs::msg::Odometry o;
-    o.header().stamp(toMsg(stamp));
-    o.header().frame_id("map");
-    o.child_frame_id("base");
-    const Eigen::Quaterniond q(r.T_WB.linear());
-    o.pose().pose().position().x(r.T_WB.translation().x());
-    o.pose().pose().position().y(r.T_WB.translation().y());
-    o.pose().pose().position().z(r.T_WB.translation().z());
-    o.pose().pose().orientation().x(q.x());
-    o.pose().pose().orientation().y(q.y());
-    o.pose().pose().orientation().z(q.z());
-    o.pose().pose().orientation().w(q.w());
-    // ROS orders pose covariance (x, y, z, rot x, rot y, rot z); the filter (rotation, position, ...).
-    const int ros_to_filter[6] = {3, 4, 5, 0, 1, 2};
-    for (int i = 0; i < 6; ++i) {
-      for (int j = 0; j < 6; ++j) {
-        o.pose().covariance()[6 * i + j] = r.covariance(ros_to_filter[i], ros_to_filter[j]);
-        // Twist: (linear, angular) = filter blocks 6..8 (world frame, rotated below) and 9..11.
-        o.twist().covariance()[6 * i + j] = r.covariance(6 + i, 6 + j);
-      }
-    }
+    adapters::BaseOdometry o;
+    o.stamp = stamp;
+    o.T_WB = r.T_WB;
     // ROS expresses the twist in the child frame: rotate the world-frame velocity into the base.
-    const Eigen::Vector3d v_B = r.T_WB.linear().transpose() * r.linear_velocity_W;
-    o.twist().twist().linear().x(v_B.x());
-    o.twist().twist().linear().y(v_B.y());
-    o.twist().twist().linear().z(v_B.z());
-    o.twist().twist().angular().x(r.angular_velocity_B.x());
-    o.twist().twist().angular().y(r.angular_velocity_B.y());
-    o.twist().twist().angular().z(r.angular_velocity_B.z());
-    odometry_pub_.publish(o);
+    o.linear_velocity_B = r.T_WB.linear().transpose() * r.linear_velocity_W;
+    o.angular_velocity_B = r.angular_velocity_B;
+    // The filter orders its state (rotation, position, linear velocity (world frame), angular velocity).
+    o.pose_covariance = adapters::positionFirst(r.covariance.topLeftCorner<6, 6>());
+    o.twist_covariance = r.covariance.bottomRightCorner<6, 6>();
+    odometry_pub_.publish(adapters::toOdometryMessage(o));
   }
 
   void publishMetrics(const lo::OdometryResult& r, Time stamp, double seconds) {
@@ -372,14 +329,14 @@ class LoComponent : public Component {
   frames::MotorAngleTrack motor_{2.0};
   std::deque<lo::Scan> pending_;
   std::deque<lo::ImuReading> pending_imu_;  // readings before the odometry starts
-  bool warned_bad_imu_ = false;
-  std::deque<geometry_msgs::msg::PoseStamped> initial_poses_;
+  RateLimitedLog bad_imu_log_ = RateLimitedLog::once();
+  lo::StartPoses start_poses_;  // initial_pose samples until the odometry starts
   std::string layout_;
   std::string layout_error_;
   pointcloud::TimeField time_field_;
-  std::map<std::string, long> warning_counts_;
-  bool warned_no_pose_ = false;
-  bool warned_nan_ = false;
+  std::map<std::string, RateLimitedLog> repeated_logs_;  // by kind of warning
+  RateLimitedLog no_pose_log_ = RateLimitedLog::once();
+  RateLimitedLog non_finite_log_ = RateLimitedLog::once();
 };
 
 }  // namespace uampc

@@ -179,11 +179,8 @@ class MapProvider : public Component {
     double at = t;
     if (!world_.trajectory.contains(t)) {
       at = std::clamp(t, world_.trajectory.startTime(), world_.trajectory.endTime());
-      if (!warned_end_) {
-        ctx_.log().warn("the ground-truth trajectory ends at ", world_.trajectory.endTime(),
-                        " s; holding its last pose");
-        warned_end_ = true;
-      }
+      end_log_.warn(ctx_.log(), "the ground-truth trajectory ends at ", world_.trajectory.endTime(),
+                    " s; holding its last pose");
     }
     geometry_msgs::msg::PoseStamped pose;
     pose.header().stamp(toMsg(ctx_.now()));
@@ -197,7 +194,7 @@ class MapProvider : public Component {
   Publisher<msg::WorldMesh> world_pub_;
   Publisher<sensor_msgs::msg::PointCloud2> map_pub_;
   Publisher<geometry_msgs::msg::PoseStamped> pose_pub_;
-  bool warned_end_ = false;
+  RateLimitedLog end_log_ = RateLimitedLog::once();
 };
 
 }  // namespace uampc

@@ -71,10 +71,9 @@ class MotorBridge : public Component {
       return;
     }
     advanceToNow();
-    if (std::abs(m.velocity()) > max_speed_ && !warned_clamp_) {
-      ctx_.log().warn("command ", m.velocity(), " rad/s exceeds max_speed ", max_speed_,
+    if (std::abs(m.velocity()) > max_speed_) {
+      clamp_log_.warn(ctx_.log(), "command ", m.velocity(), " rad/s exceeds max_speed ", max_speed_,
                       " rad/s; clamping (said once)");
-      warned_clamp_ = true;
     }
     motor_.command(m.velocity());
     last_command_ = ctx_.now();
@@ -111,7 +110,7 @@ class MotorBridge : public Component {
   Time last_update_;
   Time last_command_;
   bool in_fallback_ = false;
-  bool warned_clamp_ = false;
+  RateLimitedLog clamp_log_ = RateLimitedLog::once();
   long rejected_ = 0;
 };
 

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <stdexcept>
 
 namespace uampc {
 
@@ -26,6 +27,32 @@ void Logger::write(LogLevel level, const std::string& text) const {
   const double t = clock_seconds_ ? clock_seconds_() : 0.0;
   std::lock_guard<std::mutex> lock(mutex);
   std::fprintf(stderr, "[%11.6f] [%s] %s %s\n", t, name_.c_str(), kNames[static_cast<int>(level)], text.c_str());
+}
+
+RateLimitedLog RateLimitedLog::everyNth(long n) {
+  if (n < 1) throw std::invalid_argument("RateLimitedLog::everyNth needs n >= 1, got " + std::to_string(n));
+  return RateLimitedLog(Schedule::kEveryNth, n);
+}
+
+RateLimitedLog RateLimitedLog::atPowersOf(long base) {
+  if (base < 2) throw std::invalid_argument("RateLimitedLog::atPowersOf needs base >= 2, got " + std::to_string(base));
+  return RateLimitedLog(Schedule::kPowers, base);
+}
+
+bool RateLimitedLog::due() {
+  const long n = ++occurrences_;
+  switch (schedule_) {
+    case Schedule::kOnce:
+      return n == 1;
+    case Schedule::kEveryNth:
+      return (n - 1) % step_ == 0;
+    case Schedule::kPowers: {
+      long power = 1;
+      while (power < n) power *= step_;
+      return power == n;
+    }
+  }
+  return false;
 }
 
 }  // namespace uampc
