@@ -133,6 +133,7 @@ int validateCommand(const LaunchOptions& options) {
   ComponentCatalog catalog;
   try {
     const Scene scene = loadScene(options.scene_path, options.overrides, catalog);
+    for (const auto& w : scene.warnings) std::cerr << w << "\n";
     std::cout << options.scene_path << ": ok (" << scene.components.size() << " components in "
               << scene.processes().size() << " process(es))\n";
     return 0;

@@ -3,6 +3,7 @@
 //   uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]
 //   uampc components [--json]
 //   uampc validate SCENE.yaml [--set NAME=VALUE ...]
+//   uampc graph SCENE.yaml [--set NAME=VALUE ...] [--format mermaid|dot]
 //   uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--set NAME=VALUE ...]
 //   uampc run-process SCENE.yaml --process NAME ...;  uampc clock SCENE.yaml ...
 #include <cstring>
@@ -12,6 +13,7 @@
 
 #include "components_command.hpp"
 #include "experiment_command.hpp"
+#include "graph_command.hpp"
 #include "uampc/runtime/launcher.hpp"
 
 namespace {
@@ -22,6 +24,9 @@ const char* const kUsage = R"(usage:
       (seed, domain_id, ...). --out DIR collects the run's outputs. Ctrl-C stops everything.
   uampc validate SCENE.yaml [--set NAME=VALUE ...]
       Only validate the scene; print every problem with file:line:column.
+  uampc graph SCENE.yaml [--set NAME=VALUE ...] [--format mermaid|dot]
+      Print the scene's resolved graph (components, and the topics between them with their types)
+      as a Mermaid flowchart (default) or Graphviz DOT.
   uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]
                    [--set NAME=VALUE ...] [--dry-run]
       Run every scene x controller x seed of an experiment (at most N at once, default: one per
@@ -123,6 +128,7 @@ int main(int argc, char** argv) {
     }
     return uampc::runProcessCommand(options, process);
   }
+  if (command == "graph") return uampc::app::graphCommand(args);
   if (command == "experiment") return uampc::app::experimentCommand(args);
   if (command == "components") {
     if (args.size() > 1 || (args.size() == 1 && args[0] != "--json")) return usageError("components takes only --json");

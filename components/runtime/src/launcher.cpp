@@ -160,6 +160,8 @@ int launch(const LaunchOptions& options) {
   ComponentCatalog catalog;
   bool ok = false;
   const Scene scene = loadOrReport(options, catalog, ok);
+  // Only here, not in run-process and clock: launch starts those, and they would repeat them.
+  for (const auto& w : scene.warnings) std::cerr << w << "\n";
   if (!ok) return 2;
   if (!options.output_directory.empty()) fs::create_directories(options.output_directory);
 

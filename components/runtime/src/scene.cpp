@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "edit_distance.hpp"
+#include "scene_document.hpp"
+#include "scene_ports.hpp"
 
 namespace fs = std::filesystem;
 
@@ -74,18 +76,11 @@ Override parseOverride(const std::string& text) {
 
 namespace {
 
-// A port mapped to another component's port ("component/port"), resolved once all are read.
-struct PendingReference {
-  std::size_t instance;  // index in Scene::components
-  std::string port;
-  std::string target;
-  YAML::Node node;
-};
-
 // Collects errors so that one run of the validator reports every problem in the file.
 class SceneValidator {
  public:
-  SceneValidator(std::string file, ComponentCatalog& catalog) : file_(std::move(file)), catalog_(catalog) {}
+  SceneValidator(std::string file, const SceneDocument& document, ComponentCatalog& catalog)
+      : file_(std::move(file)), document_(document), catalog_(catalog) {}
 
   Scene validate(YAML::Node root, const std::vector<Override>& overrides);
 
@@ -93,7 +88,15 @@ class SceneValidator {
   SourceLocation at(const YAML::Node& node) const {
     const YAML::Mark m = node.Mark();
     if (m.is_null()) return {file_, 0, 0};
-    return {file_, m.line + 1, m.column + 1};
+    return {document_.fileOf(node, file_), m.line + 1, m.column + 1};
+  }
+  // Relative paths are relative to the file they were written in (a base scene's, for what it
+  // sets); those given on the command line, to the scene's.
+  std::string directoryOf(const YAML::Node& node) const {
+    for (const auto& override_node : override_nodes_) {
+      if (override_node.first.is(node)) return fs::path(file_).parent_path().string();
+    }
+    return fs::path(document_.fileOf(node, file_)).parent_path().string();
   }
   void error(const SourceLocation& where, const std::string& message) {
     errors_.push_back(where.str() + ": error: " + message);
@@ -117,14 +120,10 @@ class SceneValidator {
   void readTopLevel(const YAML::Node& root, Scene& scene);
   void readClock(const YAML::Node& node, Scene& scene);
   void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
-  void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
-                      const std::string& scene_directory);
-  std::optional<ParameterValue> readValue(const YAML::Node& node, const ParameterSpec& spec,
-                                          const std::string& owner, const std::string& scene_directory);
+  void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec);
+  std::optional<ParameterValue> readValue(const YAML::Node& node, const ParameterSpec& spec, const std::string& owner);
   void readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
-                  std::vector<PendingReference>& references);
-  void resolvePortReferences(Scene& scene);
-  void checkConnections(const Scene& scene);
+                  std::vector<PortReference>& references);
   std::string resolvePath(const std::string& value, const std::string& directory) const;
 
   template <typename T>
@@ -142,29 +141,32 @@ class SceneValidator {
   }
   template <typename T>
   static const char* typeWord() {
-    if constexpr (std::is_same_v<T, bool>) return "true or false";
-    else if constexpr (std::is_integral_v<T>) return "an integer";
-    else if constexpr (std::is_floating_point_v<T>) return "a number";
-    else return "a string";
+    if constexpr (std::is_same_v<T, bool>)
+      return "true or false";
+    else if constexpr (std::is_integral_v<T>)
+      return "an integer";
+    else if constexpr (std::is_floating_point_v<T>)
+      return "a number";
+    else
+      return "a string";
   }
 
   std::string file_;
+  const SceneDocument& document_;
   ComponentCatalog& catalog_;
   std::vector<std::string> errors_;
   std::vector<std::pair<YAML::Node, std::string>> override_nodes_;  // value grafted by --set, its text
   std::vector<std::pair<std::string, std::string>> override_keys_;  // last name of each --set, its text
-  std::vector<PendingReference> pending_;
+  std::vector<PortReference> pending_;
   std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
 };
 
-void SceneValidator::checkKeys(const YAML::Node& map, const std::set<std::string>& allowed,
-                               const std::string& what) {
+void SceneValidator::checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) {
   for (const auto& kv : map) {
     const std::string key = kv.first.as<std::string>();
     if (allowed.count(key)) continue;
     const std::string guess = closestMatch(key, {allowed.begin(), allowed.end()});
-    error(kv.first, "unknown key '" + key + "' in " + what +
-                        (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+    error(kv.first, "unknown key '" + key + "' in " + what + (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
   }
 }
 
@@ -183,8 +185,8 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
     override_nodes_.emplace_back(value, o.text);
     override_keys_.emplace_back(o.path.back(), o.text);
     // Top-level keys and clock.* apply directly; anything else is component.parameter.
-    static const std::set<std::string> top_level = {"name", "domain_id", "seed", "on_crash", "max_restarts",
-                                                    "dds_profile"};
+    static const std::set<std::string> top_level = {"name",     "domain_id",    "seed",
+                                                    "on_crash", "max_restarts", "dds_profile"};
     if (o.path.size() == 1 && top_level.count(o.path[0])) {
       root[o.path[0]] = value;
     } else if (o.path.size() == 2 && o.path[0] == "clock") {
@@ -197,8 +199,7 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
       }
       components[o.path[0]]["params"][o.path[1]] = value;
     } else {
-      errors_.push_back("--set " + o.text +
-                        ": error: expected component.parameter, clock.key or a top-level key");
+      errors_.push_back("--set " + o.text + ": error: expected component.parameter, clock.key or a top-level key");
     }
   }
 }
@@ -230,12 +231,13 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     error(components, "'components' must map instance names to components");
   } else {
     for (const auto& kv : components) readComponent(kv.first, kv.second, scene);
-    resolvePortReferences(scene);
-    checkConnections(scene);
+    resolvePortReferences(scene, pending_, errors_);
+    checkConnections(scene, topic_locations_, errors_);
   }
   if (scene.clock.mode == ClockMode::kLockstep && scene.on_crash == CrashPolicy::kRestart) {
-    error(root["on_crash"], "on_crash: restart needs clock.mode realtime: a restarted process cannot rejoin "
-                            "a deterministic lockstep run");
+    error(root["on_crash"],
+          "on_crash: restart needs clock.mode realtime: a restarted process cannot rejoin "
+          "a deterministic lockstep run");
   }
   if (!errors_.empty()) throw SceneError(errors_);
   return scene;
@@ -249,8 +251,10 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
   if (root["domain_id"]) {
     // Fast DDS maps domains to UDP ports; 232 is the highest that fits the default port mapping.
     if (auto v = scalar<int>(root["domain_id"], "domain_id")) {
-      if (*v < 0 || *v > 232) error(root["domain_id"], "domain_id must be between 0 and 232");
-      else scene.domain_id = *v;
+      if (*v < 0 || *v > 232)
+        error(root["domain_id"], "domain_id must be between 0 and 232");
+      else
+        scene.domain_id = *v;
     }
   }
   if (root["seed"]) {
@@ -258,20 +262,25 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
   }
   if (root["max_restarts"]) {
     if (auto v = scalar<int>(root["max_restarts"], "max_restarts")) {
-      if (*v < 0) error(root["max_restarts"], "max_restarts must be 0 or more");
-      else scene.max_restarts = *v;
+      if (*v < 0)
+        error(root["max_restarts"], "max_restarts must be 0 or more");
+      else
+        scene.max_restarts = *v;
     }
   }
   if (root["on_crash"]) {
     if (auto v = scalar<std::string>(root["on_crash"], "on_crash")) {
-      if (*v == "stop") scene.on_crash = CrashPolicy::kStop;
-      else if (*v == "restart") scene.on_crash = CrashPolicy::kRestart;
-      else error(root["on_crash"], "on_crash must be 'stop' or 'restart', not '" + *v + "'");
+      if (*v == "stop")
+        scene.on_crash = CrashPolicy::kStop;
+      else if (*v == "restart")
+        scene.on_crash = CrashPolicy::kRestart;
+      else
+        error(root["on_crash"], "on_crash must be 'stop' or 'restart', not '" + *v + "'");
     }
   }
   if (root["dds_profile"]) {
     if (auto v = scalar<std::string>(root["dds_profile"], "dds_profile")) {
-      scene.dds_profile = resolvePath(*v, scene.directory);
+      scene.dds_profile = resolvePath(*v, directoryOf(root["dds_profile"]));
       if (!fs::is_regular_file(scene.dds_profile)) {
         error(root["dds_profile"], "dds_profile: file not found: " + scene.dds_profile);
       }
@@ -287,9 +296,12 @@ void SceneValidator::readClock(const YAML::Node& node, Scene& scene) {
   checkKeys(node, {"mode", "step", "duration", "ack_timeout", "real_time_factor"}, "clock");
   if (node["mode"]) {
     if (auto v = scalar<std::string>(node["mode"], "clock.mode")) {
-      if (*v == "lockstep") scene.clock.mode = ClockMode::kLockstep;
-      else if (*v == "realtime") scene.clock.mode = ClockMode::kRealtime;
-      else error(node["mode"], "clock.mode must be 'lockstep' or 'realtime', not '" + *v + "'");
+      if (*v == "lockstep")
+        scene.clock.mode = ClockMode::kLockstep;
+      else if (*v == "realtime")
+        scene.clock.mode = ClockMode::kRealtime;
+      else
+        error(node["mode"], "clock.mode must be 'lockstep' or 'realtime', not '" + *v + "'");
     }
   }
   auto positive = [&](const char* key, double lo, double hi, auto assign) {
@@ -342,8 +354,8 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
     std::string searched;
     for (const auto& d : catalog_.directories()) searched += (searched.empty() ? "" : ", ") + d;
     error(node["type"], "unknown component type '" + instance.type + "'" +
-                            (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
-                            " (searched: " + searched + "; `uampc components` lists what is installed)");
+                            (guess.empty() ? "" : "; did you mean '" + guess + "'?") + " (searched: " + searched +
+                            "; `uampc components` lists what is installed)");
     return;
   }
   if (node["process"]) {
@@ -357,8 +369,8 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
     }
   }
   const ComponentSpec& spec = instance.library->spec();
-  readParameters(node["params"], instance, spec, scene.directory);
-  std::vector<PendingReference> references;
+  readParameters(node["params"], instance, spec);
+  std::vector<PortReference> references;
   readTopics(node["topics"], instance, spec, references);
   if (scene.find(instance.name)) {
     error(key, "component '" + instance.name + "' is defined twice");
@@ -371,8 +383,7 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
   scene.components.push_back(std::move(instance));
 }
 
-void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& instance,
-                                    const ComponentSpec& spec, const std::string& scene_directory) {
+void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec) {
   const std::string owner = "component '" + instance.name + "' (" + instance.type + ")";
   if (node && !node.IsMap() && !node.IsNull()) {
     error(node, "'params' of " + owner + " must be a mapping");
@@ -392,14 +403,14 @@ void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& i
                             (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
         continue;
       }
-      if (auto v = readValue(kv.second, *p, owner, scene_directory)) instance.params[name] = *v;
+      if (auto v = readValue(kv.second, *p, owner)) instance.params[name] = *v;
     }
   }
   for (const auto& p : spec.parameters()) {
     if (given.count(p.name)) continue;
     if (p.required()) {
-      error(instance.location, "missing required parameter '" + p.name + "' (" + toString(p.type) + ": " + p.doc +
-                                   ") for " + owner);
+      error(instance.location,
+            "missing required parameter '" + p.name + "' (" + toString(p.type) + ": " + p.doc + ") for " + owner);
     } else {
       instance.params[p.name] = *p.default_value;
     }
@@ -407,8 +418,7 @@ void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& i
 }
 
 std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, const ParameterSpec& spec,
-                                                        const std::string& owner,
-                                                        const std::string& scene_directory) {
+                                                        const std::string& owner) {
   const std::string what = "parameter '" + spec.name + "' of " + owner;
   auto checkBounds = [&](double v) {
     if (!std::isfinite(v)) {
@@ -452,7 +462,7 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
     case ParameterType::kPath:
       if (auto v = scalar<std::string>(node, what)) {
         if (v->empty()) return ParameterValue(*v);
-        const std::string path = resolvePath(*v, scene_directory);
+        const std::string path = resolvePath(*v, directoryOf(node));
         if (!fs::exists(path)) {
           error(node, what + ": file not found: " + path);
           return std::nullopt;
@@ -479,7 +489,7 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
 }
 
 void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
-                                std::vector<PendingReference>& references) {
+                                std::vector<PortReference>& references) {
   for (const auto& port : spec.ports()) instance.topics[port.name] = port.default_topic;
   if (!node || node.IsNull()) return;
   if (!node.IsMap()) {
@@ -505,59 +515,9 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
     if (std::regex_match(*target, topic_pattern)) {
       instance.topics[port] = *target;
     } else if (std::regex_match(*target, reference_pattern)) {
-      references.push_back({0, port, *target, kv.second});
+      references.push_back({0, port, *target, locationOf(kv.second)});
     } else {
       error(kv.second, "'" + *target + "' is neither a topic (/name/space) nor a port reference (component/port)");
-    }
-  }
-}
-
-void SceneValidator::resolvePortReferences(Scene& scene) {
-  for (auto& p : pending_) {
-    const auto slash = p.target.find('/');
-    const std::string other = p.target.substr(0, slash);
-    const std::string other_port = p.target.substr(slash + 1);
-    const ComponentInstance* target = scene.find(other);
-    if (!target) {
-      error(p.node, "port reference '" + p.target + "': the scene has no component '" + other + "'");
-      continue;
-    }
-    if (!target->library->spec().findPort(other_port)) {
-      error(p.node, "port reference '" + p.target + "': component '" + other + "' (" + target->type +
-                        ") has no port '" + other_port + "'");
-      continue;
-    }
-    scene.components[p.instance].topics[p.port] = target->topics.at(other_port);
-  }
-  // A reference to a port that is itself a reference resolves in file order; one more pass covers
-  // chains written bottom-up.
-  for (auto& p : pending_) {
-    const auto slash = p.target.find('/');
-    const ComponentInstance* target = scene.find(p.target.substr(0, slash));
-    if (target && target->topics.count(p.target.substr(slash + 1))) {
-      scene.components[p.instance].topics[p.port] = target->topics.at(p.target.substr(slash + 1));
-    }
-  }
-}
-
-void SceneValidator::checkConnections(const Scene& scene) {
-  struct Binding {
-    const ComponentInstance* instance;
-    const PortSpec* port;
-  };
-  std::map<std::string, std::vector<Binding>> by_topic;
-  for (const auto& c : scene.components) {
-    for (const auto& port : c.library->spec().ports()) by_topic[c.topics.at(port.name)].push_back({&c, &port});
-  }
-  for (const auto& [topic, bindings] : by_topic) {
-    const Binding& first = bindings.front();
-    for (const auto& b : bindings) {
-      if (b.port->type_name == first.port->type_name) continue;
-      auto where = topic_locations_.find(b.instance->name + "." + b.port->name);
-      const SourceLocation loc = where != topic_locations_.end() ? where->second : b.instance->location;
-      error(loc, "topic " + topic + " connects ports of different types: " + first.instance->name + "." +
-                     first.port->name + " (" + first.port->type_name + ") and " + b.instance->name + "." +
-                     b.port->name + " (" + b.port->type_name + ")");
     }
   }
 }
@@ -567,16 +527,8 @@ void SceneValidator::checkConnections(const Scene& scene) {
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog) {
   const std::string file = fs::absolute(path).lexically_normal().string();
   if (!fs::is_regular_file(file)) throw SceneError({path + ": error: scene file not found"});
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file);
-  } catch (const YAML::ParserException& e) {
-    throw SceneError({file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
-                      ": error: YAML syntax: " + e.msg});
-  } catch (const YAML::Exception& e) {
-    throw SceneError({file + ": error: " + e.what()});
-  }
-  return SceneValidator(file, catalog).validate(root, overrides);
+  const SceneDocument document = SceneDocument::load(file);
+  return SceneValidator(file, document, catalog).validate(document.root, overrides);
 }
 
 }  // namespace uampc

@@ -68,6 +68,9 @@ struct Scene {
   CrashPolicy on_crash = CrashPolicy::kStop;
   int max_restarts = 3;
   std::vector<ComponentInstance> components;  // in file order
+  // "file:line:column: warning: ..." for what may be a mistake but need not be (an input no
+  // component writes, an output nobody reads); launch and validate print them.
+  std::vector<std::string> warnings;
 
   std::vector<std::string> processes() const;  // in order of first appearance
   // Number of input (readers) or output (writers) ports bound to a topic, over the whole scene.
@@ -84,6 +87,8 @@ struct Override {
 };
 Override parseOverride(const std::string& text);  // throws SceneError on bad syntax
 
+// Reads the scene at `path` with the scenes it extends (`extends:`), applies the overrides and
+// validates it all; throws SceneError with every error found.
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides,
                 ComponentCatalog& catalog);
 

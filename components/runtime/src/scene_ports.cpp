@@ -1,0 +1,173 @@
+#include "scene_ports.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "edit_distance.hpp"
+
+namespace uampc {
+
+std::string diagnostic(const SourceLocation& where, const char* severity, const std::string& message) {
+  return where.str() + ": " + severity + ": " + message;
+}
+
+namespace {
+
+std::size_t indexOf(const Scene& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.components.size(); ++i) {
+    if (scene.components[i].name == name) return i;
+  }
+  return scene.components.size();
+}
+
+std::string describe(const Scene& scene, const PortReference& r) {
+  return scene.components[r.instance].name + "." + r.port + " = " + r.target + " (" + r.location.str() + ")";
+}
+
+}  // namespace
+
+void resolvePortReferences(Scene& scene, const std::vector<PortReference>& references,
+                           std::vector<std::string>& errors) {
+  std::map<std::pair<std::size_t, std::string>, const PortReference*> referring;
+  for (const auto& r : references) referring[{r.instance, r.port}] = &r;
+  std::set<const PortReference*> settled;  // resolved, or its error reported
+  // Following each chain to its end is the fixed point of "replace every reference by its
+  // target's topic until nothing changes", reached directly, and it finds cycles on the way.
+  for (const auto& start : references) {
+    if (settled.count(&start)) continue;
+    std::vector<const PortReference*> chain;
+    const PortReference* link = &start;
+    while (true) {
+      const auto seen = std::find(chain.begin(), chain.end(), link);
+      if (seen != chain.end() || settled.count(link)) {
+        if (seen != chain.end()) {
+          std::string cycle;
+          for (auto it = seen; it != chain.end(); ++it) cycle += (cycle.empty() ? "" : ", ") + describe(scene, **it);
+          errors.push_back(diagnostic((*seen)->location, "error",
+                                      "port references form a cycle, so none of them has a topic: " + cycle));
+        } else {
+          // The chain joins one settled before: take its result (after an error, any topic will do).
+          const std::string topic = scene.components[link->instance].topics.at(link->port);
+          for (const auto* r : chain) scene.components[r->instance].topics[r->port] = topic;
+        }
+        break;
+      }
+      chain.push_back(link);
+      const auto slash = link->target.find('/');
+      const std::string other = link->target.substr(0, slash);
+      const std::string other_port = link->target.substr(slash + 1);
+      const std::size_t target = indexOf(scene, other);
+      if (target == scene.components.size()) {
+        errors.push_back(
+            diagnostic(link->location, "error",
+                       "port reference '" + link->target + "': the scene has no component '" + other + "'"));
+        break;
+      }
+      const ComponentInstance& t = scene.components[target];
+      if (!t.library->spec().findPort(other_port)) {
+        errors.push_back(diagnostic(link->location, "error",
+                                    "port reference '" + link->target + "': component '" + other + "' (" + t.type +
+                                        ") has no port '" + other_port + "'"));
+        break;
+      }
+      const auto next = referring.find({target, other_port});
+      if (next == referring.end()) {
+        const std::string topic = t.topics.at(other_port);
+        for (const auto* r : chain) scene.components[r->instance].topics[r->port] = topic;
+        break;
+      }
+      link = next->second;
+    }
+    settled.insert(chain.begin(), chain.end());
+  }
+}
+
+namespace {
+
+struct Binding {
+  const ComponentInstance* instance;
+  const PortSpec* port;
+  std::string key() const { return instance->name + "." + port->name; }
+};
+
+// The topics of the scene with ports of `direction` and `type`, for "did you mean".
+std::vector<std::string> topicsWith(const std::map<std::string, std::vector<Binding>>& by_topic,
+                                    PortDirection direction, const std::string& type) {
+  std::vector<std::string> out;
+  for (const auto& [topic, bindings] : by_topic) {
+    for (const auto& b : bindings) {
+      if (b.port->direction == direction && b.port->type_name == type) {
+        out.push_back(topic);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+std::string didYouMean(const std::string& topic, const std::vector<std::string>& candidates) {
+  const std::string guess = closestMatch(topic, candidates);
+  return guess.empty() ? "" : "; did you mean '" + guess + "'?";
+}
+
+std::string portList(const std::vector<Binding>& bindings) {
+  std::string out;
+  for (const auto& b : bindings) out += (out.empty() ? "" : ", ") + b.key();
+  return out + " (" + bindings.front().port->type_name + ")";
+}
+
+}  // namespace
+
+// An input whose topic no component of the scene writes is an error only when the scene itself
+// remapped that port (an explicit `topics:` entry): there the topic was typed by hand, and a typo
+// such as /lo/odometri would leave the reader waiting forever. With the port's own default topic it
+// is a warning: some inputs are optional in some scenes (lo's imu, initial_pose), and a process
+// group started with `run-process` may be fed from another host. An output nobody reads is always
+// a warning: many outputs exist for viewers and recorders (/lo/local_map, /world/points).
+// One line per topic, so that a scene with many silent ports does not drown the user.
+void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>& remapped,
+                      std::vector<std::string>& errors) {
+  std::map<std::string, std::vector<Binding>> by_topic;
+  for (const auto& c : scene.components) {
+    for (const auto& port : c.library->spec().ports()) by_topic[c.topics.at(port.name)].push_back({&c, &port});
+  }
+  auto whereSet = [&](const Binding& b) {
+    const auto it = remapped.find(b.key());
+    return it != remapped.end() ? it->second : b.instance->location;
+  };
+  for (const auto& [topic, bindings] : by_topic) {
+    const Binding& first = bindings.front();
+    std::vector<Binding> readers, writers;
+    for (const auto& b : bindings) {
+      (b.port->direction == PortDirection::kInput ? readers : writers).push_back(b);
+      if (b.port->type_name == first.port->type_name) continue;
+      errors.push_back(diagnostic(whereSet(b), "error",
+                                  "topic " + topic + " connects ports of different types: " + first.key() + " (" +
+                                      first.port->type_name + ") and " + b.key() + " (" + b.port->type_name + ")"));
+    }
+    if (writers.empty()) {
+      const auto typed =
+          std::find_if(readers.begin(), readers.end(), [&](const Binding& b) { return remapped.count(b.key()); });
+      const std::string suggestion =
+          didYouMean(topic, topicsWith(by_topic, PortDirection::kOutput, readers.front().port->type_name));
+      if (typed != readers.end()) {
+        errors.push_back(
+            diagnostic(whereSet(*typed), "error",
+                       "no component in the scene writes " + topic + ", read by " + portList(readers) + suggestion));
+      } else {
+        scene.warnings.push_back(diagnostic(whereSet(readers.front()), "warning",
+                                            "no component in the scene writes " + topic + ", read by " +
+                                                portList(readers) + suggestion +
+                                                " (fine if another host or program publishes it)"));
+      }
+    }
+    if (readers.empty()) {
+      scene.warnings.push_back(diagnostic(
+          whereSet(writers.front()), "warning",
+          "nobody in the scene reads " + topic + ", written by " + portList(writers) +
+              didYouMean(topic, topicsWith(by_topic, PortDirection::kInput, writers.front().port->type_name))));
+    }
+  }
+}
+
+}  // namespace uampc
