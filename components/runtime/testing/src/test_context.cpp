@@ -1,0 +1,227 @@
+#include "uampc/runtime/testing/test_context.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "fastdds/rtps/common/SerializedPayload.h"
+
+namespace uampc::testing {
+
+using eprosima::fastdds::dds::TopicDataType;
+using eprosima::fastrtps::rtps::SerializedPayload_t;
+
+// Keeps each sample as its serialised bytes: the port's type is known here only by its type
+// support, and the test names the C++ type when it reads the samples back.
+class TestContext::CapturingWriter : public detail::Writer {
+ public:
+  CapturingWriter(std::string port, const char* type_name, detail::TypeSupportFactory type_support, QosPreset qos,
+                  const bool& started)
+      : port_(std::move(port)), type_name_(type_name), type_(type_support()), qos_(qos), started_(started) {}
+
+  void write(const void* sample) override {
+    if (!started_ && qos_ != QosPreset::kLatched) {
+      // As the runtime refuses it in lockstep: readers in other processes might miss the sample.
+      throw std::logic_error("publishing on " + port_ +
+                             " before the run started; publish from a timer or a "
+                             "callback, or declare the port latched");
+    }
+    auto* data = const_cast<void*>(sample);  // serialize() takes void* but does not modify it
+    auto payload = std::make_unique<SerializedPayload_t>(type_->getSerializedSizeProvider(data)());
+    if (!type_->serialize(data, payload.get())) throw std::runtime_error("cannot serialise a sample on " + port_);
+    samples_.push_back(std::move(payload));
+  }
+
+  void read(std::size_t index, void* sample) const {
+    SerializedPayload_t copy;
+    copy.copy(samples_.at(index).get(), false);
+    if (!type_->deserialize(&copy, sample)) throw std::runtime_error("cannot read back a sample of " + port_);
+  }
+
+  const std::string& typeName() const { return type_name_; }
+  std::size_t size() const { return samples_.size(); }
+
+ private:
+  std::string port_;
+  std::string type_name_;
+  std::unique_ptr<TopicDataType> type_;
+  QosPreset qos_;
+  const bool& started_;
+  std::vector<std::unique_ptr<SerializedPayload_t>> samples_;
+};
+
+namespace {
+
+std::string parameterError(const std::string& type, const std::string& name, const std::string& problem) {
+  return type + ": parameter '" + name + "': " + problem;
+}
+
+// The value of text (YAML) as the parameter's declared type, checked as a scene's would be.
+ParameterValue readParameter(const std::string& type, const ParameterSpec& spec, const std::string& text) {
+  auto fail = [&](const std::string& problem) {
+    return std::invalid_argument(parameterError(type, spec.name, problem));
+  };
+  ParameterValue value;
+  try {
+    const YAML::Node node = YAML::Load(text);
+    switch (spec.type) {
+      case ParameterType::kBool:
+        value = node.as<bool>();
+        break;
+      case ParameterType::kInt:
+        value = node.as<std::int64_t>();
+        break;
+      case ParameterType::kDouble:
+        value = node.as<double>();
+        break;
+      case ParameterType::kString:
+        value = node.as<std::string>();
+        break;
+      case ParameterType::kPath: {
+        const std::string path = node.as<std::string>();
+        value = path.empty() ? path : std::filesystem::absolute(path).lexically_normal().string();
+        if (!path.empty() && !std::filesystem::is_regular_file(std::get<std::string>(value))) {
+          throw fail("no file " + std::get<std::string>(value));
+        }
+        break;
+      }
+      case ParameterType::kDoubleList:
+        value = node.as<std::vector<double>>();
+        break;
+    }
+  } catch (const YAML::Exception&) {
+    throw fail("'" + text + "' is not a " + toString(spec.type));
+  }
+  double number = 0.0;
+  if (const auto* i = std::get_if<std::int64_t>(&value)) number = static_cast<double>(*i);
+  if (const auto* d = std::get_if<double>(&value)) number = *d;
+  if ((spec.min && number < *spec.min) || (spec.max && number > *spec.max)) {
+    throw fail(text + " is out of bounds [" + (spec.min ? formatNumber(*spec.min) : "-inf") + ", " +
+               (spec.max ? formatNumber(*spec.max) : "inf") + "]");
+  }
+  if (const auto* s = std::get_if<std::string>(&value)) {
+    if (!spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *s) == spec.choices.end()) {
+      throw fail("'" + *s + "' is not one of the allowed values");
+    }
+  }
+  return value;
+}
+
+}  // namespace
+
+TestContext::TestContext(const std::string& type, const std::map<std::string, std::string>& params, TestOptions options)
+    : options_(std::move(options)), logger_(options_.name, [this] { return now_.seconds(); }) {
+  library_ = catalog_.find(type);
+  if (!library_) throw std::invalid_argument("no component library for type '" + type + "'");
+  for (const auto& [name, text] : params) {
+    const ParameterSpec* spec = library_->spec().findParameter(name);
+    if (!spec) throw std::invalid_argument(parameterError(type, name, "not declared in describe()"));
+    params_[name] = readParameter(type, *spec, text);
+  }
+  for (const ParameterSpec& spec : library_->spec().parameters()) {
+    if (params_.count(spec.name)) continue;
+    if (spec.required()) throw std::invalid_argument(parameterError(type, spec.name, "required, not given"));
+    params_[spec.name] = *spec.default_value;
+  }
+  component_ = library_->create(*this);
+  started_ = true;
+}
+
+TestContext::~TestContext() {
+  // The component first: it holds publishers and callbacks that point into this context.
+  component_.reset();
+}
+
+void TestContext::advanceTo(Time t) {
+  if (t < now_) throw std::invalid_argument("advanceTo: time may not go back");
+  for (;;) {
+    Timer* due = nullptr;
+    for (Timer& timer : timers_) {
+      if (timer.next <= t && (!due || timer.next < due->next)) due = &timer;
+    }
+    if (!due) break;
+    now_ = due->next;
+    due->next = due->next + due->period;
+    due->callback();
+  }
+  now_ = t;
+}
+
+void TestContext::timer(double period_s, std::function<void()> callback) {
+  if (!(period_s > 0)) throw std::invalid_argument(options_.name + ": timer period must be positive");
+  timers_.push_back({Time::fromSeconds(period_s), now_, std::move(callback)});
+}
+
+const ParameterValue& TestContext::param(const std::string& name) const {
+  auto it = params_.find(name);
+  if (it == params_.end()) {
+    throw std::logic_error(options_.name + ": no parameter '" + name + "' (not declared in describe())");
+  }
+  return it->second;
+}
+
+bool TestContext::paramBool(const std::string& name) const { return std::get<bool>(param(name)); }
+std::int64_t TestContext::paramInt(const std::string& name) const { return std::get<std::int64_t>(param(name)); }
+double TestContext::paramDouble(const std::string& name) const {
+  const ParameterValue& v = param(name);
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  return std::get<double>(v);
+}
+std::string TestContext::paramString(const std::string& name) const { return std::get<std::string>(param(name)); }
+std::vector<double> TestContext::paramDoubleList(const std::string& name) const {
+  return std::get<std::vector<double>>(param(name));
+}
+
+std::string TestContext::topicOf(const std::string& port) const {
+  const PortSpec* spec = library_->spec().findPort(port);
+  if (!spec) throw std::logic_error(options_.name + ": no port '" + port + "' (not declared in describe())");
+  return spec->default_topic;
+}
+
+const PortSpec& TestContext::checkPort(const std::string& port, PortDirection direction, const char* type_name) const {
+  const PortSpec* spec = library_->spec().findPort(port);
+  if (!spec) throw std::logic_error(options_.name + ": no port '" + port + "' (not declared in describe())");
+  if (spec->direction != direction) {
+    throw std::logic_error(options_.name + ": port '" + port + "' is declared as an " +
+                           (spec->direction == PortDirection::kInput ? "input" : "output"));
+  }
+  if (type_name && spec->type_name != type_name) {
+    throw std::logic_error(options_.name + ": port '" + port + "' is declared with type " + spec->type_name + ", not " +
+                           type_name);
+  }
+  return *spec;
+}
+
+std::shared_ptr<detail::Writer> TestContext::makeWriter(const std::string& port, const char* type_name,
+                                                        detail::TypeSupportFactory type_support) {
+  const PortSpec& spec = checkPort(port, PortDirection::kOutput, type_name);
+  auto& writer = writers_[port];
+  if (!writer) writer = std::make_shared<CapturingWriter>(port, type_name, type_support, spec.qos, started_);
+  return writer;
+}
+
+void TestContext::addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory,
+                            std::function<void(const void*)> callback) {
+  checkPort(port, PortDirection::kInput, type_name);
+  readers_[port] = std::move(callback);
+}
+
+void TestContext::deliver(const std::string& port, const char* type_name, const void* sample) {
+  checkPort(port, PortDirection::kInput, type_name);
+  auto it = readers_.find(port);
+  if (it == readers_.end()) throw std::logic_error(options_.name + ": nothing subscribed to port '" + port + "'");
+  it->second(sample);
+}
+
+std::size_t TestContext::publishedCount(const std::string& port, const char* type_name) const {
+  checkPort(port, PortDirection::kOutput, type_name);
+  auto it = writers_.find(port);
+  return it == writers_.end() ? 0 : it->second->size();
+}
+
+void TestContext::readPublished(const std::string& port, std::size_t index, void* sample) const {
+  writers_.at(port)->read(index, sample);
+}
+
+}  // namespace uampc::testing
