@@ -8,7 +8,7 @@
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/mpc/ua_mpc_controller.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
-#include "uampc/raycaster/lidar_model.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc {
@@ -97,22 +97,11 @@ class MpcComponent : public Component {
     c.uncertainty.azimuth_step = c.uncertainty.elevation_step = ctx.paramDouble("ray_step_deg") * M_PI / 180.0;
     c.uncertainty.calibration = adapters::rigCalibration(ctx);
     // The field of view of U comes from the same LiDAR model description as the simulator's.
-    const raycaster::LidarModel model = raycaster::lidarModelByName(ctx.paramString("lidar_model"));
-    constexpr double kDeg = M_PI / 180.0;
-    if (model.kind == raycaster::ScanPatternKind::kRosette) {
-      c.uncertainty.field_of_view = {-0.5 * model.horizontal_fov_deg * kDeg, 0.5 * model.horizontal_fov_deg * kDeg,
-                                     -0.5 * model.vertical_fov_deg * kDeg, 0.5 * model.vertical_fov_deg * kDeg};
-    } else {
-      double lo = model.min_elevation_deg, hi = model.max_elevation_deg;
-      if (model.kind == raycaster::ScanPatternKind::kSpinning && !model.elevations_deg.empty()) {
-        lo = *std::min_element(model.elevations_deg.begin(), model.elevations_deg.end());
-        hi = *std::max_element(model.elevations_deg.begin(), model.elevations_deg.end());
-      }
-      c.uncertainty.field_of_view = {-M_PI, M_PI, lo * kDeg, hi * kDeg};
-    }
+    const lidar::LidarModel model = lidar::lidarModelByName(ctx.paramString("lidar_model"));
+    c.uncertainty.field_of_view = lidar::fieldOfView(model);
     c.depth_map.max_range = model.max_range;
     c.range_weight_voxel = ctx.paramDouble("range_weight_voxel");
-    c.lidar_points_per_frame = model.points_per_second / model.frame_rate_hz;
+    c.lidar_points_per_frame = lidar::nominalPointsPerFrame(model);
     return c;
   }
 

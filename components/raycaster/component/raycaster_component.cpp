@@ -46,7 +46,7 @@ class RaycasterComponent : public Component {
     // Its angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with it the
     // LiDAR-only LO loses the MCD worlds' open stretches within 10-45 s and the rich campus at
     // 3 m/s (README, "Sensor noise"); a scene may turn it on.
-    const raycaster::LidarModel mid360 = raycaster::livoxMid360();
+    const lidar::LidarModel mid360 = lidar::livoxMid360();
     spec.param("range_noise", mid360.range_precision,
                "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
         .between(0.0, 1.0);
@@ -98,10 +98,10 @@ class RaycasterComponent : public Component {
     raycaster::RayCasterConfig c;
     const std::string model = ctx.paramString("model");
     c.model = model == "spinning"
-                  ? raycaster::spinningLidar(ctx.paramDoubleList("elevations_deg"),
+                  ? lidar::spinningLidar(ctx.paramDoubleList("elevations_deg"),
                                              ctx.paramDouble("points_per_second"), ctx.paramDouble("frame_rate"),
                                              ctx.paramDouble("min_range"), ctx.paramDouble("max_range"))
-                  : raycaster::lidarModelByName(model);
+                  : lidar::lidarModelByName(model);
     c.calibration = adapters::rigCalibration(ctx);
     c.range_noise_stddev = ctx.paramDouble("range_noise");
     c.angular_noise_stddev = ctx.paramDouble("angular_noise_deg") * M_PI / 180.0;

@@ -295,7 +295,7 @@ TEST(UncertaintyModelRangeWeight, SaturationRangeOfTheMid360) {
   // 0.3 m voxels, 20 000 points per frame over 2 pi x (sin 52 deg + sin 7 deg) sr.
   const double expected =
       0.3 * std::sqrt(20000.0 / (2.0 * kPi * (std::sin(52.0 * kPi / 180.0) + std::sin(7.0 * kPi / 180.0))));
-  EXPECT_NEAR(UncertaintyModel::rangeWeightSaturation(0.3, 20000.0, LidarFieldOfView{}), expected, 1e-9);
+  EXPECT_NEAR(UncertaintyModel::rangeWeightSaturation(0.3, 20000.0, lidar::fieldOfView(lidar::livoxMid360())), expected, 1e-9);
   EXPECT_NEAR(expected, 17.7, 0.05);
 }
 

@@ -25,7 +25,7 @@ const world::Trajectory& campusLoop() {
 }
 
 // Frames along the campus loop, the motor at 3.6 rad/s; time per frame and rays per second.
-void castFrames(benchmark::State& state, const LidarModel& model, bool packets) {
+void castFrames(benchmark::State& state, const lidar::LidarModel& model, bool packets) {
   RayCasterConfig config;
   config.model = model;
   config.use_packets = packets;
@@ -49,10 +49,10 @@ void castFrames(benchmark::State& state, const LidarModel& model, bool packets) 
   state.counters["triangles"] = static_cast<double>(caster.scene().triangleCount());
 }
 
-void BM_Mid360FramePackets(benchmark::State& s) { castFrames(s, livoxMid360(), true); }
-void BM_Mid360FrameSingleRays(benchmark::State& s) { castFrames(s, livoxMid360(), false); }
-void BM_Vlp16Frame(benchmark::State& s) { castFrames(s, velodyneVlp16(), true); }
-void BM_AviaFrame(benchmark::State& s) { castFrames(s, livoxAvia(), true); }
+void BM_Mid360FramePackets(benchmark::State& s) { castFrames(s, lidar::livoxMid360(), true); }
+void BM_Mid360FrameSingleRays(benchmark::State& s) { castFrames(s, lidar::livoxMid360(), false); }
+void BM_Vlp16Frame(benchmark::State& s) { castFrames(s, lidar::velodyneVlp16(), true); }
+void BM_AviaFrame(benchmark::State& s) { castFrames(s, lidar::livoxAvia(), true); }
 BENCHMARK(BM_Mid360FramePackets)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Mid360FrameSingleRays)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Vlp16Frame)->Unit(benchmark::kMillisecond);
@@ -61,13 +61,13 @@ BENCHMARK(BM_AviaFrame)->Unit(benchmark::kMillisecond);
 // The parts of a frame: the pattern, and the bare ray casting.
 void BM_Mid360Pattern(benchmark::State& state) {
   std::uint64_t frame = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(scanPattern(livoxMid360(), frame++));
+  for (auto _ : state) benchmark::DoNotOptimize(scanPattern(lidar::livoxMid360(), frame++));
 }
 BENCHMARK(BM_Mid360Pattern)->Unit(benchmark::kMillisecond);
 
 void BM_SceneIntersectOnly(benchmark::State& state) {
   RayCastScene scene(campus());
-  const auto pattern = scanPattern(livoxMid360(), 0);
+  const auto pattern = scanPattern(lidar::livoxMid360(), 0);
   std::vector<Ray> rays;
   for (const auto& p : pattern) rays.push_back({Eigen::Vector3f(-37, 0, 1.5), p.direction, 40.0f});
   std::vector<Hit> hits;

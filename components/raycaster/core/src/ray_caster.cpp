@@ -44,7 +44,7 @@ double lastTimeOffset(const std::vector<PatternPoint>& points) {
 }  // namespace
 
 const std::vector<PatternPoint>& RayCaster::pattern(std::uint64_t frame_index) {
-  const bool repeats = config_.model.kind == ScanPatternKind::kSpinning;
+  const bool repeats = config_.model.kind == lidar::ScanPatternKind::kSpinning;
   if (cached_pattern_.empty() || (!repeats && frame_index != cached_frame_)) {
     cached_pattern_ = scanPattern(config_.model, frame_index);
     cached_frame_ = frame_index;

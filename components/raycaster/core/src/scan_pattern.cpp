@@ -21,36 +21,36 @@ double phase(double f, std::uint64_t frame_index, double frame_rate, double t) {
   return frac(frac(f * static_cast<double>(frame_index) / frame_rate) + f * t);
 }
 
-void checkModel(const LidarModel& m) {
+void checkModel(const lidar::LidarModel& m) {
   if (!(m.points_per_second > 0.0) || !(m.frame_rate_hz > 0.0)) {
-    throw std::invalid_argument("LidarModel '" + m.name + "': points_per_second and frame_rate_hz must be positive");
+    throw std::invalid_argument("lidar::LidarModel '" + m.name + "': points_per_second and frame_rate_hz must be positive");
   }
-  if (m.kind == ScanPatternKind::kSpinning && m.elevations_deg.empty()) {
-    throw std::invalid_argument("LidarModel '" + m.name + "': spinning model without rings");
+  if (m.kind == lidar::ScanPatternKind::kSpinning && m.elevations_deg.empty()) {
+    throw std::invalid_argument("lidar::LidarModel '" + m.name + "': spinning model without rings");
   }
-  if (m.kind != ScanPatternKind::kSpinning && m.lasers < 1) {
-    throw std::invalid_argument("LidarModel '" + m.name + "': needs at least one laser");
+  if (m.kind != lidar::ScanPatternKind::kSpinning && m.lasers < 1) {
+    throw std::invalid_argument("lidar::LidarModel '" + m.name + "': needs at least one laser");
   }
 }
 
 }  // namespace
 
-std::size_t pointsPerFrame(const LidarModel& m) {
+std::size_t pointsPerFrame(const lidar::LidarModel& m) {
   checkModel(m);
   const double per_frame = m.points_per_second / m.frame_rate_hz;
-  if (m.kind == ScanPatternKind::kSpinning) {
+  if (m.kind == lidar::ScanPatternKind::kSpinning) {
     const double rings = static_cast<double>(m.elevations_deg.size());
     return static_cast<std::size_t>(std::lround(per_frame / rings)) * m.elevations_deg.size();
   }
   return static_cast<std::size_t>(std::lround(per_frame));
 }
 
-std::vector<PatternPoint> scanPattern(const LidarModel& m, std::uint64_t frame_index) {
+std::vector<PatternPoint> scanPattern(const lidar::LidarModel& m, std::uint64_t frame_index) {
   const std::size_t n = pointsPerFrame(m);
   std::vector<PatternPoint> pattern(n);
   const double frame_period = 1.0 / m.frame_rate_hz;
   switch (m.kind) {
-    case ScanPatternKind::kSpinning: {
+    case lidar::ScanPatternKind::kSpinning: {
       const std::size_t rings = m.elevations_deg.size();
       const std::size_t columns = n / rings;
       for (std::size_t k = 0; k < n; ++k) {
@@ -64,7 +64,7 @@ std::vector<PatternPoint> scanPattern(const LidarModel& m, std::uint64_t frame_i
       }
       break;
     }
-    case ScanPatternKind::kZigzag: {
+    case lidar::ScanPatternKind::kZigzag: {
       const double lo = m.min_elevation_deg * kDegToRad, hi = m.max_elevation_deg * kDegToRad;
       for (std::size_t k = 0; k < n; ++k) {
         const double t = static_cast<double>(k) / m.points_per_second;
@@ -79,7 +79,7 @@ std::vector<PatternPoint> scanPattern(const LidarModel& m, std::uint64_t frame_i
       }
       break;
     }
-    case ScanPatternKind::kRosette: {
+    case lidar::ScanPatternKind::kRosette: {
       const double half_h = 0.5 * m.horizontal_fov_deg * kDegToRad;
       const double half_v = 0.5 * m.vertical_fov_deg * kDegToRad;
       for (std::size_t k = 0; k < n; ++k) {

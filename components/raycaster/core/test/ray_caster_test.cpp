@@ -85,7 +85,7 @@ TEST(RayCaster, BoxRoomRangesAreExact) {
   world::TriangleMesh room;
   room.addBox(lo.cast<float>(), hi.cast<float>());
   RayCasterConfig config;
-  config.model = velodyneVlp16();
+  config.model = lidar::velodyneVlp16();
   RayCaster caster(room, config);
   auto base = [](double t) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -208,8 +208,8 @@ TEST(RayCaster, AngularNoiseTurnsTheReportedDirectionNotTheRange) {
 }
 
 TEST(LidarModel, DatasheetPrecisionOfTheMid360) {
-  EXPECT_DOUBLE_EQ(livoxMid360().range_precision, 0.02);
-  EXPECT_DOUBLE_EQ(livoxMid360().angular_precision_deg, 0.15);
+  EXPECT_DOUBLE_EQ(lidar::livoxMid360().range_precision, 0.02);
+  EXPECT_DOUBLE_EQ(lidar::livoxMid360().angular_precision_deg, 0.15);
 }
 
 TEST(RayCaster, PacketsAndSingleRaysAgree) {

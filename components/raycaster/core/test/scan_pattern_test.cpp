@@ -14,7 +14,7 @@ double elevationDeg(const Eigen::Vector3f& d) { return std::asin(d.z()) * kRadTo
 double azimuthDeg(const Eigen::Vector3f& d) { return std::atan2(d.y(), d.x()) * kRadToDeg; }
 
 // Number of distinct cells (cell_deg x cell_deg in azimuth and elevation) hit by the frames.
-std::size_t coveredCells(const LidarModel& model, int frames, double cell_deg) {
+std::size_t coveredCells(const lidar::LidarModel& model, int frames, double cell_deg) {
   std::set<std::pair<int, int>> cells;
   for (int f = 0; f < frames; ++f) {
     for (const auto& p : scanPattern(model, static_cast<std::uint64_t>(f))) {
@@ -25,7 +25,7 @@ std::size_t coveredCells(const LidarModel& model, int frames, double cell_deg) {
   return cells.size();
 }
 
-void expectWellFormed(const LidarModel& model, const std::vector<PatternPoint>& pattern) {
+void expectWellFormed(const lidar::LidarModel& model, const std::vector<PatternPoint>& pattern) {
   ASSERT_EQ(pattern.size(), pointsPerFrame(model));
   float last = -1.0f;
   for (const auto& p : pattern) {
@@ -39,7 +39,7 @@ void expectWellFormed(const LidarModel& model, const std::vector<PatternPoint>& 
 }
 
 TEST(ScanPattern, Mid360MatchesTheModel) {
-  const LidarModel model = livoxMid360();
+  const lidar::LidarModel model = lidar::livoxMid360();
   const auto pattern = scanPattern(model, 0);
   expectWellFormed(model, pattern);
   EXPECT_EQ(pattern.size(), 20000u);  // 200k points/s at 10 Hz
@@ -61,7 +61,7 @@ TEST(ScanPattern, Mid360MatchesTheModel) {
 }
 
 TEST(ScanPattern, Mid360IsNonRepetitiveAndCoverageBuildsUp) {
-  const LidarModel model = livoxMid360();
+  const lidar::LidarModel model = lidar::livoxMid360();
   const auto a = scanPattern(model, 0), b = scanPattern(model, 1);
   EXPECT_GT((a[100].direction - b[100].direction).norm(), 1e-3f);
   EXPECT_EQ(scanPattern(model, 1)[5].direction, b[5].direction);  // deterministic
@@ -73,7 +73,7 @@ TEST(ScanPattern, Mid360IsNonRepetitiveAndCoverageBuildsUp) {
 }
 
 TEST(ScanPattern, Vlp16RingsAndRepetition) {
-  const LidarModel model = velodyneVlp16();
+  const lidar::LidarModel model = lidar::velodyneVlp16();
   const auto pattern = scanPattern(model, 0);
   expectWellFormed(model, pattern);
   EXPECT_EQ(pattern.size(), 28800u);  // 1800 columns of 0.2 degrees, 16 rings
@@ -85,7 +85,7 @@ TEST(ScanPattern, Vlp16RingsAndRepetition) {
 }
 
 TEST(ScanPattern, AviaRosetteStaysInItsFieldOfView) {
-  const LidarModel model = livoxAvia();
+  const lidar::LidarModel model = lidar::livoxAvia();
   const auto pattern = scanPattern(model, 0);
   expectWellFormed(model, pattern);
   double max_az = 0, max_el = 0;
@@ -105,14 +105,14 @@ TEST(ScanPattern, AviaRosetteStaysInItsFieldOfView) {
 }
 
 TEST(ScanPattern, GenericSpinningFromATable) {
-  const LidarModel model = spinningLidar({-10.0, 0.0, 10.0}, 30000.0, 10.0, 0.3, 50.0);
+  const lidar::LidarModel model = lidar::spinningLidar({-10.0, 0.0, 10.0}, 30000.0, 10.0, 0.3, 50.0);
   const auto pattern = scanPattern(model, 3);
   expectWellFormed(model, pattern);
   EXPECT_EQ(pattern.size(), 3000u);
   EXPECT_NEAR(elevationDeg(pattern[2].direction), 10.0, 1e-4);
-  EXPECT_THROW(scanPattern(spinningLidar({}, 1000.0, 10.0, 0.3, 5.0), 0), std::invalid_argument);
-  EXPECT_EQ(lidarModelByName("velodyne_vlp16").elevations_deg.size(), 16u);
-  EXPECT_THROW(lidarModelByName("ouster"), std::invalid_argument);
+  EXPECT_THROW(scanPattern(lidar::spinningLidar({}, 1000.0, 10.0, 0.3, 5.0), 0), std::invalid_argument);
+  EXPECT_EQ(lidar::lidarModelByName("velodyne_vlp16").elevations_deg.size(), 16u);
+  EXPECT_THROW(lidar::lidarModelByName("ouster"), std::invalid_argument);
 }
 
 }  // namespace

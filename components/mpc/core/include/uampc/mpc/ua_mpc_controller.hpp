@@ -39,7 +39,7 @@ class UaMpcController {
     // LO's scan voxel (m; 0 leaves uncertainty.range_weight_saturation as given, 0 by default:
     // the paper's equal rays) and the LiDAR's points per frame (Mid-360: 200k/s at 10 Hz).
     double range_weight_voxel = 0.3;
-    double lidar_points_per_frame = 20000.0;
+    double lidar_points_per_frame = lidar::nominalPointsPerFrame(lidar::livoxMid360());
     PanoramicDepthMap::Config depth_map;
     DepthMapNormals::Config normals;
     UncertaintyModel::Config uncertainty;

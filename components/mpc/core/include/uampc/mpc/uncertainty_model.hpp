@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 #include "uampc/mpc/depth_map_normals.hpp"
 #include "uampc/mpc/panoramic_depth_map.hpp"
 
@@ -37,18 +38,13 @@ namespace uampc::mpc {
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-// Field of view of the LiDAR in its own frame (rad). Default: Livox Mid-360.
-struct LidarFieldOfView {
-  double azimuth_min = -3.14159265358979323846;
-  double azimuth_max = 3.14159265358979323846;
-  double elevation_min = -7.0 * 3.14159265358979323846 / 180.0;
-  double elevation_max = 52.0 * 3.14159265358979323846 / 180.0;
-};
+// Field of view of the LiDAR in its own frame (rad), from the rig's LiDAR model.
+using LidarFieldOfView = lidar::FieldOfView;
 
 class UncertaintyModel {
  public:
   struct Config {
-    LidarFieldOfView field_of_view;
+    LidarFieldOfView field_of_view = lidar::fieldOfView(lidar::livoxMid360());
     double azimuth_step = 5.0 * 3.14159265358979323846 / 180.0;    // rad, ray grid
     double elevation_step = 5.0 * 3.14159265358979323846 / 180.0;  // rad, ray grid
     frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();

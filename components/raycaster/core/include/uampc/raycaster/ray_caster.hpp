@@ -15,7 +15,7 @@
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
 #include "uampc/frames/pose_knots.hpp"
-#include "uampc/raycaster/lidar_model.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 #include "uampc/raycaster/ray_cast_scene.hpp"
 #include "uampc/raycaster/scan_pattern.hpp"
 #include "uampc/world/trajectory.hpp"
@@ -23,7 +23,7 @@
 namespace uampc::raycaster {
 
 struct RayCasterConfig {
-  LidarModel model = livoxMid360();
+  lidar::LidarModel model = lidar::livoxMid360();
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
   double range_noise_stddev = 0.0;    // m, Gaussian, added along the ray
   double angular_noise_stddev = 0.0;  // rad, Gaussian, per axis across the ray: the direction a

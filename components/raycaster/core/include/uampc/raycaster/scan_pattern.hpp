@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "uampc/raycaster/lidar_model.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 
 namespace uampc::raycaster {
 
@@ -18,11 +18,11 @@ struct PatternPoint {
 
 // Points in one frame: points_per_second / frame_rate_hz, rounded (spinning: a whole number of
 // columns).
-std::size_t pointsPerFrame(const LidarModel& model);
+std::size_t pointsPerFrame(const lidar::LidarModel& model);
 
 // The pattern of frame number frame_index (0, 1, 2, ...). Non-repetitive patterns continue where
 // frame_index - 1 ended, so their coverage builds up; spinning patterns ignore frame_index.
 // Points come in firing order; time offsets lie in [0, 1 / frame_rate_hz).
-std::vector<PatternPoint> scanPattern(const LidarModel& model, std::uint64_t frame_index);
+std::vector<PatternPoint> scanPattern(const lidar::LidarModel& model, std::uint64_t frame_index);
 
 }  // namespace uampc::raycaster

@@ -1,4 +1,6 @@
-// LiDAR models as plain data: which scan pattern, how many points, which ranges.
+// LiDAR models as plain data: which scan pattern, how many points, which ranges. One description
+// of a LiDAR for every component that needs one: the raycaster simulates it, the controller takes
+// its field of view and point density for U (docs/design.md section 5, the rig).
 //
 // LiDAR frame: x forward, y left, z up; azimuth counted from x towards y, elevation up from the
 // x-y plane. Three pattern kinds cover the sensors we simulate:
@@ -15,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace uampc::raycaster {
+namespace uampc::lidar {
 
 enum class ScanPatternKind { kSpinning, kZigzag, kRosette };
 
@@ -63,4 +65,17 @@ LidarModel lidarModelByName(const std::string& name);
 LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_second, double frame_rate_hz,
                          double min_range, double max_range);
 
-}  // namespace uampc::raycaster
+// The angles a model sees, in its own frame (rad): the rosette's rectangle, or all azimuths
+// between the lowest and the highest elevation of the other kinds.
+struct FieldOfView {
+  double azimuth_min = 0.0;
+  double azimuth_max = 0.0;
+  double elevation_min = 0.0;
+  double elevation_max = 0.0;
+};
+FieldOfView fieldOfView(const LidarModel& model);
+
+// Points in one frame on average: points_per_second / frame_rate_hz.
+double nominalPointsPerFrame(const LidarModel& model);
+
+}  // namespace uampc::lidar

@@ -1,8 +1,10 @@
-#include "uampc/raycaster/lidar_model.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
-namespace uampc::raycaster {
+namespace uampc::lidar {
 
 LidarModel livoxMid360() {
   LidarModel m;
@@ -71,4 +73,20 @@ LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_s
   return m;
 }
 
-}  // namespace uampc::raycaster
+FieldOfView fieldOfView(const LidarModel& model) {
+  constexpr double kDeg = M_PI / 180.0;
+  if (model.kind == ScanPatternKind::kRosette) {
+    return {-0.5 * model.horizontal_fov_deg * kDeg, 0.5 * model.horizontal_fov_deg * kDeg,
+            -0.5 * model.vertical_fov_deg * kDeg, 0.5 * model.vertical_fov_deg * kDeg};
+  }
+  double lowest = model.min_elevation_deg, highest = model.max_elevation_deg;
+  if (model.kind == ScanPatternKind::kSpinning && !model.elevations_deg.empty()) {
+    lowest = *std::min_element(model.elevations_deg.begin(), model.elevations_deg.end());
+    highest = *std::max_element(model.elevations_deg.begin(), model.elevations_deg.end());
+  }
+  return {-M_PI, M_PI, lowest * kDeg, highest * kDeg};
+}
+
+double nominalPointsPerFrame(const LidarModel& model) { return model.points_per_second / model.frame_rate_hz; }
+
+}  // namespace uampc::lidar
