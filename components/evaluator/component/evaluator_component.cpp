@@ -114,8 +114,9 @@ class EvaluatorComponent : public Component {
         scan.end = std::max(scan.end, scan.stamp + t);
       }
       if (non_finite > 0) {
-        non_finite_times_log_.warn(ctx_.log(), "scans on ", ctx_.topicOf("scan"), " have points with non-finite times (",
-                                   non_finite, " in this one); they are not placed with ground truth (said once)");
+        non_finite_times_log_.warn(ctx_.log(), "scans on ", ctx_.topicOf("scan"),
+                                   " have points with non-finite times (", non_finite,
+                                   " in this one); they are not placed with ground truth (said once)");
       }
       pending_scans_.push_back(std::move(scan));
       flush();

@@ -138,17 +138,16 @@ class MpcComponent : public Component {
     mpc::UaMpcController::Decision decision;
     if (uses_map && stale) {
       // Nothing to plan on: the preferred speed keeps the LiDAR sweeping (and the LO fed).
-      if (!warned_stale_ && now.seconds() > 1.0) {
-        ctx_.log().warn("no recent local map or pose (", ctx_.topicOf("local_map"), ", ", ctx_.topicOf("odometry"),
-                        "); commanding omega_pre ", omega_pre_, " rad/s");
-        warned_stale_ = true;
+      if (now.seconds() > 1.0) {
+        stale_log_.warn(ctx_.log(), "no recent local map or pose (", ctx_.topicOf("local_map"), ", ",
+                        ctx_.topicOf("odometry"), "); commanding omega_pre ", omega_pre_, " rad/s");
       }
       decision.omega = omega_pre_;
       decision.local_map_empty = true;
     } else {
-      if (warned_stale_ && uses_map) {
+      if (stale_log_.said() && uses_map) {
         ctx_.log().info("local map available again; planning");
-        warned_stale_ = false;
+        stale_log_.reset();
       }
       decision = controller_.step(T_WB_, local_map_, theta_);
     }
@@ -225,7 +224,7 @@ class MpcComponent : public Component {
   std::vector<Eigen::Vector3d> local_map_;
   Time local_map_time_;
   double theta_ = 0.0;
-  bool warned_stale_ = false;
+  RateLimitedLog stale_log_ = RateLimitedLog::once();  // said again after the map came back
 };
 
 }  // namespace uampc
