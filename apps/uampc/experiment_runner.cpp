@@ -1,7 +1,5 @@
 #include "experiment_runner.hpp"
 
-#include "experiment_eta.hpp"
-
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -17,6 +15,9 @@
 #include <map>
 #include <sstream>
 #include <thread>
+
+#include "experiment_eta.hpp"
+#include "uampc/run_files/run_directory.hpp"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -166,7 +167,7 @@ std::vector<PlannedRun> planRuns(const Experiment& experiment, const std::vector
 }
 
 bool isRunComplete(const std::string& run_directory) {
-  return fs::is_regular_file(fs::path(run_directory) / "done") && readRunMetrics(run_directory).has_value();
+  return run_files::readDoneMarker(run_directory).has_value() && readRunMetrics(run_directory).has_value();
 }
 
 std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,
@@ -198,7 +199,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
   for (std::size_t i : pending) {
     if (!results[i].retried) continue;
     const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
-    const std::string before = lastLine(readText(dir / "failed"));
+    const std::string before = lastLine(run_files::readFailedMarker(dir.string()));
     progress.say("experiment: retrying " + plan[i].directory +
                  (before.empty() ? " (unfinished before)" : " (failed before: " + before + ")"));
   }
@@ -208,7 +209,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
   std::size_t next = 0, finished_now = 0, failed = 0;
   std::vector<StartedRun> finished_work;  // for the ETA: the runs finished in this invocation
   auto logProgress = [&](std::size_t run) {
-    const fs::path log = fs::path(options.output_directory) / plan[run].directory / "run.log";
+    const fs::path log = fs::path(options.output_directory) / plan[run].directory / run_files::kRunLog;
     const std::optional<SimProgress> p = lastSimProgress(readText(log));
     if (p && p->total_s > 0) scene_length_s[plan[run].scene] = p->total_s;
     return p.value_or(SimProgress{});
@@ -248,7 +249,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
       std::vector<std::string> args = plan[i].args;
       args.insert(args.end(),
                   {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options.domain_base + slot)});
-      const pid_t pid = startRun(options.executable, args, dir / "run.log");
+      const pid_t pid = startRun(options.executable, args, dir / run_files::kRunLog);
       if (pid < 0) {
         results[i].status = RunStatus::kFailed;
         results[i].failure = std::string("cannot start a process: ") + std::strerror(errno);
@@ -280,22 +281,22 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
     finished_work.push_back({logProgress(done.run), wall});
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (r.exit_code == 0 && readRunMetrics(dir.string())) {
-      std::ofstream(dir / "done") << "wall_time_s=" << wall << "\n";
+      run_files::writeDoneMarker(dir.string(), wall);
       r.status = RunStatus::kOk;
       readRunOutputs(dir.string(), r);
     } else if (stopping) {
       r.status = RunStatus::kNotRun;  // stopped by Ctrl-C: not a failure of the run
       r.failure = "interrupted";
-      std::ofstream(dir / "failed") << r.failure << "\n";
+      run_files::writeFailedMarker(dir.string(), r.failure);
     } else {
       r.status = RunStatus::kFailed;
       r.failure = r.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(status);
       r.wall_time_s = wall;
-      std::ofstream(dir / "failed") << r.failure << "\n";
+      run_files::writeFailedMarker(dir.string(), r.failure);
       ++failed;
-      const std::string last = lastLine(readText(dir / "run.log"));
+      const std::string last = lastLine(readText(dir / run_files::kRunLog));
       progress.say("experiment: " + plan[done.run].directory + " failed (" + r.failure + "): " + last +
-                   "\n            full log: " + (dir / "run.log").string());
+                   "\n            full log: " + (dir / run_files::kRunLog).string());
     }
     report(true);
   }

@@ -5,7 +5,7 @@
 #include <map>
 #include <tuple>
 
-#include "uampc/evaluator/json_writer.hpp"
+#include "uampc/run_files/json_text.hpp"
 
 namespace uampc::app {
 
@@ -98,35 +98,30 @@ std::string markdownTable(const TextTable& table, std::size_t bold_column) {
   return md;
 }
 
-evaluator::JsonObject cellJson(const CellStatistics& c) {
-  evaluator::JsonObject json;
-  json.set("runs", c.runs)
-      .set("held", c.held)
-      .set("lost", c.lost)
-      .set("median_ate_m", c.median_ate_m)
-      .set("mean_ate_m", c.mean_ate_m)
-      .set("median_ate_percent_of_distance", c.median_ate_percent)
-      .set("median_cmplt", c.median_cmplt);
-  return json;
+run_files::Json cellJson(const CellStatistics& c) {
+  return {{"runs", c.runs},
+          {"held", c.held},
+          {"lost", c.lost},
+          {"median_ate_m", c.median_ate_m},
+          {"mean_ate_m", c.mean_ate_m},
+          {"median_ate_percent_of_distance", c.median_ate_percent},
+          {"median_cmplt", c.median_cmplt}};
 }
 
-evaluator::JsonObject comparisonJson(const PairedComparison& c) {
-  evaluator::JsonObject wilcoxon;
-  wilcoxon.set("n", c.wilcoxon.n)
-      .set("zeros_dropped", c.wilcoxon.zeros_dropped)
-      .set("w_plus", c.wilcoxon.w_plus)
-      .set("p_two_sided", c.wilcoxon.p_value)
-      .set("exact", c.wilcoxon.exact);
-  evaluator::JsonObject json;
-  json.set("pairs", c.pairs)
-      .set("median_ate_ratio", c.median_ate_ratio)
-      .set("summed_ate_ratio", c.summed_ate_ratio)
-      .set("fraction_subject_lower", c.fraction_subject_lower)
-      .set("subject_lost", c.subject_lost)
-      .set("baseline_lost", c.baseline_lost)
-      .set("median_cmplt_ratio", c.median_cmplt_ratio)
-      .set("wilcoxon_signed_rank", wilcoxon);
-  return json;
+run_files::Json comparisonJson(const PairedComparison& c) {
+  const run_files::Json wilcoxon = {{"n", c.wilcoxon.n},
+                                    {"zeros_dropped", c.wilcoxon.zeros_dropped},
+                                    {"w_plus", c.wilcoxon.w_plus},
+                                    {"p_two_sided", c.wilcoxon.p_value},
+                                    {"exact", c.wilcoxon.exact}};
+  return {{"pairs", c.pairs},
+          {"median_ate_ratio", c.median_ate_ratio},
+          {"summed_ate_ratio", c.summed_ate_ratio},
+          {"fraction_subject_lower", c.fraction_subject_lower},
+          {"subject_lost", c.subject_lost},
+          {"baseline_lost", c.baseline_lost},
+          {"median_cmplt_ratio", c.median_cmplt_ratio},
+          {"wilcoxon_signed_rank", wilcoxon}};
 }
 
 }  // namespace
@@ -236,30 +231,26 @@ std::string statisticsMarkdown(const ExperimentStatistics& st) {
          markdownTable(comparisonTable(st), 1);
 }
 
-evaluator::JsonObject statisticsJson(const ExperimentStatistics& st) {
-  evaluator::JsonObject per_scene;
+run_files::Json statisticsJson(const ExperimentStatistics& st) {
+  run_files::Json per_scene = run_files::Json::object();
   for (std::size_t s = 0; s < st.scenes.size(); ++s) {
-    evaluator::JsonObject scene;
-    for (std::size_t c = 0; c < st.controllers.size(); ++c) scene.set(st.controllers[c], cellJson(st.cells[c][s]));
-    per_scene.set(st.scenes[s], scene);
+    run_files::Json scene = run_files::Json::object();
+    for (std::size_t c = 0; c < st.controllers.size(); ++c) scene[st.controllers[c]] = cellJson(st.cells[c][s]);
+    per_scene[st.scenes[s]] = scene;
   }
-  evaluator::JsonObject paired;
+  run_files::Json paired = run_files::Json::object();
   for (const BaselineComparison& b : st.comparisons) {
-    evaluator::JsonObject scenes;
-    for (std::size_t s = 0; s < st.scenes.size(); ++s) scenes.set(st.scenes[s], comparisonJson(b.per_scene[s]));
-    evaluator::JsonObject against;
-    against.set("scenes", scenes).set("pooled", comparisonJson(b.pooled));
-    paired.set(b.controller, against);
+    run_files::Json scenes = run_files::Json::object();
+    for (std::size_t s = 0; s < st.scenes.size(); ++s) scenes[st.scenes[s]] = comparisonJson(b.per_scene[s]);
+    paired[b.controller] = {{"scenes", scenes}, {"pooled", comparisonJson(b.pooled)}};
   }
-  evaluator::JsonObject json;
-  json.set("per_scene", per_scene)
-      .set("subject", st.subject)
-      .set("paired", paired)
-      .set("note",
+  return {{"per_scene", per_scene},
+          {"subject", st.subject},
+          {"paired", paired},
+          {"note",
            "ratios are subject / other; p: two-sided Wilcoxon signed-rank on paired ATE differences (subject - "
            "other), zero differences dropped, exact for n <= 25 without ties, else normal approximation with tie "
-           "and continuity correction");
-  return json;
+           "and continuity correction"}};
 }
 
 }  // namespace uampc::app

@@ -11,10 +11,7 @@
 #include "experiment_file.hpp"
 #include "paired_statistics.hpp"
 #include "run_results.hpp"
-
-namespace uampc::evaluator {
-class JsonObject;  // json_writer.hpp: the evaluator core is a private dependency of this library
-}
+#include "uampc/run_files/json_text.hpp"
 
 namespace uampc::app {
 
@@ -62,6 +59,6 @@ extern const char* const kFewPairsNote;  // why the pooled line matters
 // results.md's sections "Per scene and controller" and "Paired comparison".
 std::string statisticsMarkdown(const ExperimentStatistics& statistics);
 // results.json's "statistics".
-evaluator::JsonObject statisticsJson(const ExperimentStatistics& statistics);
+run_files::Json statisticsJson(const ExperimentStatistics& statistics);
 
 }  // namespace uampc::app

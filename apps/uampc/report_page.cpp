@@ -9,6 +9,8 @@
 #include "experiment_statistics.hpp"
 #include "run_files.hpp"
 #include "svg_plot.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/time_series.hpp"
 
 namespace fs = std::filesystem;
 
@@ -73,23 +75,41 @@ class SceneFigures {
   }
   void note(const std::string& text) { summary_.notes.push_back(scene_ + ": " + text); }
 
-  // One series per controller from a CSV column over time.
-  Figure timeSeries(const std::string& name, const std::string& csv, const std::string& column,
-                    const std::string& title, const std::string& y_label, const std::string& caption) {
+  // A run's file read with read(path), or nothing (with a note) when it is missing or malformed.
+  template <class Read>
+  auto readRunFile(std::size_t controller, const char* file, Read read) -> decltype(read(std::string())) {
+    const fs::path path = runDirectory(controller) / file;
+    if (!fs::is_regular_file(path)) return {};
+    try {
+      return read(path.string());
+    } catch (const std::exception& e) {
+      note(e.what());
+      return {};
+    }
+  }
+
+  // One series per controller over time, from the rows of one of its run's CSV files.
+  template <class Row>
+  Figure timeSeries(const std::string& name, const char* csv, double Row::*column, const std::string& title,
+                    const std::string& y_label, const std::string& caption) {
     svg::LinePlot plot;
     plot.title = title;
     plot.x_label = "sim time, s";
     plot.y_label = y_label;
     for (std::size_t c = 0; c < runs_.size(); ++c) {
       if (!runs_[c]) continue;
-      const CsvTable table = readCsv((runDirectory(c) / csv).string());
-      auto y = table.values(column);
-      if (y.empty()) continue;
+      const std::vector<Row> rows = readRunFile(c, csv, run_files::readRows<Row>);
+      if (rows.empty()) continue;
+      std::vector<double> t, y;
+      for (const Row& row : rows) {
+        t.push_back(row.time);
+        y.push_back(row.*column);
+      }
       plot.series.push_back(
-          {experiment_.controllers[c].name, table.values("time"), std::move(y), svg::paletteColour(c), false, 1.5});
+          {experiment_.controllers[c].name, std::move(t), std::move(y), svg::paletteColour(c), false, 1.5});
     }
     if (plot.series.empty()) {
-      note("no " + csv + " in any run: no figure '" + title + "'");
+      note(std::string("no ") + csv + " in any run: no figure '" + title + "'");
       return {};
     }
     return save(name, svg::render(plot), caption);
@@ -126,14 +146,15 @@ class SceneFigures {
   }
 
   Figure ateOverTime() {
-    return timeSeries("ate", "ate.csv", "ate_m", scene_ + ": position error over time", "position error, m",
+    return timeSeries("ate", run_files::kAteFile, &run_files::AteRow::ate_m, scene_ + ": position error over time",
+                      "position error, m",
                       "Position error (unaligned, as the paper's ATE) over time, one run per controller (its first "
                       "finished seed).");
   }
 
   Figure speedOverTime() {
-    return timeSeries("speed", "motor.csv", "omega", scene_ + ": motor speed over time", "motor speed, rad/s",
-                      "Motor speed from the encoder over time, one run per controller.");
+    return timeSeries("speed", run_files::kMotorFile, &run_files::MotorRow::omega, scene_ + ": motor speed over time",
+                      "motor speed, rad/s", "Motor speed from the encoder over time, one run per controller.");
   }
 
   Figure topView() {
@@ -153,7 +174,8 @@ class SceneFigures {
     plot.y_label = "y, m";
     plot.equal_aspect = true;
     plot.height = 620;
-    const Footprint footprint = readVoxelFootprint((runDirectory(reference) / "scanned_voxels.bt").string(), 1.0, 250);
+    const Footprint footprint =
+        readVoxelFootprint((runDirectory(reference) / run_files::kScannedVoxelsFile).string(), 1.0, 250);
     const int most = footprint.count.empty() ? 1 : *std::max_element(footprint.count.begin(), footprint.count.end());
     for (std::size_t i = 0; i < footprint.x.size(); ++i) {
       // Darker where a column holds more voxels (walls, trees) than where it holds few (ground).
@@ -164,11 +186,11 @@ class SceneFigures {
       plot.background.push_back(
           {footprint.x[i], footprint.y[i], footprint.x[i] + footprint.cell, footprint.y[i] + footprint.cell, fill});
     }
-    const TrajectoryXY truth = readTumPositions((runDirectory(reference) / "ground_truth.tum").string());
+    const TrajectoryXY truth = readTumPositions((runDirectory(reference) / run_files::kGroundTruthFile).string());
     plot.series.push_back({"ground truth", truth.x, truth.y, "#000000", false, 3.0});
     for (std::size_t c = 0; c < runs_.size(); ++c) {
       if (!runs_[c]) continue;
-      const TrajectoryXY estimate = readTumPositions((runDirectory(c) / "estimate.tum").string());
+      const TrajectoryXY estimate = readTumPositions((runDirectory(c) / run_files::kEstimateFile).string());
       plot.series.push_back(
           {experiment_.controllers[c].name, estimate.x, estimate.y, svg::paletteColour(c), false, 1.5});
     }
@@ -191,11 +213,11 @@ class SceneFigures {
   std::vector<Figure> panoramaSnapshots() {
     const std::size_t subject = subjectRun();
     if (subject == runs_.size()) return {};
-    const fs::path directory = runDirectory(subject) / "panorama";
+    const fs::path directory = runDirectory(subject) / run_files::kPanoramaDirectory;
     std::vector<fs::path> snapshots;
     std::error_code missing;
     for (const auto& entry : fs::directory_iterator(directory, missing)) {
-      if (entry.path().extension() == ".png") snapshots.push_back(entry.path());
+      if (run_files::panoramaSnapshotTime(entry.path().filename().string())) snapshots.push_back(entry.path());
     }
     if (snapshots.empty()) {
       note("the " + experiment_.subject + " run wrote no panorama snapshots (the evaluator's panorama_period)");
@@ -208,9 +230,9 @@ class SceneFigures {
       const fs::path& source = snapshots[k * (snapshots.size() - 1) / std::max<std::size_t>(1, kShown - 1)];
       const std::string file = scene_ + "_" + source.filename().string();
       fs::copy_file(source, report_ / file, fs::copy_options::overwrite_existing);
-      const std::string stem = source.stem().string();
       figures.push_back({file, "Panoramic depth map (Eq. 5) the " + experiment_.subject + " controller planned on at " +
-                                   stem.substr(stem.find('_') + 1) + " s of sim time (" + seedText(subject) +
+                                   *run_files::panoramaSnapshotTime(source.filename().string()) + " s of sim time (" +
+                                   seedText(subject) +
                                    "): columns are azimuth around the base over 2\xcf\x80, rows elevation from the "
                                    "zenith (top) to the nadir; bright is near, dark blue far, black nothing in the "
                                    "LO's local map."});
@@ -225,17 +247,19 @@ class SceneFigures {
       note("no finished " + experiment_.subject + " run: no U(theta) map");
       return {};
     }
-    const CsvTable table = readCsv((runDirectory(subject) / "uncertainty.csv").string());
-    std::vector<const std::vector<double>*> rows;
-    for (const auto& row : table.rows) {
-      if (row.size() > 4 && std::isfinite(row[0]) && std::isfinite(row[2]) && row[2] > 0) rows.push_back(&row);
+    const std::vector<run_files::UncertaintyRow> table =
+        readRunFile(subject, run_files::kUncertaintyFile, run_files::readUncertainty);
+    std::vector<const run_files::UncertaintyRow*> rows;
+    for (const auto& row : table) {
+      if (!row.samples.empty() && std::isfinite(row.time) && std::isfinite(row.delta_theta) && row.delta_theta > 0)
+        rows.push_back(&row);
     }
     if (rows.empty()) {
-      note("uncertainty.csv of " + experiment_.subject + " is empty: no U(theta) map");
+      note(std::string(run_files::kUncertaintyFile) + " of " + experiment_.subject + " is empty: no U(theta) map");
       return {};
     }
-    const std::size_t samples = rows.front()->size() - 4;
-    const double delta = (*rows.front())[2];
+    const std::size_t samples = rows.front()->samples.size();
+    const double delta = rows.front()->delta_theta;
     // At most 300 columns: neighbouring control steps are averaged (in log U).
     const std::size_t group = (rows.size() + 299) / 300;
     svg::HeatMap map;
@@ -244,22 +268,22 @@ class SceneFigures {
     map.y_label = "angle from the turn's start, rad";
     map.value_label = "log10 U";
     for (std::size_t k = 0; k <= samples; ++k) map.y_edges.push_back(static_cast<double>(k) * delta);
-    const double last_step = rows.size() > 1 ? (*rows.back())[0] - (*rows[rows.size() - 2])[0] : 0.1;
+    const double last_step = rows.size() > 1 ? rows.back()->time - rows[rows.size() - 2]->time : 0.1;
     std::vector<double> column_values;
     for (std::size_t begin = 0; begin < rows.size(); begin += group) {
       const std::size_t end = std::min(rows.size(), begin + group);
-      map.x_edges.push_back((*rows[begin])[0]);
+      map.x_edges.push_back(rows[begin]->time);
       for (std::size_t k = 0; k < samples; ++k) {
         double sum = 0;
         int n = 0;
         for (std::size_t r = begin; r < end; ++r) {
-          const double u = 4 + k < rows[r]->size() ? (*rows[r])[4 + k] : NAN;
+          const double u = k < rows[r]->samples.size() ? rows[r]->samples[k] : NAN;
           if (std::isfinite(u) && u > 0) sum += std::log10(u), ++n;
         }
         column_values.push_back(n ? sum / n : NAN);
       }
     }
-    map.x_edges.push_back((*rows.back())[0] + std::max(last_step, 1e-3));
+    map.x_edges.push_back(rows.back()->time + std::max(last_step, 1e-3));
     const std::size_t nx = map.x_edges.size() - 1;
     map.values.assign(nx * samples, NAN);
     for (std::size_t ix = 0; ix < nx; ++ix) {

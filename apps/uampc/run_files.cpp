@@ -13,46 +13,6 @@
 
 namespace uampc::app {
 
-int CsvTable::column(const std::string& name) const {
-  for (std::size_t i = 0; i < columns.size(); ++i) {
-    if (columns[i] == name) return static_cast<int>(i);
-  }
-  return -1;
-}
-
-std::vector<double> CsvTable::values(const std::string& name) const {
-  std::vector<double> out;
-  const int c = column(name);
-  if (c < 0) return out;
-  out.reserve(rows.size());
-  for (const auto& row : rows) out.push_back(static_cast<std::size_t>(c) < row.size() ? row[c] : NAN);
-  return out;
-}
-
-CsvTable readCsv(const std::string& path) {
-  CsvTable table;
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line)) return table;
-  std::stringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) table.columns.push_back(cell);
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::vector<double> row;
-    const char* p = line.c_str();
-    while (true) {
-      char* end = nullptr;
-      const double v = std::strtod(p, &end);
-      row.push_back(end == p ? NAN : v);
-      const char* comma = std::strchr(end, ',');
-      if (!comma) break;
-      p = comma + 1;
-    }
-    table.rows.push_back(std::move(row));
-  }
-  return table;
-}
-
 TrajectoryXY readTumPositions(const std::string& path) {
   TrajectoryXY out;
   std::ifstream in(path);

@@ -1,5 +1,6 @@
-// Readers for the time series a run leaves behind (written by the evaluator component), in the
-// shapes the report's figures need. Missing or empty files give empty results: a figure without
+// Readers for the trajectories and the voxel map a run leaves behind (written by the evaluator
+// component; its CSV files are read through components/run_files), in the shapes the report's
+// figures need. Missing or empty files give empty results: a figure without
 // data is left out of the report with a note, not an error.
 #pragma once
 
@@ -7,16 +8,6 @@
 #include <vector>
 
 namespace uampc::app {
-
-// A CSV file with a header line: column names and numeric rows (rows may differ in length, as
-// uncertainty.csv's do; cells that are not numbers become NaN).
-struct CsvTable {
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& name) const;                  // -1 if absent
-  std::vector<double> values(const std::string& name) const;  // empty if absent
-};
-CsvTable readCsv(const std::string& path);
 
 // Positions of a TUM trajectory ("t x y z qx qy qz qw").
 struct TrajectoryXY {

@@ -2,16 +2,17 @@
 
 #include <Eigen/Core>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 #include <tuple>
 
 #include "experiment_runner.hpp"
 #include "uampc/evaluator/depth_colouring.hpp"
 #include "uampc/evaluator/voxel_octree.hpp"
+#include "uampc/run_files/metrics_file.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/time_series.hpp"
 
 namespace fs = std::filesystem;
 
@@ -38,67 +39,73 @@ const std::map<std::tuple<std::string, std::string, int>, FakeFigures> kFigures{
 // The ground truth's path length (trajectory.distance_m), the same for every run of a scene.
 constexpr double kAlphaDistance = 50.0, kBetaDistance = 200.0;
 
-std::string jsonNumber(double v) {
-  std::ostringstream s;
-  if (std::isfinite(v))
-    s << v;
-  else
-    s << "null";
-  return s.str();
+// metrics.json as the evaluator writes it, with the figures the report reads.
+run_files::MetricsDocument fakeMetrics(const FakeFigures& f, double distance) {
+  run_files::MetricsDocument m;
+  m.sim_time = 10;
+  m.trajectory.distance_m = distance;
+  m.trajectory.ate.unaligned_m.rmse = f.ate;
+  m.trajectory.ate.aligned_m.rmse = f.ate / 2;
+  run_files::RpeSummary rpe10, rpe100;  // no 100 m segment: its figures stay NaN (null)
+  rpe10.segment_length_m = 10;
+  rpe10.translation_m.rmse = 0.5;
+  rpe100.segment_length_m = 100;
+  m.trajectory.rpe = {rpe10, rpe100};
+  m.trajectory.speed_error.max_m_s = 0.5;
+  if (std::isfinite(f.runaway_time)) m.trajectory.speed_error.first_runaway_time = f.runaway_time;
+  m.cmplt.cmplt = f.cmplt;
+  m.cmplt_ground_truth.cmplt = f.cmplt * 1.1;
+  m.motor.mean_speed = 3.6;
+  return m;
 }
 
 void writeRun(const fs::path& dir, const FakeFigures& f, double distance, bool ua_mpc) {
-  writeText((dir / "metrics.json").string(),
-            "{\n  \"sim_time\": 10,\n  \"trajectory\": {\"distance_m\": " + jsonNumber(distance) +
-                ", \"ate\": {\"unaligned_m\": {\"rmse\": " + jsonNumber(f.ate) +
-                "}, \"aligned_m\": {\"rmse\": " + jsonNumber(f.ate / 2) +
-                "}},\n    \"rpe_10m\": {\"translation_m\": {\"rmse\": 0.5}}, \"rpe_100m\": {\"translation_m\": "
-                "{\"rmse\": null}}, \"speed_error\": {\"max_m_s\": 0.5" +
-                (std::isfinite(f.runaway_time) ? ", \"first_runaway_time\": " + jsonNumber(f.runaway_time) : "") +
-                "}},\n  \"cmplt\": {\"cmplt\": " + jsonNumber(f.cmplt) + "},\n  \"cmplt_ground_truth\": {\"cmplt\": " +
-                jsonNumber(f.cmplt * 1.1) + "},\n  \"motor\": {\"mean_speed\": 3.6}\n}\n");
-  std::string ate = "time,ate_m,ate_aligned_m\n", motor = "time,theta,omega,command\n";
+  using run_files::inDirectory;
+  const std::string run = dir.string();
+  fs::create_directories(dir);
+  run_files::writeMetricsFile(inDirectory(run, run_files::kMetricsFile), fakeMetrics(f, distance));
+  std::vector<run_files::AteRow> ate;
+  std::vector<run_files::MotorRow> motor;
   std::string estimate, truth;
   for (int i = 0; i <= 100; ++i) {
     const double t = i * 0.1;
     const double e = f.ate * t / 10.0;
-    ate += std::to_string(t) + "," + std::to_string(e) + "," + std::to_string(e / 2) + "\n";
+    ate.push_back({t, e, e / 2});
     truth += std::to_string(t) + " " + std::to_string(t) + " " + std::to_string(std::sin(t)) + " 1 0 0 0 1\n";
     estimate += std::to_string(t) + " " + std::to_string(t + e / 10) + " " + std::to_string(std::sin(t) + e / 10) +
                 " 1 0 0 0 1\n";
   }
   for (int i = 0; i <= 2000; ++i) {
     const double t = i * 0.005;
-    motor += std::to_string(t) + "," + std::to_string(3.6 * t) + "," + std::to_string(3.6 + std::sin(t)) + ",3.6\n";
+    motor.push_back({t, 3.6 * t, 3.6 + std::sin(t), 3.6});
   }
-  writeText((dir / "ate.csv").string(), ate);
-  writeText((dir / "motor.csv").string(), motor);
-  writeText((dir / "estimate.tum").string(), estimate);
-  writeText((dir / "ground_truth.tum").string(), truth);
+  run_files::writeRows(inDirectory(run, run_files::kAteFile), ate);
+  run_files::writeRows(inDirectory(run, run_files::kMotorFile), motor);
+  writeText(inDirectory(run, run_files::kEstimateFile), estimate);
+  writeText(inDirectory(run, run_files::kGroundTruthFile), truth);
   if (ua_mpc) {
-    std::string u = "time,theta_start,delta_theta,command,samples...\n";
+    run_files::UncertaintyWriter u(inDirectory(run, run_files::kUncertaintyFile));
     for (int i = 0; i < 100; ++i) {
-      u += std::to_string(i * 0.1) + ",0," + std::to_string(2 * M_PI / 72) + ",3.6";
-      for (int k = 0; k < 72; ++k) u += "," + std::to_string(0.1 + 0.05 * std::sin(k * 0.2 + i * 0.1));
-      u += "\n";
+      run_files::UncertaintyRow row{i * 0.1, 0.0, 2 * M_PI / 72, 3.6, {}};
+      for (int k = 0; k < 72; ++k) row.samples.push_back(0.1 + 0.05 * std::sin(k * 0.2 + i * 0.1));
+      u.add(row);
     }
-    writeText((dir / "uncertainty.csv").string(), u);
     // Six panorama snapshots, as the evaluator names them; the report shows four.
-    fs::create_directories(dir / "panorama");
+    const std::string panoramas = inDirectory(run, run_files::kPanoramaDirectory);
+    fs::create_directories(panoramas);
     for (int k = 0; k < 6; ++k) {
       std::vector<float> depth(36 * 18);
       for (std::size_t i = 0; i < depth.size(); ++i) depth[i] = static_cast<float>((i + 7 * k) % 45);
-      char name[64];
-      std::snprintf(name, sizeof(name), "panorama_%07.1f.png", 1.5 * k);
-      evaluator::writePng((dir / "panorama" / name).string(), evaluator::colourDepth(depth, 36, 18, 40.0));
+      evaluator::writePng(inDirectory(panoramas, run_files::panoramaSnapshotName(1.5 * k)),
+                          evaluator::colourDepth(depth, 36, 18, 40.0));
     }
   }
   std::vector<Eigen::Vector3i> voxels;
   for (int x = -4; x < 24; ++x) {
     for (int y = -6; y < 6; ++y) voxels.emplace_back(x, y, (x * y) % 3 == 0 ? 1 : 0);
   }
-  evaluator::writeVoxelOctree((dir / "scanned_voxels.bt").string(), voxels, 0.5);
-  writeText((dir / "run.log").string(), "uampc: 10 s of sim time in 4 s (2.5x real time)\n");
+  evaluator::writeVoxelOctree(inDirectory(run, run_files::kScannedVoxelsFile), voxels, 0.5);
+  writeText(inDirectory(run, run_files::kRunLog), "uampc: 10 s of sim time in 4 s (2.5x real time)\n");
 }
 
 }  // namespace
@@ -130,9 +137,9 @@ FakeExperiment makeFakeExperiment(const std::string& directory) {
     const auto figures = kFigures.find({r.scene, r.controller, static_cast<int>(r.seed)});
     if (figures != kFigures.end()) {
       writeRun(dir, figures->second, r.scene == "alpha" ? kAlphaDistance : kBetaDistance, r.controller == "ua_mpc");
-      writeText((dir / "done").string(), "wall_time_s=4.5\n");
+      run_files::writeDoneMarker(dir.string(), 4.5);
     } else {
-      writeText((dir / "run.log").string(), "something broke\n");
+      writeText(run_files::inDirectory(dir.string(), run_files::kRunLog), "something broke\n");
     }
     if (app::isRunComplete(dir.string())) {
       r.status = app::RunStatus::kReused;

@@ -3,10 +3,10 @@
 //        paper's figure) and after SE(3) Umeyama alignment; RPE over 10 m and 100 m.
 //   CMPLT: distinct 0.5 m voxels hit by the LO's registered scans per 5 s window, and the same from
 //        the raw scans placed with ground truth (Eq. 1), so completeness is not confounded with drift.
-// Publishes running figures; at the end writes into the run's output directory (--out): metrics.json,
-// estimate.tum, ground_truth.tum, ate.csv, cmplt_windows.csv, cmplt_ground_truth_windows.csv,
-// motor.csv, timings.csv, uncertainty.csv and scanned_voxels.bt (OctoMap, opens in octovis); during
-// the run, snapshots of the controller's panorama as panorama/panorama_<sim time>.png.
+// Publishes running figures; writes the run directory's files (--out; names and contents in
+// components/run_files): during the run motor.csv, timings.csv, uncertainty.csv and snapshots of the
+// controller's panorama; at the end the trajectories, ate.csv, the CMPLT windows, scanned_voxels.bt
+// (OctoMap, opens in octovis) and metrics.json last.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,9 +18,7 @@
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/evaluator/completeness.hpp"
-#include "uampc/evaluator/csv_writer.hpp"
 #include "uampc/evaluator/depth_colouring.hpp"
-#include "uampc/evaluator/json_writer.hpp"
 #include "uampc/evaluator/motor_activity.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/report_files.hpp"
@@ -30,6 +28,9 @@
 #include "uampc/frames/motorized_lidar.hpp"
 #include "uampc/frames/pose_knots.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/run_files/metrics_file.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/time_series.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc {
@@ -81,10 +82,11 @@ class EvaluatorComponent : public Component {
       ctx.log().warn("no output directory (uampc launch --out DIR): figures are logged but no files written");
     } else {
       std::filesystem::create_directories(out);
-      motor_csv_ = std::make_unique<evaluator::CsvWriter>(
-          out + "/motor.csv", std::vector<std::string>{"time", "theta", "omega", "command"});
-      timings_ = open(out + "/timings.csv", "time,source,name,value\n");
-      uncertainty_ = open(out + "/uncertainty.csv", "time,theta_start,delta_theta,command,samples...\n");
+      motor_csv_ = std::make_unique<run_files::RowWriter<run_files::MotorRow>>(
+          run_files::inDirectory(out, run_files::kMotorFile));
+      timings_ = std::make_unique<run_files::TimingsWriter>(run_files::inDirectory(out, run_files::kTimingsFile));
+      uncertainty_ =
+          std::make_unique<run_files::UncertaintyWriter>(run_files::inDirectory(out, run_files::kUncertaintyFile));
     }
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& m) {
       ground_truth_.add({fromMsg(m.header().stamp()).seconds(), adapters::toIsometry(m.pose())});
@@ -127,23 +129,19 @@ class EvaluatorComponent : public Component {
       const double omega = m.velocity().empty() ? 0.0 : m.velocity()[0];
       motor_.add({t, m.position()[0], omega});
       motor_activity_.add(t, omega, command_);
-      if (motor_csv_) motor_csv_->addRow({t, m.position()[0], omega, command_});
+      if (motor_csv_) motor_csv_->add({t, m.position()[0], omega, command_});
       flush();
     });
     ctx.subscribe<msg::MotorCommand>("command", [this](const msg::MotorCommand& m) { command_ = m.velocity(); });
     ctx.subscribe<msg::UncertaintyProfile>("profile", [this](const msg::UncertaintyProfile& m) {
       if (!uncertainty_ || m.samples().empty()) return;
-      std::fprintf(uncertainty_.get(), "%.9f,%.17g,%.17g,%.17g", fromMsg(m.header().stamp()).seconds(), m.theta_start(),
-                   m.delta_theta(), m.command());
-      for (double u : m.samples()) std::fprintf(uncertainty_.get(), ",%.9g", u);
-      std::fputc('\n', uncertainty_.get());
+      uncertainty_->add({fromMsg(m.header().stamp()).seconds(), m.theta_start(), m.delta_theta(), m.command(),
+                         std::vector<double>(m.samples().begin(), m.samples().end())});
     });
     auto onMetrics = [this](const msg::Metrics& m) {
       if (!timings_) return;
-      for (const auto& v : m.values()) {
-        std::fprintf(timings_.get(), "%.9f,%s,%s,%.9g\n", fromMsg(m.header().stamp()).seconds(), m.source().c_str(),
-                     v.name().c_str(), v.value());
-      }
+      for (const auto& v : m.values())
+        timings_->add({fromMsg(m.header().stamp()).seconds(), m.source(), v.name(), v.value()});
     };
     ctx.subscribe<msg::Metrics>("lo_metrics", [this, onMetrics](const msg::Metrics& m) {
       onMetrics(m);
@@ -171,33 +169,28 @@ class EvaluatorComponent : public Component {
                     cmplt_gt.mean_voxels_per_window, " with ground truth)");
     const std::string& out = ctx_.outputDirectory();
     if (out.empty()) return;
-    evaluator::JsonObject root;
-    root.set("sim_time", ctx_.now().seconds());
-    root.set("trajectory", evaluator::toJson(trajectory));
-    root.set("cmplt", evaluator::toJson(cmplt));
-    root.set("cmplt_ground_truth", evaluator::toJson(cmplt_gt));
-    evaluator::JsonObject motor;
+    using run_files::inDirectory;
+    run_files::MetricsDocument metrics;
+    metrics.sim_time = ctx_.now().seconds();
+    metrics.trajectory = evaluator::toSummary(trajectory);
+    metrics.cmplt = evaluator::toSummary(cmplt);
+    metrics.cmplt_ground_truth = evaluator::toSummary(cmplt_gt);
     const evaluator::MotorActivityReport activity = motor_activity_.report();
-    motor.set("mean_speed", activity.mean_speed);
-    motor.set("speed_std", activity.speed_std);
     // Changes over one 0.1 s control period: how much the command chatters, and how much of it
     // the motor follows after the bridge's limits.
-    motor.set("command_change_rms", activity.command_change_rms);
-    motor.set("speed_change_rms", activity.speed_change_rms);
-    root.set("motor", motor);
+    metrics.motor = {activity.mean_speed, activity.speed_std, activity.command_change_rms, activity.speed_change_rms};
     // The LO's own account of its losses of track (its "lost" flag on /lo/metrics).
-    evaluator::JsonObject lo;
-    if (first_lost_time_ >= 0.0) lo.set("first_lost_time", first_lost_time_);
-    lo.set("lost_frames", static_cast<std::int64_t>(lost_frames_));
-    lo.set("rejected_updates", static_cast<std::int64_t>(rejected_updates_));
-    root.set("lo", lo);
-    evaluator::writeJson(out + "/metrics.json", root);
-    evaluator::writeTumTrajectory(out + "/estimate.tum", trajectory_.pairedEstimates());
-    evaluator::writeTumTrajectory(out + "/ground_truth.tum", trajectory_.pairedGroundTruth());
-    evaluator::writeAteSeriesCsv(out + "/ate.csv", trajectory.ate.series);
-    evaluator::writeCompletenessWindowsCsv(out + "/cmplt_windows.csv", cmplt.windows);
-    evaluator::writeCompletenessWindowsCsv(out + "/cmplt_ground_truth_windows.csv", cmplt_gt.windows);
-    cmplt_gt_.saveOctree(out + "/scanned_voxels.bt");
+    if (first_lost_time_ >= 0.0) metrics.lo.first_lost_time = first_lost_time_;
+    metrics.lo.lost_frames = lost_frames_;
+    metrics.lo.rejected_updates = rejected_updates_;
+    run_files::writeMetricsFile(inDirectory(out, run_files::kMetricsFile), metrics);
+    evaluator::writeTumTrajectory(inDirectory(out, run_files::kEstimateFile), trajectory_.pairedEstimates());
+    evaluator::writeTumTrajectory(inDirectory(out, run_files::kGroundTruthFile), trajectory_.pairedGroundTruth());
+    evaluator::writeAteSeriesCsv(inDirectory(out, run_files::kAteFile), trajectory.ate.series);
+    evaluator::writeCompletenessWindowsCsv(inDirectory(out, run_files::kCompletenessWindowsFile), cmplt.windows);
+    evaluator::writeCompletenessWindowsCsv(inDirectory(out, run_files::kGroundTruthCompletenessWindowsFile),
+                                           cmplt_gt.windows);
+    cmplt_gt_.saveOctree(inDirectory(out, run_files::kScannedVoxelsFile));
     if (motor_csv_) motor_csv_->close();
   }
 
@@ -218,13 +211,6 @@ class EvaluatorComponent : public Component {
     pointcloud::ScanPoints points;
     double start, end;  // s, its earliest and latest finite point times
   };
-  using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-  static File open(const std::string& path, const char* header) {
-    File f(std::fopen(path.c_str(), "w"), &std::fclose);
-    if (!f) throw std::runtime_error("cannot write " + path);
-    std::fputs(header, f.get());
-    return f;
-  }
 
   // Saves one panorama per panorama_period as a PNG; a malformed image is reported once and skipped.
   void onPanorama(const sensor_msgs::msg::Image& m) {
@@ -241,12 +227,10 @@ class EvaluatorComponent : public Component {
     }
     std::vector<float> depth(pixels);
     std::memcpy(depth.data(), m.data().data(), pixels * 4);
-    const std::filesystem::path directory = std::filesystem::path(ctx_.outputDirectory()) / "panorama";
+    const std::string directory = run_files::inDirectory(ctx_.outputDirectory(), run_files::kPanoramaDirectory);
     std::filesystem::create_directories(directory);
-    char name[64];
-    std::snprintf(name, sizeof(name), "panorama_%07.1f.png", t);
     evaluator::writePng(
-        (directory / name).string(),
+        run_files::inDirectory(directory, run_files::panoramaSnapshotName(t)),
         evaluator::colourDepth(depth, static_cast<int>(m.width()), static_cast<int>(m.height()), panorama_max_range_));
     while (next_panorama_ <= t) next_panorama_ += panorama_period_;
   }
@@ -315,12 +299,12 @@ class EvaluatorComponent : public Component {
   Publisher<msg::Metrics> metrics_pub_;
   std::deque<evaluator::TimedPose> pending_estimates_;
   std::deque<PendingScan> pending_scans_;
-  std::unique_ptr<evaluator::CsvWriter> motor_csv_;
-  File timings_{nullptr, &std::fclose};
+  std::unique_ptr<run_files::RowWriter<run_files::MotorRow>> motor_csv_;
+  std::unique_ptr<run_files::TimingsWriter> timings_;
   double first_lost_time_ = -1.0;  // s; negative: the LO never said it was lost
   long lost_frames_ = 0;
   long rejected_updates_ = 0;
-  File uncertainty_{nullptr, &std::fclose};
+  std::unique_ptr<run_files::UncertaintyWriter> uncertainty_;
   double command_ = 0.0;
   double panorama_period_ = 0.0;
   double panorama_max_range_ = 0.0;

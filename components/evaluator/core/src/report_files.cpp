@@ -1,72 +1,57 @@
 #include "uampc/evaluator/report_files.hpp"
 
-#include "uampc/evaluator/csv_writer.hpp"
+#include "uampc/run_files/time_series.hpp"
 
 namespace uampc::evaluator {
 
-JsonObject toJson(const ErrorStatistics& statistics) {
-  JsonObject json;
-  json.set("count", std::uint64_t{statistics.count})
-      .set("rmse", statistics.rmse)
-      .set("mean", statistics.mean)
-      .set("median", statistics.median)
-      .set("max", statistics.max);
-  return json;
-}
+run_files::ErrorSummary toSummary(const ErrorStatistics& s) { return {s.count, s.rmse, s.mean, s.median, s.max}; }
 
-JsonObject toJson(const TrajectoryReport& report) {
-  JsonObject json;
-  json.set("estimates", std::uint64_t{report.estimates})
-      .set("paired", std::uint64_t{report.paired})
-      .set("unpaired", std::uint64_t{report.unpaired})
-      .set("invalid", std::uint64_t{report.invalid})
-      .set("distance_m", report.distance);
-  JsonObject ate;
-  ate.set("unaligned_m", toJson(report.ate.unaligned)).set("aligned_m", toJson(report.ate.aligned));
-  json.set("ate", ate);
+run_files::TrajectorySummary toSummary(const TrajectoryReport& report) {
+  run_files::TrajectorySummary summary;
+  summary.estimates = report.estimates;
+  summary.paired = report.paired;
+  summary.unpaired = report.unpaired;
+  summary.invalid = report.invalid;
+  summary.distance_m = report.distance;
+  summary.ate = {toSummary(report.ate.unaligned), toSummary(report.ate.aligned)};
   for (const RpeReport& rpe : report.rpe) {
-    JsonObject segment;
-    segment.set("segment_length_m", rpe.segment_length)
-        .set("translation_m", toJson(rpe.translation))
-        .set("translation_percent", toJson(rpe.translation_percent))
-        .set("rotation_deg", toJson(rpe.rotation_deg));
-    json.set("rpe_" + formatDouble(rpe.segment_length) + "m", segment);
+    summary.rpe.push_back({rpe.segment_length, toSummary(rpe.translation), toSummary(rpe.translation_percent),
+                           toSummary(rpe.rotation_deg)});
   }
-  JsonObject speed;
-  speed.set("max_m_s", report.speed_error.max);
-  if (report.speed_error.first_runaway_time) speed.set("first_runaway_time", *report.speed_error.first_runaway_time);
-  json.set("speed_error", speed);
-  return json;
+  summary.speed_error = {report.speed_error.max, report.speed_error.first_runaway_time};
+  return summary;
 }
 
-JsonObject toJson(const CompletenessReport& report) {
-  JsonObject json;
-  json.set("cmplt", report.mean_voxels_per_window)
-      .set("complete_windows", std::uint64_t{report.complete_windows})
-      .set("windows", std::uint64_t{report.windows.size()})
-      .set("total_voxels", std::uint64_t{report.total_voxels})
-      .set("scans", std::uint64_t{report.scans})
-      .set("points", std::uint64_t{report.points})
-      .set("invalid_points", std::uint64_t{report.invalid_points})
-      .set("out_of_range_points", std::uint64_t{report.out_of_range_points})
-      .set("late_scans", std::uint64_t{report.late_scans})
-      .set("invalid_scans", std::uint64_t{report.invalid_scans});
-  return json;
+run_files::CompletenessSummary toSummary(const CompletenessReport& report) {
+  run_files::CompletenessSummary summary;
+  summary.cmplt = report.mean_voxels_per_window;
+  summary.complete_windows = report.complete_windows;
+  summary.windows = report.windows.size();
+  summary.total_voxels = report.total_voxels;
+  summary.scans = report.scans;
+  summary.points = report.points;
+  summary.invalid_points = report.invalid_points;
+  summary.out_of_range_points = report.out_of_range_points;
+  summary.late_scans = report.late_scans;
+  summary.invalid_scans = report.invalid_scans;
+  return summary;
 }
 
 void writeAteSeriesCsv(const std::string& path, const std::vector<AteSample>& series) {
-  CsvWriter csv(path, {"time", "ate_m", "ate_aligned_m"});
-  for (const AteSample& s : series) csv.addRow({s.time, s.error, s.aligned_error});
-  csv.close();
+  std::vector<run_files::AteRow> rows;
+  rows.reserve(series.size());
+  for (const AteSample& s : series) rows.push_back({s.time, s.error, s.aligned_error});
+  run_files::writeRows(path, rows);
 }
 
 void writeCompletenessWindowsCsv(const std::string& path, const std::vector<CompletenessWindow>& windows) {
-  CsvWriter csv(path, {"window", "start", "end", "voxels", "scans", "points", "complete"});
+  std::vector<run_files::CompletenessWindowRow> rows;
+  rows.reserve(windows.size());
   for (const CompletenessWindow& w : windows) {
-    csv.addRow({static_cast<double>(w.index), w.start, w.end, static_cast<double>(w.voxels),
-                static_cast<double>(w.scans), static_cast<double>(w.points), w.complete ? 1.0 : 0.0});
+    rows.push_back({static_cast<double>(w.index), w.start, w.end, static_cast<double>(w.voxels),
+                    static_cast<double>(w.scans), static_cast<double>(w.points), w.complete});
   }
-  csv.close();
+  run_files::writeRows(path, rows);
 }
 
 }  // namespace uampc::evaluator

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "uampc/evaluator/csv_writer.hpp"
+#include "uampc/run_files/number_format.hpp"
 
 namespace uampc::evaluator {
 
@@ -18,9 +18,10 @@ void writeTumTrajectory(const std::string& path, const std::vector<TimedPose>& p
     q.normalize();
     if (q.w() < 0.0) q.coeffs() = -q.coeffs();
     const Eigen::Vector3d& r = p.pose.translation();
-    out << formatDouble(p.time) << ' ' << formatDouble(r.x()) << ' ' << formatDouble(r.y()) << ' '
-        << formatDouble(r.z()) << ' ' << formatDouble(q.x()) << ' ' << formatDouble(q.y()) << ' '
-        << formatDouble(q.z()) << ' ' << formatDouble(q.w()) << '\n';
+    out << run_files::formatDouble(p.time) << ' ' << run_files::formatDouble(r.x()) << ' '
+        << run_files::formatDouble(r.y()) << ' ' << run_files::formatDouble(r.z()) << ' '
+        << run_files::formatDouble(q.x()) << ' ' << run_files::formatDouble(q.y()) << ' '
+        << run_files::formatDouble(q.z()) << ' ' << run_files::formatDouble(q.w()) << '\n';
   }
   out.flush();
   if (!out) throw std::runtime_error("error writing TUM trajectory file " + path);

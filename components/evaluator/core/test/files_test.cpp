@@ -1,4 +1,5 @@
-// Tests of the files the evaluator writes: TUM trajectories, metrics JSON, CSV series.
+// Tests of the files the evaluator writes: TUM trajectories, metrics JSON, CSV series (their format:
+// components/run_files).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,16 +10,12 @@
 #include <sstream>
 
 #include "test_directory.hpp"
-#include "uampc/evaluator/csv_writer.hpp"
-#include "uampc/evaluator/json_writer.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/report_files.hpp"
 #include "uampc/evaluator/tum_trajectory.hpp"
 
 namespace uampc::evaluator {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string contentOf(const std::string& path) {
   std::ifstream in(path);
@@ -90,38 +87,7 @@ TEST(TumTrajectory, ErrorsNameThePathAndLine) {
   expectThrowNaming<std::runtime_error>([&] { writeTumTrajectory("/nonexistent/t.tum", {}); }, "/nonexistent/t.tum");
 }
 
-TEST(JsonWriter, WritesValidJsonWithNullForNaN) {
-  test::TestDirectory directory;
-  JsonObject inner;
-  inner.set("rmse", 0.1).set("nan", kNaN).set("inf", std::numeric_limits<double>::infinity());
-  JsonObject json;
-  json.set("name", "ua \"mpc\"\n\\ \x01")
-      .set("count", std::uint64_t{18446744073709551615ull})
-      .set("negative", std::int64_t{-3})
-      .set("flag", true)
-      .set("tiny", 1e-300)
-      .set("inner", inner)
-      .set("empty", JsonObject())
-      .set("list", std::vector<double>{1.5, kNaN, -2.0})
-      .set("replaced", 1.0)
-      .set("replaced", 2.0);
-  const std::string path = directory.file("metrics.json");
-  writeJson(path, json);
-  EXPECT_EQ(checkJsonWithPython(path,
-                                "assert d[\"name\"] == \"ua \\\"mpc\\\"\\n\\\\ \\x01\", d; "
-                                "assert d[\"count\"] == 2**64 - 1; assert d[\"negative\"] == -3; "
-                                "assert d[\"flag\"] is True; assert d[\"tiny\"] == 1e-300; "
-                                "assert d[\"inner\"] == {\"rmse\": 0.1, \"nan\": None, \"inf\": None}; "
-                                "assert d[\"empty\"] == {}; assert d[\"list\"] == [1.5, None, -2.0]; "
-                                "assert d[\"replaced\"] == 2.0; "
-                                "assert list(d) == [\"name\", \"count\", \"negative\", \"flag\", "
-                                "\"tiny\", \"inner\", \"empty\", \"list\", \"replaced\"]"),
-            0)
-      << contentOf(path);
-  expectThrowNaming<std::runtime_error>([&] { writeJson("/nonexistent/m.json", json); }, "/nonexistent/m.json");
-}
-
-TEST(JsonWriter, ReportsBecomeValidJson) {
+TEST(MetricsFile, ReportsBecomeValidJson) {
   test::TestDirectory directory;
   const PoseInterpolator truth(
       {{0.0, Eigen::Isometry3d::Identity()}, {100.0, Eigen::Isometry3d(Eigen::Translation3d(200, 0, 0))}});
@@ -131,34 +97,24 @@ TEST(JsonWriter, ReportsBecomeValidJson) {
   }
   Completeness cmplt;
   cmplt.addScan(0.0, {{0, 0, 0}});
-  JsonObject json;
-  json.set("trajectory", toJson(evaluator.report())).set("cmplt_estimate", toJson(cmplt.report()));
-  const std::string path = directory.file("report.json");
-  writeJson(path, json);
+  run_files::MetricsDocument metrics;
+  metrics.sim_time = 100.0;
+  metrics.trajectory = toSummary(evaluator.report());
+  metrics.cmplt = toSummary(cmplt.report());
+  const std::string path = directory.file("metrics.json");
+  run_files::writeMetricsFile(path, metrics);
   EXPECT_EQ(checkJsonWithPython(path,
                                 "t = d[\"trajectory\"]; assert t[\"paired\"] == 1001; "
                                 "assert abs(t[\"distance_m\"] - 200) < 1e-9; "
                                 "assert abs(t[\"rpe_10m\"][\"translation_percent\"][\"mean\"] - 1) < 1e-6; "
                                 "assert t[\"rpe_100m\"][\"segment_length_m\"] == 100; "
                                 "assert t[\"ate\"][\"aligned_m\"][\"rmse\"] >= 0; "
-                                "assert d[\"cmplt_estimate\"][\"cmplt\"] is None"),
+                                "assert d[\"cmplt\"][\"cmplt\"] is None; assert d[\"sim_time\"] == 100"),
             0)
       << contentOf(path);
 }
 
-TEST(CsvWriter, WritesHeaderAndRows) {
-  test::TestDirectory directory;
-  const std::string path = directory.file("series.csv");
-  CsvWriter csv(path, {"time", "ate_m"});
-  csv.addRow({0.1, 2.0});
-  csv.addRow({1e20, kNaN});
-  EXPECT_THROW(csv.addRow({1.0}), std::invalid_argument);
-  csv.close();
-  EXPECT_EQ(contentOf(path), "time,ate_m\n0.1,2\n1e+20,nan\n");
-  expectThrowNaming<std::runtime_error>([&] { CsvWriter("/nonexistent/s.csv", {"a"}); }, "/nonexistent/s.csv");
-}
-
-TEST(CsvWriter, SeriesFiles) {
+TEST(RunFiles, SeriesFiles) {
   test::TestDirectory directory;
   writeAteSeriesCsv(directory.file("ate.csv"), {{1.0, 0.5, 0.25}});
   EXPECT_EQ(contentOf(directory.file("ate.csv")), "time,ate_m,ate_aligned_m\n1,0.5,0.25\n");

@@ -1,4 +1,5 @@
-// The evaluator's reports as metrics JSON objects and CSV time series.
+// The evaluator's reports in the run files' shapes (components/run_files): metrics.json's
+// summaries and the rows of ate.csv and the CMPLT window files.
 #pragma once
 
 #include <string>
@@ -6,21 +7,19 @@
 
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
 #include "uampc/evaluator/completeness.hpp"
-#include "uampc/evaluator/json_writer.hpp"
 #include "uampc/evaluator/trajectory_evaluator.hpp"
+#include "uampc/run_files/metrics_file.hpp"
 
 namespace uampc::evaluator {
 
-JsonObject toJson(const ErrorStatistics& statistics);
-// Counts, "distance_m" (the ground truth's path length over the evaluated span), "ate" (unaligned: the paper's ATE is
-// ate.unaligned.rmse; aligned) and "rpe_<d>m" per segment length (d printed without trailing zeros, e.g. rpe_10m).
-JsonObject toJson(const TrajectoryReport& report);
-// "cmplt" (the mean over complete windows), counts; the per-window counts go to CSV.
-JsonObject toJson(const CompletenessReport& report);
+run_files::ErrorSummary toSummary(const ErrorStatistics& statistics);
+// Counts, the distance (the ground truth's path length over the evaluated span), ATE (unaligned:
+// the paper's ATE is ate.unaligned_m.rmse; aligned), RPE per segment length, the speed error.
+run_files::TrajectorySummary toSummary(const TrajectoryReport& report);
+// CMPLT (the mean over complete windows) and counts; the per-window counts go to CSV.
+run_files::CompletenessSummary toSummary(const CompletenessReport& report);
 
-// Columns time,ate_m,ate_aligned_m.
 void writeAteSeriesCsv(const std::string& path, const std::vector<AteSample>& series);
-// Columns window,start,end,voxels,scans,points,complete (complete is 0 or 1).
 void writeCompletenessWindowsCsv(const std::string& path, const std::vector<CompletenessWindow>& windows);
 
 }  // namespace uampc::evaluator

@@ -1,0 +1,56 @@
+#include "uampc/run_files/run_progress.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "uampc/run_files/json_text.hpp"
+
+namespace uampc::run_files {
+
+namespace {
+
+template <class S, class Visit>
+void eachField(S& p, Visit&& visit) {
+  visit("sim_s", p.sim_s);
+  visit("total_s", p.total_s);
+  visit("wall_s", p.wall_s);
+  visit("finished", p.finished);
+}
+
+}  // namespace
+
+void writeRunProgress(const std::string& path, const RunProgress& progress) {
+  Json json = Json::object();
+  eachField(progress, [&json](const char* key, const auto& value) { json[key] = value; });
+  const std::string partial = path + ".partial";
+  writeJsonFile(partial, json);
+  std::error_code error;
+  std::filesystem::rename(partial, path, error);
+  if (error) throw std::runtime_error("cannot write " + path + ": " + error.message());
+}
+
+std::optional<RunProgress> readRunProgress(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) return std::nullopt;
+  RunProgress progress;
+  try {
+    const Json json = readJsonFile(path);
+    bool complete = json.is_object();
+    eachField(progress, [&](const char* key, auto& value) {
+      using Field = std::remove_reference_t<decltype(value)>;
+      const auto found = complete ? json.find(key) : json.end();
+      const bool fits = found != json.end() && (std::is_same_v<Field, bool> ? found->is_boolean() : found->is_number());
+      if (fits)
+        value = found->template get<Field>();
+      else
+        complete = false;
+    });
+    if (!complete) return std::nullopt;
+  } catch (const std::runtime_error&) {
+    return std::nullopt;
+  }
+  return progress;
+}
+
+}  // namespace uampc::run_files

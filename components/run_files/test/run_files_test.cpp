@@ -1,0 +1,265 @@
+// The run directory's schema: what the writers write, the readers read back (round trips), in the
+// text the evaluator has always written (metrics.json is compared byte for byte across versions).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "uampc/run_files/json_text.hpp"
+#include "uampc/run_files/metrics_file.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_progress.hpp"
+#include "uampc/run_files/time_series.hpp"
+
+namespace uampc::run_files {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string freshDirectory(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("run_files_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string();
+}
+
+std::string contentOf(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+MetricsDocument sampleMetrics() {
+  MetricsDocument m;
+  m.sim_time = 20;
+  m.trajectory.estimates = 201;
+  m.trajectory.paired = 200;
+  m.trajectory.unpaired = 1;
+  m.trajectory.distance_m = 14.697838943985376;
+  m.trajectory.ate.unaligned_m = {200, 0.1, 0.09, 0.08, 0.3};
+  m.trajectory.ate.aligned_m = {200, 0.05, kNotANumber, 0.04, 1e-300};
+  RpeSummary ten;
+  ten.segment_length_m = 10;
+  ten.translation_m = {12, 0.25, 0.2, 0.2, 0.5};
+  RpeSummary hundred;
+  hundred.segment_length_m = 100;  // no segment that long: no pairs, NaN figures
+  m.trajectory.rpe = {ten, hundred};
+  m.trajectory.speed_error.max_m_s = 3.6;
+  m.trajectory.speed_error.first_runaway_time = 7.25;
+  m.cmplt.cmplt = 1234.5;
+  m.cmplt.windows = 4;
+  m.cmplt.complete_windows = 3;
+  m.cmplt_ground_truth.cmplt = kNotANumber;
+  m.motor.mean_speed = 3.6000000000000001;
+  m.lo.lost_frames = 2;
+  m.lo.rejected_updates = -1;
+  return m;
+}
+
+void expectSameSummary(const ErrorSummary& a, const ErrorSummary& b) {
+  EXPECT_EQ(a.count, b.count);
+  for (auto field : {&ErrorSummary::rmse, &ErrorSummary::mean, &ErrorSummary::median, &ErrorSummary::max}) {
+    if (std::isnan(a.*field))
+      EXPECT_TRUE(std::isnan(b.*field));
+    else
+      EXPECT_EQ(a.*field, b.*field);
+  }
+}
+
+TEST(MetricsFile, ReadsBackWhatItWrote) {
+  const std::string path = inDirectory(freshDirectory("metrics"), kMetricsFile);
+  const MetricsDocument written = sampleMetrics();
+  writeMetricsFile(path, written);
+  const std::optional<MetricsDocument> read = readMetricsFile(path);
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->sim_time, 20.0);
+  EXPECT_EQ(read->trajectory.estimates, 201u);
+  EXPECT_EQ(read->trajectory.unpaired, 1u);
+  EXPECT_EQ(read->trajectory.distance_m, 14.697838943985376);  // every digit survives
+  expectSameSummary(read->trajectory.ate.unaligned_m, written.trajectory.ate.unaligned_m);
+  expectSameSummary(read->trajectory.ate.aligned_m, written.trajectory.ate.aligned_m);
+  ASSERT_EQ(read->trajectory.rpe.size(), 2u);
+  ASSERT_NE(read->trajectory.rpeOver(10), nullptr);
+  expectSameSummary(read->trajectory.rpeOver(10)->translation_m, written.trajectory.rpe[0].translation_m);
+  EXPECT_TRUE(std::isnan(read->trajectory.rpeOver(100)->translation_m.rmse));
+  EXPECT_EQ(read->trajectory.rpeOver(50), nullptr);
+  EXPECT_EQ(read->trajectory.speed_error.first_runaway_time, 7.25);
+  EXPECT_EQ(read->cmplt.cmplt, 1234.5);
+  EXPECT_EQ(read->cmplt.complete_windows, 3u);
+  EXPECT_TRUE(std::isnan(read->cmplt_ground_truth.cmplt));
+  EXPECT_EQ(read->motor.mean_speed, 3.6);
+  EXPECT_TRUE(std::isnan(read->motor.speed_std));
+  EXPECT_FALSE(read->lo.first_lost_time);
+  EXPECT_EQ(read->lo.lost_frames, 2);
+  EXPECT_EQ(read->lo.rejected_updates, -1);
+}
+
+TEST(MetricsFile, PrintsAsTheEvaluatorAlwaysHas) {
+  // Whole numbers without ".0", shortest round-trip digits, null for NaN, optional keys absent,
+  // "rpe_<length>m" keys in place, nested objects indented by two.
+  const std::string path = inDirectory(freshDirectory("metrics_text"), kMetricsFile);
+  MetricsDocument m = sampleMetrics();
+  m.trajectory.speed_error.first_runaway_time.reset();
+  writeMetricsFile(path, m);
+  const std::string text = contentOf(path);
+  EXPECT_EQ(text.rfind("{\n  \"sim_time\": 20,\n  \"trajectory\": {\n    \"estimates\": 201,\n", 0), 0u) << text;
+  EXPECT_NE(text.find("\"distance_m\": 14.697838943985376,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"aligned_m\": {\n        \"count\": 200,\n        \"rmse\": 0.05,\n        \"mean\": null,"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("\"max\": 1e-300"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"rpe_10m\": {\n      \"segment_length_m\": 10,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"rpe_100m\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"speed_error\": {\n      \"max_m_s\": 3.6\n    }"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"mean_speed\": 3.6,"), std::string::npos) << text;
+  EXPECT_EQ(text.find("first_lost_time"), std::string::npos) << text;
+  const std::string tail = "  \"lo\": {\n    \"lost_frames\": 2,\n    \"rejected_updates\": -1\n  }\n}\n";
+  EXPECT_EQ(text.substr(text.size() - tail.size()), tail) << text;
+}
+
+TEST(MetricsFile, UnfinishedRunsHaveNone) {
+  const std::string dir = freshDirectory("metrics_missing");
+  EXPECT_FALSE(readMetricsFile(inDirectory(dir, kMetricsFile)));
+  writeText(inDirectory(dir, kMetricsFile), "{\n  \"sim_time\": 20,\n  \"traj");  // torn
+  EXPECT_FALSE(readMetricsFile(inDirectory(dir, kMetricsFile)));
+  writeText(inDirectory(dir, kMetricsFile), "{\"cmplt\": {}}");  // not a metrics document
+  EXPECT_FALSE(readMetricsFile(inDirectory(dir, kMetricsFile)));
+  // An older evaluator's: what it lacks reads as unknown, wrong types too.
+  writeText(inDirectory(dir, kMetricsFile), "{\"sim_time\": 5, \"motor\": {\"mean_speed\": \"fast\"}}");
+  const auto old = readMetricsFile(inDirectory(dir, kMetricsFile));
+  ASSERT_TRUE(old);
+  EXPECT_EQ(old->sim_time, 5.0);
+  EXPECT_TRUE(std::isnan(old->motor.mean_speed));
+  EXPECT_TRUE(std::isnan(old->trajectory.distance_m));
+  EXPECT_TRUE(old->trajectory.rpe.empty());
+}
+
+TEST(JsonText, ListsAndStrings) {
+  Json json = Json::object();
+  json["name"] = "ua \"mpc\"\n\\ \x01";
+  json["seeds"] = {1, 2};
+  json["ratios"] = {0.5, std::nan(""), -2.0};
+  json["runs"] = Json::array({Json{{"seed", 1}}, Json{{"seed", 2}}});
+  json["none"] = Json::array();
+  json["empty"] = Json::object();
+  EXPECT_EQ(dumpJson(json),
+            "{\n  \"name\": \"ua \\\"mpc\\\"\\n\\\\ \\u0001\",\n  \"seeds\": [1, 2],\n  \"ratios\": [0.5, null, -2],\n"
+            "  \"runs\": [\n    {\n      \"seed\": 1\n    },\n    {\n      \"seed\": 2\n    }\n  ],\n"
+            "  \"none\": [],\n  \"empty\": {}\n}");
+  // What it prints, nlohmann reads back.
+  EXPECT_EQ(Json::parse(dumpJson(json))["runs"][1]["seed"], 2);
+}
+
+TEST(TimeSeries, RowsReadBackByColumnName) {
+  const std::string dir = freshDirectory("series");
+  const std::string ate = inDirectory(dir, kAteFile);
+  writeRows<AteRow>(ate, {{1.0, 0.5, 0.25}, {1.1, 1e20, std::nan("")}});
+  EXPECT_EQ(contentOf(ate), "time,ate_m,ate_aligned_m\n1,0.5,0.25\n1.1,1e+20,nan\n");
+  const std::vector<AteRow> rows = readRows<AteRow>(ate);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].time, 1.1);
+  EXPECT_EQ(rows[1].ate_m, 1e20);
+  EXPECT_TRUE(std::isnan(rows[1].ate_aligned_m));
+
+  CsvWriter short_rows(inDirectory(dir, "short.csv"), {"a", "b"});
+  EXPECT_THROW(short_rows.addRow({1.0}), std::invalid_argument);
+
+  const std::string windows = inDirectory(dir, kCompletenessWindowsFile);
+  writeRows<CompletenessWindowRow>(windows, {{2, 10, 15, 7, 50, 1000, true}});
+  EXPECT_EQ(contentOf(windows), "window,start,end,voxels,scans,points,complete\n2,10,15,7,50,1000,1\n");
+  EXPECT_TRUE(readRows<CompletenessWindowRow>(windows).at(0).complete);
+
+  // Columns are found by name, not by place.
+  const std::string motor = inDirectory(dir, kMotorFile);
+  writeText(motor, "omega,time,command,theta\n3.5,0.1,3.6,0.35\n");
+  const auto motor_rows = readRows<MotorRow>(motor);
+  EXPECT_EQ(motor_rows.at(0).time, 0.1);
+  EXPECT_EQ(motor_rows.at(0).omega, 3.5);
+}
+
+TEST(TimeSeries, MalformedFilesAreNamedWithTheirLine) {
+  const std::string dir = freshDirectory("series_bad");
+  const std::string motor = inDirectory(dir, kMotorFile);
+  auto expectError = [](const std::function<void()>& read, const std::string& wanted) {
+    try {
+      read();
+      ADD_FAILURE() << "no error, expected one naming " << wanted;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(wanted), std::string::npos) << e.what();
+    }
+  };
+  expectError([&] { readRows<MotorRow>(motor); }, motor);  // missing
+  writeText(motor, "time,theta,omega,command\n0.1,0.2,0.3,0.4\n0.2,x,0.3,0.4\n");
+  expectError([&] { readRows<MotorRow>(motor); }, motor + ":3: 'x' is not a number");
+  writeText(motor, "time,theta,omega\n0.1,0.2,0.3\n");
+  expectError([&] { readRows<MotorRow>(motor); }, "no column 'command'");
+  writeText(motor, "time,theta,omega,command\n0.1,0.2,0.3\n");
+  expectError([&] { readRows<MotorRow>(motor); }, motor + ":2: no value for column 'command'");
+}
+
+TEST(TimeSeries, UncertaintyAndTimingsInTheirOwnPrecision) {
+  const std::string dir = freshDirectory("logs");
+  const std::string u = inDirectory(dir, kUncertaintyFile);
+  {
+    UncertaintyWriter writer(u);
+    writer.add({0.1, 0.25, 0.5, 3.6, {1.0, 0.123456789123}});
+  }
+  EXPECT_EQ(contentOf(u),
+            "time,theta_start,delta_theta,command,samples...\n0.100000000,0.25,0.5,3.6000000000000001,1,0.123456789\n");
+  const auto rows = readUncertainty(u);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].command, 3.6);
+  EXPECT_EQ(rows[0].samples, (std::vector<double>{1.0, 0.123456789}));
+
+  const std::string t = inDirectory(dir, kTimingsFile);
+  {
+    TimingsWriter writer(t);
+    writer.add({2.5, "lo", "registration_ms", 1.25});
+  }
+  EXPECT_EQ(contentOf(t), "time,source,name,value\n2.500000000,lo,registration_ms,1.25\n");
+  const auto timings = readTimings(t);
+  ASSERT_EQ(timings.size(), 1u);
+  EXPECT_EQ(timings[0].source, "lo");
+  EXPECT_EQ(timings[0].name, "registration_ms");
+  EXPECT_EQ(timings[0].value, 1.25);
+}
+
+TEST(RunDirectory, MarkersAndSnapshotNames) {
+  const std::string dir = freshDirectory("markers");
+  EXPECT_FALSE(readDoneMarker(dir));
+  writeDoneMarker(dir, 4.5);
+  EXPECT_EQ(readDoneMarker(dir), 4.5);
+  EXPECT_EQ(readFailedMarker(dir), "");
+  writeFailedMarker(dir, "exit code 1");
+  EXPECT_EQ(readFailedMarker(dir), "exit code 1\n");
+  EXPECT_EQ(panoramaSnapshotName(4.0), "panorama_00004.0.png");
+  EXPECT_EQ(panoramaSnapshotTime(panoramaSnapshotName(123.45)), "00123.5");
+  EXPECT_FALSE(panoramaSnapshotTime("scanned_voxels.bt"));
+}
+
+TEST(RunProgress, ReadsBackWhatItWrote) {
+  const std::string path = inDirectory(freshDirectory("progress"), kProgressFile);
+  EXPECT_FALSE(readRunProgress(path));
+  writeRunProgress(path, {46.9, 890.0, 10.5, false});
+  auto p = readRunProgress(path);
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->sim_s, 46.9);
+  EXPECT_EQ(p->total_s, 890.0);
+  EXPECT_EQ(p->wall_s, 10.5);
+  EXPECT_FALSE(p->finished);
+  writeRunProgress(path, {890.0, 890.0, 200.0, true});
+  EXPECT_TRUE(readRunProgress(path)->finished);
+  EXPECT_FALSE(fs::exists(path + ".partial"));
+  writeText(path, "{\"sim_s\": 3");  // not this writer's (it renames whole files into place)
+  EXPECT_FALSE(readRunProgress(path));
+}
+
+}  // namespace
+}  // namespace uampc::run_files
