@@ -89,6 +89,147 @@ TEST(SceneValidation, ShippedScenesAreValid) {
   }
 }
 
+// Writes `text` to DIR/NAME and returns the path.
+std::string writeScene(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(SceneValidation, PortReferenceChainsResolveToTheirEndInAnyOrder) {
+  // Four references in a row, written top-down and bottom-up: every reader ends on the motor's
+  // /enc/state (one pass in file order left evaluator on lo's default topic).
+  const std::string dir = freshDirectory("validation_chain");
+  const std::vector<std::string> links = {
+      "  evaluator:\n    type: evaluator\n    topics: {motor_state: lo/motor_state}\n",
+      "  lo:\n    type: lo\n    topics: {motor_state: controller/motor_state}\n",
+      "  controller:\n    type: mpc\n    topics: {motor_state: lidar/motor_state}\n",
+      "  lidar:\n    type: raycaster\n    topics: {motor_state: motor/state}\n",
+      "  motor:\n    type: motor_bridge\n    topics: {state: /enc/state}\n"};
+  std::string top_down = "components:\n", bottom_up = "components:\n";
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    top_down += links[i];
+    bottom_up += links[links.size() - 1 - i];
+  }
+  for (const auto& path : {writeScene(dir, "top_down.yaml", top_down), writeScene(dir, "bottom_up.yaml", bottom_up)}) {
+    SCOPED_TRACE(path);
+    const CommandResult r = runUampc("graph " + path + " --format dot");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const char* reader : {"c_lidar", "c_controller", "c_lo", "c_evaluator"}) {
+      EXPECT_NE(
+          r.output.find(std::string("c_motor -> ") + reader + " [label=\"/enc/state\\nsensor_msgs/msg/JointState\"]"),
+          std::string::npos)
+          << reader << "\n"
+          << r.output;
+    }
+    EXPECT_EQ(r.output.find("/motor/state"), std::string::npos) << r.output;
+  }
+}
+
+TEST(SceneValidation, APortReferenceCycleNamesEveryLink) {
+  const std::string path = sourcePath("tests/scenes/invalid/port_reference_cycle.yaml");
+  const CommandResult r = runUampc("validate " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(path +
+                          ":5:27: error: port references form a cycle, so none of them has a topic: "
+                          "lo.motor_state = controller/motor_state (" +
+                          path + ":5:27), controller.motor_state = lo/motor_state (" + path + ":8:27)"),
+            std::string::npos)
+      << r.output;
+  // The ports left on their default topics are not reported as well.
+  EXPECT_EQ(r.output.find("no component in the scene writes"), std::string::npos) << r.output;
+}
+
+TEST(SceneValidation, SilentPortsAreWarningsOneLinePerTopicWithASuggestion) {
+  const std::string dir = freshDirectory("validation_silent");
+  const std::string path = writeScene(dir, "silent.yaml",
+                                      "components:\n"
+                                      "  motor:\n    type: motor_bridge\n    topics: {state: /motor/stat}\n"
+                                      "  lo:\n    type: lo\n"
+                                      "  controller:\n    type: mpc\n");
+  const CommandResult r = runUampc("validate " + path);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // Both readers of /motor/state on their default topic: one warning, with the near miss.
+  EXPECT_NE(r.output.find(path + ":5:3: warning: no component in the scene writes /motor/state, read by "
+                                 "lo.motor_state, controller.motor_state (sensor_msgs/msg/JointState); did you "
+                                 "mean '/motor/stat'?"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find(path + ":4:21: warning: nobody in the scene reads /motor/stat, written by motor.state "
+                                 "(sensor_msgs/msg/JointState); did you mean '/motor/state'?"),
+            std::string::npos)
+      << r.output;
+  std::size_t lines_about_motor_state = 0;
+  for (std::size_t at = r.output.find("writes /motor/state,"); at != std::string::npos;
+       at = r.output.find("writes /motor/state,", at + 1)) {
+    ++lines_about_motor_state;
+  }
+  EXPECT_EQ(lines_about_motor_state, 1u) << r.output;
+  // Launch prints them too, before it starts anything.
+  const std::string motor_only = writeScene(
+      dir, "motor_only.yaml",
+      "clock: {duration: 0.01}\ncomponents:\n  motor:\n    type: motor_bridge\n    topics: {state: /motor/stat}\n");
+  const CommandResult launch = runUampc("launch " + motor_only);
+  EXPECT_EQ(launch.exit_code, 0) << launch.output;
+  EXPECT_NE(launch.output.find(motor_only + ":5:21: warning: nobody in the scene reads /motor/stat, written by "
+                                            "motor.state"),
+            std::string::npos)
+      << launch.output;
+}
+
+TEST(SceneValidation, GraphPrintsMermaidByDefault) {
+  const CommandResult r = runUampc("graph " + sourcePath("config/scenes/default_split.yaml"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("flowchart LR"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("c_motor[\"motor<br/>motor_bridge<br/>process motor\"]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("c_controller -->|\"/motor/command<br/>uampc/msg/MotorCommand\"| c_motor"), std::string::npos)
+      << r.output;
+  // Nobody reads the motor's state in this scene: the topic is drawn on its own, dashed.
+  EXPECT_NE(r.output.find("(no reader)"), std::string::npos) << r.output;
+  EXPECT_EQ(runUampc("graph " + sourcePath("config/scenes/default_split.yaml") + " --format svg").exit_code, 2);
+}
+
+TEST(SceneValidation, ExtendsMergesComponentsKeyByKeyAndNamesTheFileOfEachMistake) {
+  const std::string dir = freshDirectory("validation_extends");
+  std::filesystem::create_directories(dir + "/base");
+  const std::string base = writeScene(dir, "base/base.yaml",
+                                      "seed: 3\nclock: {mode: lockstep, step: 0.005}\ncomponents:\n"
+                                      "  motor:\n    type: motor_bridge\n    params: {encoder_rate: 0, max_speed: 5}\n"
+                                      "  controller:\n    type: constant_speed_controller\n    params: {speed: 1}\n");
+  // A mistake in the base is reported at the base's line, one in the scene at the scene's.
+  const std::string bad =
+      writeScene(dir, "bad.yaml", "extends: base/base.yaml\ncomponents:\n  controller:\n    params: {speeed: 2}\n");
+  CommandResult r = runUampc("validate " + bad);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(base + ":6:28: error: parameter 'encoder_rate'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(bad + ":4:14: error: unknown parameter 'speeed'"), std::string::npos) << r.output;
+  // One parameter of one component changed, and a process: the rest of the base stays.
+  const std::string good = writeScene(dir, "good.yaml",
+                                      "extends: base/base.yaml\nclock: {duration: 1}\ncomponents:\n"
+                                      "  motor:\n    params: {encoder_rate: 100}\n"
+                                      "  controller:\n    process: control\n");
+  r = runUampc("graph " + good + " --format dot");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("c_controller [label=\"controller\\nconstant_speed_controller\\nprocess control\"]"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("c_motor [label=\"motor\\nmotor_bridge\\nprocess main\"]"), std::string::npos) << r.output;
+  // Chains: a scene that extends the one above still has the base's bounds checked where written.
+  const std::string chained =
+      writeScene(dir, "chained.yaml", "extends: good.yaml\ncomponents:\n  motor:\n    params: {max_speed: -1}\n");
+  r = runUampc("validate " + chained);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(chained + ":4:25: error: parameter 'max_speed'"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("encoder_rate"), std::string::npos) << r.output;
+  // Cycles are refused where they close.
+  const std::string a = writeScene(dir, "a.yaml", "extends: b.yaml\ncomponents: {}\n");
+  const std::string b = writeScene(dir, "b.yaml", "# b\nextends: a.yaml\n");
+  r = runUampc("validate " + a);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(b + ":2:10: error: extends cycle: " + a + " -> " + b + " -> " + a), std::string::npos)
+      << r.output;
+}
+
 TEST(ComponentLoader, RefusesALibraryBuiltForAnotherAbiVersion) {
   const CommandResult r = runShell("UAMPC_COMPONENT_PATH=" + binaryPath("tests/bad_abi_components") + " " +
                                    binaryPath("bin/uampc") + " components");

@@ -231,8 +231,11 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     error(components, "'components' must map instance names to components");
   } else {
     for (const auto& kv : components) readComponent(kv.first, kv.second, scene);
+    const std::size_t errors_before = errors_.size();
     resolvePortReferences(scene, pending_, errors_);
-    checkConnections(scene, topic_locations_, errors_);
+    // A reference that failed leaves its port on its default topic: checking that would only
+    // add confusing messages.
+    if (errors_.size() == errors_before) checkConnections(scene, topic_locations_, errors_);
   }
   if (scene.clock.mode == ClockMode::kLockstep && scene.on_crash == CrashPolicy::kRestart) {
     error(root["on_crash"],
