@@ -1,19 +1,15 @@
 #include "experiment_eta.hpp"
 
 #include <algorithm>
-#include <cstdlib>
-#include <regex>
+
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_progress.hpp"
 
 namespace uampc::app {
 
-std::optional<SimProgress> lastSimProgress(const std::string& log_text) {
-  static const std::regex kLine(R"(uampc: sim ([0-9]+(\.[0-9]*)?) / ([0-9]+(\.[0-9]*)?) s)");
-  std::optional<SimProgress> last;
-  for (auto it = std::sregex_iterator(log_text.begin(), log_text.end(), kLine); it != std::sregex_iterator(); ++it) {
-    // The pattern admits only plain decimals, which std::strtod always reads.
-    last = SimProgress{std::strtod((*it)[1].str().c_str(), nullptr), std::strtod((*it)[3].str().c_str(), nullptr)};
-  }
-  return last;
+SimProgress runProgress(const std::string& run_directory) {
+  const auto progress = run_files::readRunProgress(run_files::inDirectory(run_directory, run_files::kProgressFile));
+  return progress ? SimProgress{progress->sim_s, progress->total_s} : SimProgress{};
 }
 
 double estimateRemainingSeconds(const std::vector<StartedRun>& runs, const std::vector<double>& pending_total_s,

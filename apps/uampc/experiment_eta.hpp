@@ -14,8 +14,9 @@ struct SimProgress {
   double total_s = 0.0;  // sim time the run lasts
 };
 
-// The last "uampc: sim X / Y s" progress line of a `uampc launch` log, if any.
-std::optional<SimProgress> lastSimProgress(const std::string& log_text);
+// How far a run has come, from the progress.json its clock writes (run_files/run_progress.hpp);
+// zeros before the clock has written one.
+SimProgress runProgress(const std::string& run_directory);
 
 struct StartedRun {
   SimProgress progress;  // total_s <= 0: not known yet

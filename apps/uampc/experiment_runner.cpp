@@ -107,12 +107,31 @@ struct Running {
   Clock::time_point start;
 };
 
-pid_t startRun(const std::string& executable, const std::vector<std::string>& args, const fs::path& log) {
+// This process's environment with the run's progress file named in it (the clock writes it).
+std::vector<std::string> runEnvironment(const fs::path& progress_file) {
+  const std::string name = std::string(run_files::kProgressFileVariable) + "=";
+  std::vector<std::string> environment;
+  for (char** entry = environ; *entry; ++entry) {
+    if (std::string(*entry).rfind(name, 0) != 0) environment.push_back(*entry);
+  }
+  environment.push_back(name + progress_file.string());
+  return environment;
+}
+
+std::vector<char*> nullTerminated(std::vector<std::string>& texts) {
+  std::vector<char*> pointers;
+  for (auto& t : texts) pointers.push_back(t.data());
+  pointers.push_back(nullptr);
+  return pointers;
+}
+
+pid_t startRun(const std::string& executable, const std::vector<std::string>& args, const fs::path& directory) {
   std::vector<std::string> argv_text{"uampc"};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  std::vector<std::string> environment = runEnvironment(directory / run_files::kProgressFile);
+  // Prepared before fork: the child may only make async-signal-safe calls until exec.
+  const std::vector<char*> argv = nullTerminated(argv_text), envp = nullTerminated(environment);
+  const fs::path log = directory / run_files::kRunLog;
   const pid_t pid = fork();
   if (pid != 0) return pid;  // parent, or -1
   // Child: only async-signal-safe calls until exec.
@@ -123,7 +142,7 @@ pid_t startRun(const std::string& executable, const std::vector<std::string>& ar
     dup2(fd, STDERR_FILENO);
   }
   if (null >= 0) dup2(null, STDIN_FILENO);
-  execv(executable.c_str(), argv.data());
+  execve(executable.c_str(), argv.data(), envp.data());
   const char message[] = "uampc experiment: cannot execute the uampc binary\n";
   (void)!write(STDERR_FILENO, message, sizeof(message) - 1);
   _exit(127);
@@ -175,7 +194,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
   std::vector<RunResult> results(plan.size());
   std::vector<std::size_t> pending;
   // For the ETA: each scene's length in sim seconds once known (every controller and seed of a
-  // scene simulates the same time), from runs of before or from a running one's progress line.
+  // scene simulates the same time), from runs of before or from a running one's progress file.
   std::map<std::size_t, double> scene_length_s;
   for (std::size_t i = 0; i < plan.size(); ++i) {
     RunResult& r = results[i];
@@ -209,10 +228,9 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
   std::size_t next = 0, finished_now = 0, failed = 0;
   std::vector<StartedRun> finished_work;  // for the ETA: the runs finished in this invocation
   auto logProgress = [&](std::size_t run) {
-    const fs::path log = fs::path(options.output_directory) / plan[run].directory / run_files::kRunLog;
-    const std::optional<SimProgress> p = lastSimProgress(readText(log));
-    if (p && p->total_s > 0) scene_length_s[plan[run].scene] = p->total_s;
-    return p.value_or(SimProgress{});
+    const SimProgress p = runProgress((fs::path(options.output_directory) / plan[run].directory).string());
+    if (p.total_s > 0) scene_length_s[plan[run].scene] = p.total_s;
+    return p;
   };
   auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto report = [&](bool force) {
@@ -249,7 +267,7 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
       std::vector<std::string> args = plan[i].args;
       args.insert(args.end(),
                   {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options.domain_base + slot)});
-      const pid_t pid = startRun(options.executable, args, dir / run_files::kRunLog);
+      const pid_t pid = startRun(options.executable, args, dir);
       if (pid < 0) {
         results[i].status = RunStatus::kFailed;
         results[i].failure = std::string("cannot start a process: ") + std::strerror(errno);

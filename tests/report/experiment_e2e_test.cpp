@@ -53,6 +53,11 @@ TEST(ExperimentEndToEnd, RunsTheMatrixWritesTheReportAndResumes) {
   EXPECT_TRUE(fs::is_regular_file(out + "/report/index.html"));
   EXPECT_TRUE(fs::is_regular_file(out + "/report/campus_top_view.svg"));
   EXPECT_TRUE(fs::is_regular_file(out + "/runs/campus/zero/seed1/run.log"));
+  // The clock's machine-readable progress, which the ETA reads: its last word is the run's end.
+  const YAML::Node progress = YAML::LoadFile(out + "/runs/campus/zero/seed1/progress.json");
+  EXPECT_TRUE(progress["finished"].as<bool>());
+  EXPECT_DOUBLE_EQ(progress["sim_s"].as<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(progress["total_s"].as<double>(), 3.0);
 
   const auto log_time = fs::last_write_time(out + "/runs/campus/ua_mpc/seed1/run.log");
   const CommandResult second = runUampc(command);

@@ -1,25 +1,26 @@
-// The experiment's ETA: read from the launch logs' progress lines, computed from sim seconds.
+// The experiment's ETA: read from the runs' progress files (written by the clock), computed from sim seconds.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "experiment_eta.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_progress.hpp"
 
 namespace uampc::app {
 namespace {
 
-TEST(ExperimentEta, ReadsTheLastProgressLineOfALaunchLog) {
-  const std::string log =
-      "uampc: scene 'mcd_kth' (6 components, 1 process(es), lockstep, DDS domain 100)\n"
-      "uampc: sim 0.0 / 890.0 s (  0%), 0.0x real time\n"
-      "[  14.510000] [lo] WARN  degenerate geometry\n"
-      "uampc: sim 46.9 / 890.0 s (  5%), 4.3x real time\n";
-  const auto p = lastSimProgress(log);
-  ASSERT_TRUE(p);
-  EXPECT_DOUBLE_EQ(p->done_s, 46.9);
-  EXPECT_DOUBLE_EQ(p->total_s, 890.0);
-  EXPECT_FALSE(lastSimProgress("uampc: scene 'x'\n[1.0] [lo] INFO sim 3 / 4 s\n"));
-  EXPECT_FALSE(lastSimProgress(""));
-  // A garbled line is not a progress line (and does not throw).
-  EXPECT_FALSE(lastSimProgress("uampc: sim . / .. s\n"));
+TEST(ExperimentEta, ReadsTheProgressFileOfARun) {
+  const std::string run = ::testing::TempDir() + "/eta_run";
+  std::filesystem::remove_all(run);
+  std::filesystem::create_directories(run);
+  // Before the clock has written anything: nothing done, length unknown.
+  EXPECT_EQ(runProgress(run).done_s, 0.0);
+  EXPECT_EQ(runProgress(run).total_s, 0.0);
+  run_files::writeRunProgress(run_files::inDirectory(run, run_files::kProgressFile), {46.9, 890.0, 10.9, false});
+  const SimProgress p = runProgress(run);
+  EXPECT_EQ(p.done_s, 46.9);
+  EXPECT_EQ(p.total_s, 890.0);
 }
 
 TEST(ExperimentEta, ExtrapolatesSimSecondsPerSlot) {

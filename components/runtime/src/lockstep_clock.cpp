@@ -2,15 +2,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <thread>
 
 #include "dds_node.hpp"
-#include "wakeup.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_progress.hpp"
 #include "uampc/runtime/process_group.hpp"
+#include "wakeup.hpp"
 
 namespace uampc {
 
@@ -19,14 +23,23 @@ using SteadyClock = std::chrono::steady_clock;
 
 namespace {
 
-// Progress on long runs: one line every few seconds (or a line rewritten in place on a terminal).
+// Progress on long runs: one line every few seconds (or a line rewritten in place on a terminal)
+// for people and, when the environment names a file (run_files::kProgressFileVariable, set by
+// `uampc experiment`), progress.json for programs, rewritten every second.
 class Progress {
  public:
-  explicit Progress(double duration_s) : duration_s_(duration_s), tty_(isatty(STDERR_FILENO)) {}
-  void update(double sim_s, double wall_s, bool force = false) {
+  explicit Progress(double duration_s) : duration_s_(duration_s), tty_(isatty(STDERR_FILENO)) {
+    if (const char* file = std::getenv(run_files::kProgressFileVariable)) progress_file_ = file;
+  }
+  // last: the clock's final figures, written whatever the time since the previous ones.
+  void update(double sim_s, double wall_s, bool last = false) {
     const auto now = SteadyClock::now();
-    if (!force && now - last_ < std::chrono::seconds(tty_ ? 1 : 10)) return;
-    last_ = now;
+    if (last || now - last_file_ >= std::chrono::seconds(1)) {
+      last_file_ = now;
+      writeFile({sim_s, std::max(duration_s_, 0.0), wall_s, last});
+    }
+    if (!last && now - last_line_ < std::chrono::seconds(tty_ ? 1 : 10)) return;
+    last_line_ = now;
     const double factor = wall_s > 0 ? sim_s / wall_s : 0.0;
     if (duration_s_ > 0) {
       std::fprintf(stderr, "%suampc: sim %.1f / %.1f s (%3.0f%%), %.1fx real time%s", tty_ ? "\r" : "", sim_s,
@@ -42,9 +55,21 @@ class Progress {
   }
 
  private:
+  // A file that cannot be written is said once and given up: the run itself goes on.
+  void writeFile(const run_files::RunProgress& progress) {
+    if (progress_file_.empty()) return;
+    try {
+      run_files::writeRunProgress(progress_file_, progress);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "uampc: no more progress to %s: %s\n", progress_file_.c_str(), e.what());
+      progress_file_.clear();
+    }
+  }
+
   double duration_s_;
   bool tty_;
-  SteadyClock::time_point last_{};
+  std::string progress_file_;  // empty: none
+  SteadyClock::time_point last_line_{}, last_file_{};
 };
 
 }  // namespace
@@ -55,15 +80,14 @@ ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
   DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock");
   Wakeup listener;
   DataWriter* clock_writer = dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
-                                              QosPreset::kControl);
-  DataReader* ack_reader = dds.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
-                                            &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl,
-                                            &listener);
+                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
+  DataReader* ack_reader =
+      dds.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                       &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &listener);
   const std::vector<std::string> processes = scene.processes();
   const auto wall_start = SteadyClock::now();
-  const auto ack_timeout = std::chrono::duration_cast<SteadyClock::duration>(
-      std::chrono::duration<double>(scene.clock.ack_timeout_s));
+  const auto ack_timeout =
+      std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(scene.clock.ack_timeout_s));
 
   // Waits until every process acknowledged `step`; false (with result.error) on failure.
   std::set<std::string> acked;
@@ -128,8 +152,8 @@ ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
     if (scene.clock.duration_s > 0 && t > duration) break;
     if (stop) break;
     if (scene.clock.real_time_factor > 0) {
-      std::this_thread::sleep_until(wall_start + std::chrono::duration<double>(t.seconds() /
-                                                                               scene.clock.real_time_factor));
+      std::this_thread::sleep_until(wall_start +
+                                    std::chrono::duration<double>(t.seconds() / scene.clock.real_time_factor));
     }
     rosgraph_msgs::msg::Clock tick;
     tick.clock(toMsg(t));
