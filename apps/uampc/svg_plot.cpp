@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "paired_statistics.hpp"
+#include "uampc/colour_map/viridis.hpp"
 
 namespace uampc::app::svg {
 
@@ -257,22 +258,8 @@ std::string paletteColour(std::size_t index) {
 }
 
 std::string viridis(double t) {
-  // Viridis at 9 stops, interpolated linearly.
-  static const std::array<std::array<double, 3>, 9> kStops{{{68, 1, 84},
-                                                            {71, 44, 122},
-                                                            {59, 81, 139},
-                                                            {44, 113, 142},
-                                                            {33, 144, 141},
-                                                            {39, 173, 129},
-                                                            {92, 200, 99},
-                                                            {170, 220, 50},
-                                                            {253, 231, 37}}};
-  t = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * (kStops.size() - 1);
-  const auto i = std::min(static_cast<std::size_t>(t), kStops.size() - 2);
-  const double a = t - static_cast<double>(i);
+  const auto rgb = colour_map::viridis(t);
   char buffer[8];
-  int rgb[3];
-  for (int k = 0; k < 3; ++k) rgb[k] = static_cast<int>(std::lround(kStops[i][k] * (1 - a) + kStops[i + 1][k] * a));
   std::snprintf(buffer, sizeof(buffer), "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
   return buffer;
 }
