@@ -116,6 +116,10 @@ int graphCommand(const std::vector<std::string>& args) {
   GraphFormat format = GraphFormat::kMermaid;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << kGraphUsage;
+      return 0;
+    }
     if (a == "--set" || a == "--format") {
       if (i + 1 >= args.size()) return usage(a + " needs a value");
       const std::string& value = args[++i];
