@@ -8,7 +8,8 @@
 #include <sstream>
 
 #include "command_runner.hpp"
-#include "csv.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/time_series.hpp"
 
 namespace uampc::test {
 namespace {
@@ -51,9 +52,10 @@ TEST(LoDrift, UnderOnePercentOfDistanceOver300MetresOnARichCampusAtConstantSpeed
   const std::string out = freshDirectory("lo_drift");
   // 3 m/s for 105 s: 300 m along the campus streets, every block rich in geometry (the poor
   // blocks are where UA-MPC matters; constant speed is known to struggle there).
-  const PairedRun run = runCampus(out, "--set domain_id=59 --set clock.duration=105 --set world.path_speed=3.0 "
-                                      "--set world.campus_poor_rows=0 --set controller.mode=constant "
-                                      "--set controller.constant_speed=3.6");
+  const PairedRun run = runCampus(out,
+                                  "--set domain_id=59 --set clock.duration=105 --set world.path_speed=3.0 "
+                                  "--set world.campus_poor_rows=0 --set controller.mode=constant "
+                                  "--set controller.constant_speed=3.6");
   const auto& truth = run.truth;
   ASSERT_GT(truth.size(), 1000u);
   double distance = 0, worst_ratio = 0;
@@ -71,9 +73,10 @@ TEST(LoDrift, UnderOnePercentOfDistanceOver300MetresOnARichCampusAtConstantSpeed
 // it is lost, and reports the degenerate directions it crosses on /lo/metrics.
 TEST(LoDrift, LidarInertialHoldsThroughThePoorRowAndReportsItDegenerate) {
   const std::string out = freshDirectory("lo_poor_row");
-  const PairedRun run = runCampus(out, "--set domain_id=63 --set clock.duration=70 --set world.path_speed=3.0 "
-                                      "--set lidar.imu=true --set lo.use_imu=true --set controller.mode=constant "
-                                      "--set controller.constant_speed=3.6");
+  const PairedRun run = runCampus(out,
+                                  "--set domain_id=63 --set clock.duration=70 --set world.path_speed=3.0 "
+                                  "--set lidar.imu=true --set lo.use_imu=true --set controller.mode=constant "
+                                  "--set controller.constant_speed=3.6");
   ASSERT_GT(run.truth.size(), 600u);
   double worst = 0.0;
   for (std::size_t i = 0; i < run.truth.size(); ++i) worst = std::max(worst, positionError(run, i));
@@ -83,10 +86,8 @@ TEST(LoDrift, LidarInertialHoldsThroughThePoorRowAndReportsItDegenerate) {
   EXPECT_EQ(metrics.find("first_lost_time"), std::string::npos) << metrics;
   // timings.csv holds /lo/metrics: the poor row must show up as degenerate directions.
   std::size_t degenerate_frames = 0;
-  std::stringstream timings(readFile(out + "/timings.csv"));
-  for (std::string line; std::getline(timings, line);) {
-    const auto name = line.find(",lo,degenerate_directions,");
-    if (name != std::string::npos && std::stod(line.substr(line.rfind(',') + 1)) > 0) ++degenerate_frames;
+  for (const run_files::TimingRow& row : run_files::readTimings(out + "/" + run_files::kTimingsFile)) {
+    if (row.source == "lo" && row.name == "degenerate_directions" && row.value > 0) ++degenerate_frames;
   }
   EXPECT_GT(degenerate_frames, 10u);
   std::cout << "poor row with the IMU: worst position error " << worst << " m, " << degenerate_frames

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "command_runner.hpp"
-#include "csv.hpp"
+#include "uampc/run_files/csv.hpp"
 
 namespace uampc::test {
 namespace {
@@ -25,8 +25,8 @@ constexpr double kResolution = 0.0015339807878856412;  // as in the test scenes
 
 TEST(Lockstep, ThetaIsTheIntegralOfTheCommandWithinEncoderResolutionOver60Seconds) {
   const std::string out = runScene("motor_constant_speed.yaml", "lockstep_theta", 11);
-  const auto states = readCsv(out + "/recorder_motor_states.csv");
-  const auto commands = readCsv(out + "/recorder_motor_commands.csv");
+  const auto states = run_files::readCsv(out + "/recorder_motor_states.csv").rows;
+  const auto commands = run_files::readCsv(out + "/recorder_motor_commands.csv").rows;
   ASSERT_GE(states.size(), 12000u);  // 200 Hz for 60 s
   ASSERT_GE(commands.size(), 600u);  // 10 Hz for 60 s
   // Samples published in the last step (t = 60 s) would be delivered in a step that never comes.
@@ -66,7 +66,7 @@ TEST(Lockstep, OverridesApplyAndShowInTheOutput) {
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_constant_speed.yaml") + " --out " + out +
                                    " --set domain_id=15 --set controller.speed=1.8 --set clock.duration=2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto states = readCsv(out + "/recorder_motor_states.csv");
+  const auto states = run_files::readCsv(out + "/recorder_motor_states.csv").rows;
   ASSERT_FALSE(states.empty());
   EXPECT_NEAR(states.back()[0], 2.0 - 0.005, 1e-9);
   EXPECT_NEAR(states.back()[2], 1.8, 1e-12);
@@ -74,11 +74,11 @@ TEST(Lockstep, OverridesApplyAndShowInTheOutput) {
 
 TEST(Lockstep, MotorFallsBackToTheSafeSpeedWhenCommandsStopAndSaysSo) {
   const std::string out = freshDirectory("lockstep_fallback");
-  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_fallback.yaml") + " --out " + out +
-                                   " --set domain_id=16");
+  const CommandResult r =
+      runUampc("launch " + sourcePath("tests/scenes/motor_fallback.yaml") + " --out " + out + " --set domain_id=16");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("falling back to the safe speed 1 rad/s"), std::string::npos) << r.output;
-  const auto states = readCsv(out + "/recorder_motor_states.csv");
+  const auto states = run_files::readCsv(out + "/recorder_motor_states.csv").rows;
   ASSERT_GT(states.size(), 300u);
   for (const auto& s : states) {
     // Still (no command yet) until the timeout passes, then the safe speed.
@@ -93,11 +93,11 @@ TEST(Lockstep, MotorFallsBackToTheSafeSpeedWhenCommandsStopAndSaysSo) {
 
 TEST(Lockstep, ScenesSplitOverProcessesWorkWithTheLargeDataDdsProfile) {
   const std::string out = freshDirectory("lockstep_profile");
-  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + out +
-                                   " --set domain_id=17 --set clock.duration=2 --set dds_profile=" +
-                                   sourcePath("config/dds/large_data.xml"));
+  const CommandResult r = runUampc(
+      "launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + out +
+      " --set domain_id=17 --set clock.duration=2 --set dds_profile=" + sourcePath("config/dds/large_data.xml"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_GT(readCsv(out + "/recorder_motor_states.csv").size(), 300u);
+  EXPECT_GT(run_files::readCsv(out + "/recorder_motor_states.csv").rows.size(), 300u);
   const std::string broken = freshDirectory("lockstep_profile_broken") + "/broken.xml";
   std::ofstream(broken) << "<dds><profiles><participant";
   const CommandResult bad = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") +

@@ -8,15 +8,16 @@
 #include <filesystem>
 
 #include "command_runner.hpp"
-#include "csv.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/time_series.hpp"
 
 namespace uampc::test {
 namespace {
 
 std::string runLoop(const std::string& scene, const std::string& name, int domain, const std::string& extra = "") {
   const std::string out = freshDirectory(name);
-  const CommandResult r = runUampc("launch " + sourcePath(scene) + " --out " + out + " --set domain_id=" +
-                                   std::to_string(domain) + " " + extra);
+  const CommandResult r = runUampc("launch " + sourcePath(scene) + " --out " + out +
+                                   " --set domain_id=" + std::to_string(domain) + " " + extra);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return out;
 }
@@ -40,40 +41,40 @@ TEST(Loop, ControllerModesCommandWhatTheySay) {
   for (const auto& [mode, speed] : std::vector<std::pair<std::string, double>>{{"constant", 1.8}, {"zero", 0.0}}) {
     const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_" + mode, 54,
                                     base + "--set controller.mode=" + mode + " --set controller.constant_speed=1.8");
-    const auto motor = readCsv(out + "/motor.csv");
+    const auto motor = run_files::readRows<run_files::MotorRow>(out + "/" + run_files::kMotorFile);
     ASSERT_GT(motor.size(), 400u);
-    EXPECT_NEAR(motor.back()[2], speed, 1e-6) << mode;  // omega, after the motor's lag
-    EXPECT_NEAR(motor.back()[3], speed, 1e-12) << mode;  // command
+    EXPECT_NEAR(motor.back().omega, speed, 1e-6) << mode;  // after the motor's lag
+    EXPECT_NEAR(motor.back().command, speed, 1e-12) << mode;
   }
   const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_ua_mpc", 55, base);
-  const auto motor = readCsv(out + "/motor.csv");
+  const auto motor = run_files::readRows<run_files::MotorRow>(out + "/" + run_files::kMotorFile);
   double lo = 1e9, hi = -1e9;
   for (const auto& row : motor) {
-    if (row[0] < 1.0) continue;  // the first scans: the local map builds up
-    lo = std::min(lo, row[3]);
-    hi = std::max(hi, row[3]);
+    if (row.time < 1.0) continue;  // the first scans: the local map builds up
+    lo = std::min(lo, row.command);
+    hi = std::max(hi, row.command);
   }
   EXPECT_GE(lo, 0.0);  // within the default bounds [0, 7.2] rad/s
   EXPECT_LE(hi, 7.2);
   EXPECT_GT(hi - lo, 0.1) << "UA-MPC never changed the speed";
-  const auto profile = readCsv(out + "/uncertainty.csv");
+  const auto profile = run_files::readUncertainty(out + "/" + run_files::kUncertaintyFile);
   ASSERT_GT(profile.size(), 10u);
-  EXPECT_EQ(profile.back().size(), 4u + 72u);  // time, theta_start, delta, command, 72 samples
-  for (std::size_t i = 4; i < profile.back().size(); ++i) EXPECT_TRUE(std::isfinite(profile.back()[i]));
+  EXPECT_EQ(profile.back().samples.size(), 72u);
+  for (double u : profile.back().samples) EXPECT_TRUE(std::isfinite(u));
 }
 
 TEST(Loop, EvaluatorWritesEveryFileAndTheLoStaysOnTrack) {
   const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_eval", 56,
                                   "--set clock.duration=10 --set evaluator.panorama_period=4");
-  for (const char* file : {"metrics.json", "estimate.tum", "ground_truth.tum", "ate.csv", "cmplt_windows.csv",
-                           "cmplt_ground_truth_windows.csv", "motor.csv", "timings.csv", "uncertainty.csv",
-                           "scanned_voxels.bt"}) {
+  for (const char* file :
+       {"metrics.json", "estimate.tum", "ground_truth.tum", "ate.csv", "cmplt_windows.csv",
+        "cmplt_ground_truth_windows.csv", "motor.csv", "timings.csv", "uncertainty.csv", "scanned_voxels.bt"}) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
   }
-  const auto ate = readCsv(out + "/ate.csv");
+  const auto ate = run_files::readRows<run_files::AteRow>(out + "/" + run_files::kAteFile);
   ASSERT_GT(ate.size(), 90u);  // 10 Hz for 10 s
   double worst = 0;
-  for (const auto& row : ate) worst = std::max(worst, row[1]);
+  for (const auto& row : ate) worst = std::max(worst, row.ate_m);
   EXPECT_LT(worst, 0.5) << "the LO drifted more than 0.5 m in 10 s on the campus";
   const std::string metrics = readFile(out + "/metrics.json");
   EXPECT_NE(metrics.find("\"cmplt_ground_truth\""), std::string::npos);

@@ -8,9 +8,9 @@
 #include <map>
 
 #include "command_runner.hpp"
-#include "csv.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/run_files/csv.hpp"
 #include "uampc/world/trajectory.hpp"
 
 namespace uampc::test {
@@ -28,17 +28,18 @@ TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   std::vector<world::TimedPose> poses;
-  for (const auto& row : readCsv(out + "/recorder_ground_truth.csv")) {
+  for (const auto& row : run_files::readCsv(out + "/recorder_ground_truth.csv").rows) {
     poses.push_back({row[0], {row[1], row[2], row[3]}, Eigen::Quaterniond(row[7], row[4], row[5], row[6])});
   }
   const world::Trajectory ground_truth(poses);
   frames::MotorAngleTrack motor(1000.0);
-  for (const auto& row : readCsv(out + "/recorder_motor_states.csv")) motor.add({row[0], row[1], row[2]});
+  for (const auto& row : run_files::readCsv(out + "/recorder_motor_states.csv").rows)
+    motor.add({row[0], row[1], row[2]});
   const auto calibration = frames::MotorLidarCalibration::referenceRig();
 
   std::map<double, int> points_per_frame;
   double worst = 0;
-  for (const auto& row : readCsv(out + "/recorder_scans.csv")) {
+  for (const auto& row : run_files::readCsv(out + "/recorder_scans.csv").rows) {
     const double stamp = row[0], t = stamp + row[5];
     ++points_per_frame[stamp];
     ASSERT_GE(row[5], 0.0);
@@ -70,7 +71,7 @@ TEST(Simulator, ImuSamplesComeInOrderAndSeeTheMotorAndGravity) {
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out +
                                    " --set domain_id=43 --set lidar.imu=true");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = readCsv(out + "/recorder_imu.csv");
+  const auto rows = run_files::readCsv(out + "/recorder_imu.csv").rows;
   ASSERT_GT(rows.size(), 120u);  // 0.7 s at 200 Hz, less the start and the last steps
   const double tilt = 30.0 * M_PI / 180.0;
   const Eigen::Vector3d motor_axis_L(0.0, std::sin(tilt), std::cos(tilt));  // R_ML^T e_z
@@ -103,8 +104,8 @@ TEST(Simulator, CorruptMapsAndTrajectoriesStopTheRunNamingTheFile) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("component 'world' (map_provider) could not start: " + corrupt_pcd), std::string::npos)
       << r.output;
-  r = runUampc("launch " + scene + " --set domain_id=42 --set world.world=campus --set world.trajectory_file=" +
-               bad_tum);
+  r = runUampc("launch " + scene +
+               " --set domain_id=42 --set world.world=campus --set world.trajectory_file=" + bad_tum);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find(bad_tum + ":2:"), std::string::npos) << r.output;
 }

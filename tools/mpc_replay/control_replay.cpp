@@ -2,28 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "uampc/mpc/uncertainty_surrogate.hpp"
+#include "uampc/run_files/csv.hpp"
 
 namespace uampc::tools {
 namespace {
-
-std::vector<double> parseRow(const std::string& line, const std::string& where) {
-  std::vector<double> values;
-  std::stringstream stream(line);
-  for (std::string cell; std::getline(stream, cell, ',');) {
-    char* end = nullptr;
-    const double v = std::strtod(cell.c_str(), &end);
-    if (cell.empty() || *end != '\0' || !std::isfinite(v)) {
-      throw std::runtime_error(where + ": '" + cell + "' is not a finite number");
-    }
-    values.push_back(v);
-  }
-  return values;
-}
 
 double rms(const std::vector<double>& v) {
   double sum = 0.0;
@@ -40,16 +25,16 @@ int binOf(double theta, double step, int bins) {
 }  // namespace
 
 std::vector<ControlRecord> readControlRecords(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path);
+  // The run files' one CSV reader; the positions of the columns are uncertainty.csv's
+  // (run_files::UncertaintyRow), the checks below this tool's.
+  const run_files::CsvTable table = run_files::readCsv(path);
   std::vector<ControlRecord> records;
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (number == 1 || line.empty()) continue;  // header
-    const std::string where = path + ":" + std::to_string(number);
-    const std::vector<double> v = parseRow(line, where);
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    const std::string where = path + ":" + std::to_string(table.lines[i]);
+    const std::vector<double>& v = table.rows[i];
+    for (const double value : v) {
+      if (!std::isfinite(value)) throw std::runtime_error(where + ": a value is not finite");
+    }
     if (v.size() < 6)
       throw std::runtime_error(where + ": expected time, theta_start, delta_theta, command and U samples");
     ControlRecord r{v[0], v[1], v[2], v[3], std::vector<double>(v.begin() + 4, v.end())};
