@@ -65,6 +65,7 @@ void printJson(const std::vector<const ComponentLibrary*>& libraries) {
         for (std::size_t c = 0; c < param.choices.size(); ++c) std::cout << (c ? ", " : "") << jsonString(param.choices[c]);
         std::cout << "]";
       }
+      if (param.rig) std::cout << ", \"rig\": true";
       std::cout << ", \"doc\": " << jsonString(param.doc) << "}";
     }
     std::cout << "]}" << (i + 1 < libraries.size() ? "," : "") << "\n";
@@ -105,6 +106,7 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
         std::cout << " one of";
         for (const auto& c : param.choices) std::cout << " " << c;
       }
+      if (param.rig) std::cout << " (rig: set under rig:)";
       std::cout << "\n         " << param.doc << "\n";
     }
     std::cout << "\n";

@@ -235,7 +235,7 @@ TEST(ComponentLoader, RefusesALibraryBuiltForAnotherAbiVersion) {
                                    binaryPath("bin/uampc") + " components");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("libuampc_bad_abi.so: built for component ABI version 42, but this uampc runtime has "
-                          "version 1; rebuild"),
+                          "version 2; rebuild"),
             std::string::npos)
       << r.output;
 }

@@ -6,17 +6,20 @@
 #
 # Each scene runs for SECONDS of simulated time with --out; every output file is hashed, except the
 # values of timings.csv (wall-clock processing times, the one part of a run that is not
-# deterministic): of it only the time, source and name columns are hashed.
+# deterministic): of it only the time, source and name columns are hashed. The runs use a DDS domain
+# of their own (UAMPC_FINGERPRINT_DOMAIN, default 150 + PID % 50), so that another run on the
+# machine cannot feed them.
 set -euo pipefail
 shopt -s nullglob
 cd "$(dirname "$0")/../.."
 seconds="${1:-20}"
 uampc="${UAMPC:-./build/bin/uampc}"
+domain="${UAMPC_FINGERPRINT_DOMAIN:-$((150 + $$ % 50))}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 for scene in config/scenes/*.yaml; do
   name="$(basename "$scene" .yaml)"
-  if ! "$uampc" launch "$scene" --set clock.duration="$seconds" --out "$work/$name" >"$work/$name.log" 2>&1; then
+  if ! "$uampc" launch "$scene" --set clock.duration="$seconds" --set domain_id="$domain" --out "$work/$name" >"$work/$name.log" 2>&1; then
     echo "$name: FAILED (log follows)"; tail -5 "$work/$name.log"; continue
   fi
   files=("$work/$name"/*)

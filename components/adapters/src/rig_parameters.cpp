@@ -7,8 +7,33 @@ namespace uampc::adapters {
 
 void declareRigParameters(ComponentSpec& spec) {
   spec.param("tilt_deg", 30.0, "LiDAR tilt about its own x axis on the motor, degrees (reference rig: 30)")
-      .between(-180.0, 180.0);
-  spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame (r_ML), m");
+      .between(-180.0, 180.0)
+      .partOfRig();
+  spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame (r_ML), m")
+      .partOfRig();
+}
+
+void declareLidarModelParameters(ComponentSpec& spec) {
+  spec.param("lidar_model", "livox_mid360", "LiDAR model: livox_mid360, velodyne_vlp16, livox_avia or spinning")
+      .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia", "spinning"})
+      .partOfRig();
+  spec.param("lidar_elevations_deg", std::vector<double>{-15, -13, -11, -9, -7, -5, -3, -1, 1, 3, 5, 7, 9, 11, 13, 15},
+             "lidar_model spinning: the beam elevations, degrees")
+      .partOfRig();
+  spec.param("lidar_points_per_second", 288000.0, "lidar_model spinning: points per second")
+      .between(1.0, 1e8)
+      .partOfRig();
+  spec.param("lidar_frame_rate", 10.0, "lidar_model spinning: frames per second, Hz").between(0.1, 100.0).partOfRig();
+  spec.param("lidar_min_range", 0.5, "lidar_model spinning: minimum range, m").between(0.0, 1000.0).partOfRig();
+  spec.param("lidar_max_range", 100.0, "lidar_model spinning: maximum range, m").between(0.1, 10000.0).partOfRig();
+}
+
+lidar::LidarModel lidarModel(const Context& ctx) {
+  const std::string name = ctx.paramString("lidar_model");
+  if (name != "spinning") return lidar::lidarModelByName(name);
+  return lidar::spinningLidar(ctx.paramDoubleList("lidar_elevations_deg"), ctx.paramDouble("lidar_points_per_second"),
+                              ctx.paramDouble("lidar_frame_rate"), ctx.paramDouble("lidar_min_range"),
+                              ctx.paramDouble("lidar_max_range"));
 }
 
 Eigen::Vector3d vector3Param(const Context& ctx, const std::string& name) {

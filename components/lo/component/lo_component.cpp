@@ -16,6 +16,7 @@
 #include "uampc/lo/start_poses.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
 
@@ -40,41 +41,9 @@ class LoComponent : public Component {
                               "status, lost, degenerate directions and eigenvalues, correspondences, processing time");
     adapters::declareRigParameters(spec);
     spec.param("init_from_pose", true, "start at the pose (and velocity) on initial_pose at the first scan; false: identity, at rest");
-    spec.param("scan_voxel_size", 0.3, "voxel downsampling of the scan, m").between(0.01, 10.0);
-    spec.param("map_voxel_size", 0.3, "voxel size of the local map, m").between(0.01, 10.0);
-    spec.param("map_radius", 60.0, "local-map points farther than this from the base are dropped, m")
-        .between(1.0, 10000.0);
-    spec.param("measurement_variance", 0.001, "point-to-plane measurement variance, m^2").between(1e-9, 100.0);
-    spec.param("linear_process_noise", 0.1, "linear velocity random walk density of the constant-velocity model, (m/s)^2/s").between(0.0, 100.0);
-    spec.param("angular_process_noise", 0.1, "angular velocity random walk density of the constant-velocity model, (rad/s)^2/s").between(0.0, 100.0);
-    spec.param("max_iterations", 10, "iterated EKF: at most this many re-linearisations").between(1, 100);
-    // The parameters of this round take their defaults from the core's config (one source).
-    const lo::OdometryConfig core;
-    spec.param("degeneracy_aware", core.degeneracy_aware,
-               "leave the state directions a scan does not constrain to the motion prior (suits wheeled platforms; "
-               "see README)");
-    spec.param("degeneracy_threshold", core.degeneracy_threshold,
-               "a direction with fewer effective points than this is degenerate (reported in /lo/metrics)")
-        .between(0.0, 1e6);
-    spec.param("max_linear_acceleration", core.max_linear_acceleration,
-               "an update needing more is rejected and counted, m/s^2")
-        .between(0.0, 1e6);
-    spec.param("max_angular_acceleration", core.max_angular_acceleration,
-               "an update needing more is rejected and counted, rad/s^2")
-        .between(0.0, 1e6);
-    spec.param("lost_after", core.lost_after, "lost: no registration accepted for longer than this, s")
-        .between(0.0, 3600.0);
-    spec.param("use_imu", core.use_imu,
-               "LiDAR-inertial mode: the IMU on the imu port replaces the constant-velocity prediction (beyond the "
-               "paper, whose LO is LiDAR-only)");
-    spec.param("gyro_noise_density", core.imu_noise.gyro_noise_density,
-               "use_imu: gyroscope white noise, rad/s/sqrt(Hz)")
-        .between(0.0, 1.0);
-    spec.param("accel_noise_density", core.imu_noise.accel_noise_density,
-               "use_imu: accelerometer white noise, m/s^2/sqrt(Hz)")
-        .between(0.0, 10.0);
-    spec.param("min_range", 0.5, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
-    spec.param("max_range", 100.0, "points farther than this are dropped, m").between(0.1, 10000.0);
+    lo::OdometryConfig defaults;
+    ParameterBinding binding(spec);
+    bindParameters(binding, defaults);
     spec.param("local_map_window", 5.0, "the published local map holds points seen in the last N s")
         .between(0.1, 3600.0);
     spec.param("max_motor_wait", 0.5, "a scan waits at most this long for encoder states covering it, s")
@@ -114,26 +83,50 @@ class LoComponent : public Component {
   }
 
  private:
+  // The parameters that set the core's config: declared from its defaults, read into it.
+  static void bindParameters(ParameterBinding& b, lo::OdometryConfig& c) {
+    b.bind("scan_voxel_size", c.scan_voxel_size, "voxel downsampling of the scan, m").between(0.01, 10.0);
+    b.bind("map_voxel_size", c.map_voxel_size, "voxel size of the local map, m").between(0.01, 10.0);
+    b.bind("map_radius", c.map_radius, "local-map points farther than this from the base are dropped, m")
+        .between(1.0, 10000.0);
+    b.bind("measurement_variance", c.measurement_variance, "point-to-plane measurement variance, m^2")
+        .between(1e-9, 100.0);
+    b.bind("linear_process_noise", c.linear_process_noise,
+           "linear velocity random walk density of the constant-velocity model, (m/s)^2/s")
+        .between(0.0, 100.0);
+    b.bind("angular_process_noise", c.angular_process_noise,
+           "angular velocity random walk density of the constant-velocity model, (rad/s)^2/s")
+        .between(0.0, 100.0);
+    b.bind("max_iterations", c.max_iterations, "iterated EKF: at most this many re-linearisations").between(1, 100);
+    b.bind("degeneracy_aware", c.degeneracy_aware,
+           "leave the state directions a scan does not constrain to the motion prior (suits wheeled platforms; "
+           "see README)");
+    b.bind("degeneracy_threshold", c.degeneracy_threshold,
+           "a direction with fewer effective points than this is degenerate (reported in /lo/metrics)")
+        .between(0.0, 1e6);
+    b.bind("max_linear_acceleration", c.max_linear_acceleration, "an update needing more is rejected and counted, m/s^2")
+        .between(0.0, 1e6);
+    b.bind("max_angular_acceleration", c.max_angular_acceleration,
+           "an update needing more is rejected and counted, rad/s^2")
+        .between(0.0, 1e6);
+    b.bind("lost_after", c.lost_after, "lost: no registration accepted for longer than this, s").between(0.0, 3600.0);
+    b.bind("use_imu", c.use_imu,
+           "LiDAR-inertial mode: the IMU on the imu port replaces the constant-velocity prediction (beyond the "
+           "paper, whose LO is LiDAR-only)");
+    b.bind("gyro_noise_density", c.imu_noise.gyro_noise_density, "use_imu: gyroscope white noise, rad/s/sqrt(Hz)")
+        .between(0.0, 1.0);
+    b.bind("accel_noise_density", c.imu_noise.accel_noise_density,
+           "use_imu: accelerometer white noise, m/s^2/sqrt(Hz)")
+        .between(0.0, 10.0);
+    b.bind("min_range", c.min_range, "points nearer than this (LiDAR frame) are dropped, m").between(0.0, 100.0);
+    b.bind("max_range", c.max_range, "points farther than this are dropped, m").between(0.1, 10000.0);
+  }
+
   static lo::OdometryConfig configFrom(const Context& ctx) {
     lo::OdometryConfig c;
     c.calibration = adapters::rigCalibration(ctx);
-    c.scan_voxel_size = ctx.paramDouble("scan_voxel_size");
-    c.map_voxel_size = ctx.paramDouble("map_voxel_size");
-    c.map_radius = ctx.paramDouble("map_radius");
-    c.measurement_variance = ctx.paramDouble("measurement_variance");
-    c.linear_process_noise = ctx.paramDouble("linear_process_noise");
-    c.angular_process_noise = ctx.paramDouble("angular_process_noise");
-    c.max_iterations = static_cast<int>(ctx.paramInt("max_iterations"));
-    c.degeneracy_aware = ctx.paramBool("degeneracy_aware");
-    c.degeneracy_threshold = ctx.paramDouble("degeneracy_threshold");
-    c.max_linear_acceleration = ctx.paramDouble("max_linear_acceleration");
-    c.max_angular_acceleration = ctx.paramDouble("max_angular_acceleration");
-    c.lost_after = ctx.paramDouble("lost_after");
-    c.use_imu = ctx.paramBool("use_imu");
-    c.imu_noise.gyro_noise_density = ctx.paramDouble("gyro_noise_density");
-    c.imu_noise.accel_noise_density = ctx.paramDouble("accel_noise_density");
-    c.min_range = ctx.paramDouble("min_range");
-    c.max_range = ctx.paramDouble("max_range");
+    ParameterBinding binding(ctx);
+    bindParameters(binding, c);
     return c;
   }
 

@@ -10,6 +10,7 @@
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/lidar/lidar_model.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
 
@@ -27,33 +28,11 @@ class MpcComponent : public Component {
     spec.output<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,
                                          "panoramic depth map (32FC1, m; 0 = empty)");
     spec.output<msg::Metrics>("timing", "/mpc/timing", QosPreset::kSensor, "computation time per stage, s");
-    // Defaults are the core's (one source): UaMpcController::Config and the configs it holds.
-    const mpc::UaMpcController::Config core;
-    constexpr double kDeg = 180.0 / M_PI;
-    spec.param("mode", mpc::modeName(core.mode), "ua_mpc, constant or zero").oneOf({"ua_mpc", "constant", "zero"});
-    spec.param("constant_speed", core.constant_speed, "mode constant: the speed, rad/s (the paper's baseline: 3.6)")
-        .between(-100.0, 100.0);
+    mpc::UaMpcController::Config defaults;
+    ParameterBinding binding(spec);
+    bindParameters(binding, defaults);
     spec.param("rate", 10.0, "control rate, Hz").between(0.1, 1000.0);
-    spec.param("alpha", core.mpc.alpha, "weight of the uncertainty term (used as is: cost = alpha * U'^2)")
-        .atLeast(0.0);
-    spec.param("beta", core.mpc.beta, "weight of the preferred-speed term (cost = beta * (omega - omega_pre)^2)")
-        .atLeast(0.0);
-    spec.param("omega_pre", core.mpc.omega_pre, "preferred speed and initial guess, rad/s").between(-100.0, 100.0);
-    spec.param("omega_min", core.mpc.omega_min, "lower speed bound, rad/s").between(-100.0, 100.0);
-    spec.param("omega_max", core.mpc.omega_max, "upper speed bound, rad/s").between(-100.0, 100.0);
-    spec.param("horizon", core.mpc.horizon, "M: the MPC optimises M + 1 future speeds").between(1, 200);
-    spec.param("horizon_dt", core.mpc.dt, "time between horizon steps, s").between(0.001, 10.0);
-    spec.param("sample_step_deg", core.sample_step * kDeg, "delta_theta between U samples, degrees").between(0.5, 90.0);
-    spec.param("ray_step_deg", core.uncertainty.azimuth_step * kDeg, "grid of the field-of-view rays for U, degrees")
-        .between(0.5, 30.0);
-    spec.param("panorama_width", core.depth_map.width, "panorama columns over 2 pi").between(16, 4096);
-    spec.param("panorama_height", core.depth_map.height, "panorama rows over pi").between(8, 2048);
-    spec.param("range_weight_voxel", core.range_weight_voxel,
-               "U weighs each ray by what an LO downsampling to voxels of this size keeps of it (the lo's "
-               "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; README, \"U checked against the LO\")")
-        .between(0.0, 10.0);
-    spec.param("lidar_model", "livox_mid360", "field of view of U: livox_mid360, velodyne_vlp16 or livox_avia")
-        .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia"});
+    adapters::declareLidarModelParameters(spec);  // U's field of view and point density
     adapters::declareRigParameters(spec);
     spec.param("stale_after", 1.0, "a local map older than this is stale: command omega_pre, s").between(0.01, 3600.0);
     spec.param("publish_panorama", true, "publish the panoramic depth map image");
@@ -79,25 +58,44 @@ class MpcComponent : public Component {
   }
 
  private:
+  // The parameters that set the core's config: declared from its defaults, read into it.
+  static void bindParameters(ParameterBinding& b, mpc::UaMpcController::Config& c) {
+    using mpc::Mode;
+    b.bindChoice("mode", c.mode,
+                 {{mpc::modeName(Mode::kUaMpc), Mode::kUaMpc},
+                  {mpc::modeName(Mode::kConstant), Mode::kConstant},
+                  {mpc::modeName(Mode::kZero), Mode::kZero}},
+                 "ua_mpc, constant or zero");
+    b.bind("constant_speed", c.constant_speed, "mode constant: the speed, rad/s (the paper's baseline: 3.6)")
+        .between(-100.0, 100.0);
+    b.bind("alpha", c.mpc.alpha, "weight of the uncertainty term (used as is: cost = alpha * U'^2)").atLeast(0.0);
+    b.bind("beta", c.mpc.beta, "weight of the preferred-speed term (cost = beta * (omega - omega_pre)^2)")
+        .atLeast(0.0);
+    b.bind("omega_pre", c.mpc.omega_pre, "preferred speed and initial guess, rad/s").between(-100.0, 100.0);
+    b.bind("omega_min", c.mpc.omega_min, "lower speed bound, rad/s").between(-100.0, 100.0);
+    b.bind("omega_max", c.mpc.omega_max, "upper speed bound, rad/s").between(-100.0, 100.0);
+    b.bind("horizon", c.mpc.horizon, "M: the MPC optimises M + 1 future speeds").between(1, 200);
+    b.bind("horizon_dt", c.mpc.dt, "time between horizon steps, s").between(0.001, 10.0);
+    b.bindDegrees("sample_step_deg", c.sample_step, "delta_theta between U samples, degrees").between(0.5, 90.0);
+    b.bindDegrees("ray_step_deg", c.uncertainty.azimuth_step, "grid of the field-of-view rays for U, degrees")
+        .between(0.5, 30.0);
+    c.uncertainty.elevation_step = c.uncertainty.azimuth_step;  // one square grid
+    b.bind("panorama_width", c.depth_map.width, "panorama columns over 2 pi").between(16, 4096);
+    b.bind("panorama_height", c.depth_map.height, "panorama rows over pi").between(8, 2048);
+    b.bind("range_weight_voxel", c.range_weight_voxel,
+           "U weighs each ray by what an LO downsampling to voxels of this size keeps of it (the lo's "
+           "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; README, \"U checked against the LO\")")
+        .between(0.0, 10.0);
+  }
+
   static mpc::UaMpcController::Config configFrom(const Context& ctx) {
     mpc::UaMpcController::Config c;
-    c.mode = mpc::parseMode(ctx.paramString("mode"));
-    c.constant_speed = ctx.paramDouble("constant_speed");
-    c.sample_step = ctx.paramDouble("sample_step_deg") * M_PI / 180.0;
-    c.mpc.alpha = ctx.paramDouble("alpha");
-    c.mpc.beta = ctx.paramDouble("beta");
-    c.mpc.omega_pre = ctx.paramDouble("omega_pre");
-    c.mpc.omega_min = ctx.paramDouble("omega_min");
-    c.mpc.omega_max = ctx.paramDouble("omega_max");
-    c.mpc.horizon = static_cast<int>(ctx.paramInt("horizon"));
-    c.mpc.dt = ctx.paramDouble("horizon_dt");
+    ParameterBinding binding(ctx);
+    bindParameters(binding, c);
     if (c.mpc.omega_min > c.mpc.omega_max) throw std::runtime_error("omega_min is above omega_max");
-    c.depth_map.width = static_cast<int>(ctx.paramInt("panorama_width"));
-    c.depth_map.height = static_cast<int>(ctx.paramInt("panorama_height"));
-    c.uncertainty.azimuth_step = c.uncertainty.elevation_step = ctx.paramDouble("ray_step_deg") * M_PI / 180.0;
     c.uncertainty.calibration = adapters::rigCalibration(ctx);
     // The field of view of U comes from the same LiDAR model description as the simulator's.
-    const lidar::LidarModel model = lidar::lidarModelByName(ctx.paramString("lidar_model"));
+    const lidar::LidarModel model = adapters::lidarModel(ctx);
     c.uncertainty.field_of_view = lidar::fieldOfView(model);
     c.depth_map.max_range = model.max_range;
     c.range_weight_voxel = ctx.paramDouble("range_weight_voxel");

@@ -33,14 +33,7 @@ class RaycasterComponent : public Component {
                                                "one frame, LiDAR frame, per-point time t");
     spec.output<sensor_msgs::msg::Imu>("imu", "/lidar/imu", QosPreset::kSensor,
                                        "IMU in the LiDAR frame, turning with the motor (with imu: true)");
-    spec.param("model", "livox_mid360", "LiDAR model: livox_mid360, velodyne_vlp16, livox_avia or spinning")
-        .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia", "spinning"});
-    spec.param("elevations_deg", std::vector<double>{-15, -13, -11, -9, -7, -5, -3, -1, 1, 3, 5, 7, 9, 11, 13, 15},
-               "model: spinning: the beam elevations, degrees");
-    spec.param("points_per_second", 288000.0, "model: spinning: points per second").between(1.0, 1e8);
-    spec.param("frame_rate", 10.0, "model: spinning: frames per second, Hz").between(0.1, 100.0);
-    spec.param("min_range", 0.5, "model: spinning: minimum range, m").between(0.0, 1000.0);
-    spec.param("max_range", 100.0, "model: spinning: maximum range, m").between(0.1, 10000.0);
+    adapters::declareLidarModelParameters(spec);
     adapters::declareRigParameters(spec);
     // Noise defaults: the Mid-360's datasheet range precision (1 sigma), the default model's.
     // Its angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with it the
@@ -96,12 +89,7 @@ class RaycasterComponent : public Component {
  private:
   static raycaster::RayCasterConfig configFrom(const Context& ctx) {
     raycaster::RayCasterConfig c;
-    const std::string model = ctx.paramString("model");
-    c.model = model == "spinning"
-                  ? lidar::spinningLidar(ctx.paramDoubleList("elevations_deg"),
-                                             ctx.paramDouble("points_per_second"), ctx.paramDouble("frame_rate"),
-                                             ctx.paramDouble("min_range"), ctx.paramDouble("max_range"))
-                  : lidar::lidarModelByName(model);
+    c.model = adapters::lidarModel(ctx);
     c.calibration = adapters::rigCalibration(ctx);
     c.range_noise_stddev = ctx.paramDouble("range_noise");
     c.angular_noise_stddev = ctx.paramDouble("angular_noise_deg") * M_PI / 180.0;

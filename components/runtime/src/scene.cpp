@@ -120,7 +120,7 @@ class SceneValidator {
   void readTopLevel(const YAML::Node& root, Scene& scene);
   void readClock(const YAML::Node& node, Scene& scene);
   void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
-  void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec);
+  void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec, Scene& scene);
   std::optional<ParameterValue> readValue(const YAML::Node& node, const ParameterSpec& spec, const std::string& owner);
   void readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
                   std::vector<PortReference>& references);
@@ -159,6 +159,14 @@ class SceneValidator {
   std::vector<std::pair<std::string, std::string>> override_keys_;  // last name of each --set, its text
   std::vector<PortReference> pending_;
   std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
+
+  // The rig (docs/design.md section 5): parameters a component marks partOfRig() take their value
+  // from the scene's rig: block, one value for every component that declares them.
+  void readRigNode(const YAML::Node& root);
+  void readRigParameter(const ParameterSpec& p, ComponentInstance& instance, Scene& scene);
+  void checkRigKeys(const Scene& scene);
+  YAML::Node rig_node_;
+  std::map<std::string, std::pair<const ParameterSpec*, std::string>> rig_declared_;  // name -> spec, type
 };
 
 void SceneValidator::checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) {
@@ -191,6 +199,8 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
       root[o.path[0]] = value;
     } else if (o.path.size() == 2 && o.path[0] == "clock") {
       root["clock"][o.path[1]] = value;
+    } else if (o.path.size() == 2 && o.path[0] == "rig") {
+      root["rig"][o.path[1]] = value;
     } else if (o.path.size() == 2) {
       YAML::Node components = root["components"];
       if (!components || !components[o.path[0]]) {
@@ -219,8 +229,10 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     throw SceneError(errors_);
   }
   applyOverrides(root, overrides);
-  checkKeys(root, {"name", "domain_id", "dds_profile", "seed", "clock", "on_crash", "max_restarts", "components"},
+  checkKeys(root,
+            {"name", "domain_id", "dds_profile", "seed", "clock", "on_crash", "max_restarts", "rig", "components"},
             "the scene");
+  readRigNode(root);
   readTopLevel(root, scene);
   if (root["clock"]) readClock(root["clock"], scene);
 
@@ -231,6 +243,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     error(components, "'components' must map instance names to components");
   } else {
     for (const auto& kv : components) readComponent(kv.first, kv.second, scene);
+    checkRigKeys(scene);
     const std::size_t errors_before = errors_.size();
     resolvePortReferences(scene, pending_, errors_);
     // A reference that failed leaves its port on its default topic: checking that would only
@@ -372,7 +385,7 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
     }
   }
   const ComponentSpec& spec = instance.library->spec();
-  readParameters(node["params"], instance, spec);
+  readParameters(node["params"], instance, spec, scene);
   std::vector<PortReference> references;
   readTopics(node["topics"], instance, spec, references);
   if (scene.find(instance.name)) {
@@ -386,7 +399,8 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
   scene.components.push_back(std::move(instance));
 }
 
-void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec) {
+void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
+                                    Scene& scene) {
   const std::string owner = "component '" + instance.name + "' (" + instance.type + ")";
   if (node && !node.IsMap() && !node.IsNull()) {
     error(node, "'params' of " + owner + " must be a mapping");
@@ -406,17 +420,76 @@ void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& i
                             (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
         continue;
       }
+      if (p->rig) {
+        error(kv.first, "'" + name + "' is part of the rig, shared by every component that uses it: set it once " +
+                            "under rig: (or --set rig." + name + "=...), not in the params of " + owner);
+        continue;
+      }
       if (auto v = readValue(kv.second, *p, owner)) instance.params[name] = *v;
     }
   }
   for (const auto& p : spec.parameters()) {
     if (given.count(p.name)) continue;
-    if (p.required()) {
+    if (p.rig) {
+      readRigParameter(p, instance, scene);
+    } else if (p.required()) {
       error(instance.location,
             "missing required parameter '" + p.name + "' (" + toString(p.type) + ": " + p.doc + ") for " + owner);
     } else {
       instance.params[p.name] = *p.default_value;
     }
+  }
+}
+
+void SceneValidator::readRigNode(const YAML::Node& root) {
+  const YAML::Node rig = root["rig"];
+  if (!rig) return;
+  if (!rig.IsMap()) {
+    error(rig, "'rig' must map rig parameters to values (rig.tilt_deg, rig.lidar_model, ...)");
+    return;
+  }
+  rig_node_.reset(rig);
+}
+
+void SceneValidator::readRigParameter(const ParameterSpec& p, ComponentInstance& instance, Scene& scene) {
+  const auto [declared, inserted] = rig_declared_.emplace(p.name, std::make_pair(&p, instance.type));
+  const ParameterSpec& first = *declared->second.first;
+  if (!inserted && (first.type != p.type || first.default_value != p.default_value)) {
+    error(instance.location, "rig parameter '" + p.name + "' is declared differently by component types '" +
+                                 declared->second.second + "' and '" + instance.type +
+                                 "' (type or default): the installed components disagree on the rig");
+    return;
+  }
+  if (auto known = scene.rig.find(p.name); known != scene.rig.end()) {
+    instance.params[p.name] = known->second;
+    return;
+  }
+  const YAML::Node& rig = rig_node_;  // const: a lookup must not add the key
+  std::optional<ParameterValue> value = p.default_value;
+  if (rig && rig[p.name]) value = readValue(rig[p.name], p, "the rig");
+  if (!value) {
+    if (!rig || !rig[p.name]) {
+      error(instance.location, "missing rig parameter '" + p.name + "' (" + p.doc + "), needed by component '" +
+                                   instance.name + "': set it under rig:");
+    }
+    return;
+  }
+  scene.rig[p.name] = *value;
+  instance.params[p.name] = *value;
+}
+
+// A rig key no component of the scene declares is a typo or a leftover: an error, with the
+// closest declared name.
+void SceneValidator::checkRigKeys(const Scene& scene) {
+  if (!rig_node_) return;
+  std::vector<std::string> names;
+  for (const auto& [name, declared] : rig_declared_) names.push_back(name);
+  for (const auto& kv : rig_node_) {
+    const std::string name = kv.first.as<std::string>();
+    if (rig_declared_.count(name)) continue;
+    const std::string guess = closestMatch(name, names);
+    error(kv.first, "no component of scene '" + scene.name + "' uses rig parameter '" + name + "'" +
+                        (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
   }
 }
 

@@ -1,8 +1,12 @@
-// The motorized-LiDAR rig as component parameters, declared and read in one place, so that the
-// raycaster, lo, mpc and evaluator of a scene describe the same rig the same way.
+// The motorized-LiDAR rig as component parameters, declared and read in one place. They are
+// marked partOfRig(): a scene sets them once in its rig: block and the loader gives the same value
+// to the raycaster, lo, mpc and evaluator (docs/design.md section 5). The motor axis is the base
+// frame's z axis by definition (Eq. 1's R_BM(theta)); a rig mounted otherwise is described by
+// where its base frame is, not by a parameter.
 #pragma once
 
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc::adapters {
@@ -13,6 +17,13 @@ void declareRigParameters(ComponentSpec& spec);
 
 // The LiDAR-to-motor calibration from those parameters; throws if lidar_offset is not 3 values.
 frames::MotorLidarCalibration rigCalibration(const Context& ctx);
+
+// Declares lidar_model (livox_mid360 by default) and the lidar_* description of a model: spinning
+// LiDAR (beam elevations, points per second, frame rate, ranges).
+void declareLidarModelParameters(ComponentSpec& spec);
+
+// The LiDAR model those parameters name.
+lidar::LidarModel lidarModel(const Context& ctx);
 
 // A double-list parameter that must hold x, y, z; throws naming the parameter otherwise.
 Eigen::Vector3d vector3Param(const Context& ctx, const std::string& name);

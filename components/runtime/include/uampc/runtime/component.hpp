@@ -32,7 +32,7 @@ namespace uampc {
 
 // Bumped whenever Component, Context or the plugin entry change in a way that breaks libraries
 // built against an older runtime. The loader refuses a library built for another version.
-constexpr std::uint32_t kComponentAbiVersion = 1;
+constexpr std::uint32_t kComponentAbiVersion = 2;  // 2: ParameterSpec::rig
 
 namespace detail {
 // The runtime's side of a typed port; components use Publisher<T> and Context::subscribe<T>.

@@ -35,6 +35,9 @@ struct ParameterSpec {
   std::optional<double> min;                    // numeric bounds, inclusive
   std::optional<double> max;
   std::vector<std::string> choices;             // allowed strings; empty: any
+  // Part of the rig (the LiDAR, its model and its mounting on the motor): set once in the scene's
+  // rig: block and given to every component that declares it, never in one component's params.
+  bool rig = false;
 
   bool required() const { return !default_value.has_value(); }
 
@@ -43,6 +46,7 @@ struct ParameterSpec {
   ParameterSpec& atMost(double v) { max = v; return *this; }
   ParameterSpec& between(double lo, double hi) { min = lo; max = hi; return *this; }
   ParameterSpec& oneOf(std::vector<std::string> allowed) { choices = std::move(allowed); return *this; }
+  ParameterSpec& partOfRig() { rig = true; return *this; }
 };
 
 }  // namespace uampc

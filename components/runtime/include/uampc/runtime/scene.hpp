@@ -68,6 +68,9 @@ struct Scene {
   CrashPolicy on_crash = CrashPolicy::kStop;
   int max_restarts = 3;
   std::vector<ComponentInstance> components;  // in file order
+  // The rig's parameters (ParameterSpec::rig) that the scene's components declare, resolved: the
+  // rig: block's values, defaults filled in. Each such component has the same value in its params.
+  std::map<std::string, ParameterValue> rig;
   // "file:line:column: warning: ..." for what may be a mistake but need not be (an input no
   // component writes, an output nobody reads); launch and validate print them.
   std::vector<std::string> warnings;

@@ -1,0 +1,63 @@
+// The rig once (issue 16): the LiDAR's model, tilt and offset are written once in a scene's rig:
+// block (or --set rig.NAME=VALUE) and reach every installed component that declares them.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "command_runner.hpp"
+#include "uampc/runtime/scene.hpp"
+
+namespace uampc::test {
+namespace {
+
+ComponentCatalog installedComponents() { return ComponentCatalog({binaryPath("lib/uampc/components")}); }
+
+// The value of one parameter in every component that declares it, by instance name.
+std::map<std::string, ParameterValue> valuesOf(const Scene& scene, const std::string& parameter) {
+  std::map<std::string, ParameterValue> values;
+  for (const auto& c : scene.components) {
+    if (auto it = c.params.find(parameter); it != c.params.end()) values[c.name] = it->second;
+  }
+  return values;
+}
+
+TEST(SceneRig, ASetRigTiltReachesEveryComponentThatUsesTheRig) {
+  ComponentCatalog catalog = installedComponents();
+  const Scene scene = loadScene(sourcePath("config/scenes/default.yaml"), {parseOverride("rig.tilt_deg=45")}, catalog);
+  const auto tilts = valuesOf(scene, "tilt_deg");
+  // raycaster, lo, mpc and evaluator describe the same rig.
+  EXPECT_EQ(tilts.size(), 4u);
+  for (const auto& [instance, value] : tilts) EXPECT_EQ(std::get<double>(value), 45.0) << instance;
+  EXPECT_EQ(std::get<double>(scene.rig.at("tilt_deg")), 45.0);
+}
+
+TEST(SceneRig, TheLidarModelReachesTheSimulatorAndTheController) {
+  ComponentCatalog catalog = installedComponents();
+  const Scene scene =
+      loadScene(sourcePath("config/scenes/default.yaml"), {parseOverride("rig.lidar_model=velodyne_vlp16")}, catalog);
+  const auto models = valuesOf(scene, "lidar_model");
+  ASSERT_EQ(models.size(), 2u);
+  for (const auto& [instance, value] : models) EXPECT_EQ(std::get<std::string>(value), "velodyne_vlp16") << instance;
+}
+
+TEST(SceneRig, ARigParameterInOneComponentIsRefusedWithWhereToPutIt) {
+  const CommandResult r = runUampc("validate " + sourcePath("config/scenes/default.yaml") + " --set lidar.tilt_deg=45");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'tilt_deg' is part of the rig"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--set rig.tilt_deg="), std::string::npos) << r.output;
+}
+
+TEST(SceneRig, RigValuesAreValidatedLikeParameters) {
+  const std::string scene = sourcePath("config/scenes/default.yaml");
+  CommandResult r = runUampc("validate " + scene + " --set rig.tilt_deg=400");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("parameter 'tilt_deg' of the rig is 400, out of bounds [-180, 180]"), std::string::npos)
+      << r.output;
+  r = runUampc("validate " + scene + " --set rig.tilt_dg=10");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("uses rig parameter 'tilt_dg'; did you mean 'tilt_deg'?"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace uampc::test
