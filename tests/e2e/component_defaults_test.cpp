@@ -10,6 +10,7 @@
 
 #include "command_runner.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
+#include "uampc/motor/simulated_motor.hpp"
 #include "uampc/mpc/ua_mpc_controller.hpp"
 
 namespace uampc::test {
@@ -71,6 +72,16 @@ TEST(ComponentDefaults, LoDeclaresItsCoresDefaults) {
   EXPECT_EQ(lo["use_imu"].as<bool>(), core.use_imu);
   EXPECT_DOUBLE_EQ(lo["min_range"].as<double>(), core.min_range);
   EXPECT_DOUBLE_EQ(lo["max_range"].as<double>(), core.max_range);
+}
+
+TEST(ComponentDefaults, MotorBridgeDeclaresItsCoresDefaults) {
+  const YAML::Node motor = defaultsOf(installedComponents(), "motor_bridge");
+  ASSERT_TRUE(motor.size() > 0) << "no motor_bridge component installed";
+  const motor::MotorLimits core;
+  EXPECT_DOUBLE_EQ(motor["max_speed"].as<double>(), core.max_speed);
+  EXPECT_DOUBLE_EQ(motor["max_acceleration"].as<double>(), core.max_acceleration);
+  EXPECT_DOUBLE_EQ(motor["time_constant"].as<double>(), core.time_constant);
+  EXPECT_DOUBLE_EQ(motor["encoder_resolution"].as<double>(), core.encoder_resolution);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "uampc/motor/simulated_motor.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
 
@@ -19,11 +20,9 @@ class MotorBridge : public Component {
     spec.param("backend", "sim", "motor backend; 'sim' simulates the motor").oneOf({"sim"});
     spec.param("joint_name", "motor", "name of the joint in the published JointState");
     spec.param("encoder_rate", 200.0, "encoder state publication rate, Hz").between(1.0, 10000.0);
-    spec.param("encoder_resolution", 2.0 * M_PI / 4096.0, "encoder resolution, rad per count (0: exact)")
-        .between(0.0, 1.0);
-    spec.param("max_speed", 20.0, "speed limit, rad/s; commands beyond it are clamped").between(0.0, 1000.0);
-    spec.param("max_acceleration", 100.0, "acceleration limit, rad/s^2").between(1e-3, 1e9);
-    spec.param("time_constant", 0.02, "first-order lag of the speed, s (0: none)").between(0.0, 10.0);
+    motor::MotorLimits defaults;
+    ParameterBinding binding(spec);
+    bindParameters(binding, defaults);
     spec.param("command_timeout", 0.5, "after this long without a command, drive at safe_speed, s")
         .between(0.0, 3600.0);
     spec.param("safe_speed", 0.0, "speed when commands stop arriving, rad/s").between(-1000.0, 1000.0);
@@ -47,12 +46,19 @@ class MotorBridge : public Component {
   }
 
  private:
+  // The parameters that set the simulated motor's limits: declared from its defaults, read into them.
+  static void bindParameters(ParameterBinding& b, motor::MotorLimits& limits) {
+    b.bind("encoder_resolution", limits.encoder_resolution, "encoder resolution, rad per count (0: exact)")
+        .between(0.0, 1.0);
+    b.bind("max_speed", limits.max_speed, "speed limit, rad/s; commands beyond it are clamped").between(0.0, 1000.0);
+    b.bind("max_acceleration", limits.max_acceleration, "acceleration limit, rad/s^2").between(1e-3, 1e9);
+    b.bind("time_constant", limits.time_constant, "first-order lag of the speed, s (0: none)").between(0.0, 10.0);
+  }
+
   static motor::MotorLimits limitsFrom(const Context& ctx) {
     motor::MotorLimits limits;
-    limits.max_speed = ctx.paramDouble("max_speed");
-    limits.max_acceleration = ctx.paramDouble("max_acceleration");
-    limits.time_constant = ctx.paramDouble("time_constant");
-    limits.encoder_resolution = ctx.paramDouble("encoder_resolution");
+    ParameterBinding binding(ctx);
+    bindParameters(binding, limits);
     return limits;
   }
 
@@ -66,8 +72,7 @@ class MotorBridge : public Component {
   void onCommand(const msg::MotorCommand& m) {
     if (!std::isfinite(m.velocity())) {
       ++rejected_;
-      ctx_.log().warn("ignoring a non-finite speed command on ", ctx_.topicOf("command"), " (", rejected_,
-                      " so far)");
+      ctx_.log().warn("ignoring a non-finite speed command on ", ctx_.topicOf("command"), " (", rejected_, " so far)");
       return;
     }
     advanceToNow();
