@@ -186,11 +186,11 @@ class SceneFigures {
       plot.background.push_back(
           {footprint.x[i], footprint.y[i], footprint.x[i] + footprint.cell, footprint.y[i] + footprint.cell, fill});
     }
-    const TrajectoryXY truth = readTumPositions((runDirectory(reference) / run_files::kGroundTruthFile).string());
+    const TrajectoryXY truth = readRunFile(reference, run_files::kGroundTruthFile, readTumPositions);
     plot.series.push_back({"ground truth", truth.x, truth.y, "#000000", false, 3.0});
     for (std::size_t c = 0; c < runs_.size(); ++c) {
       if (!runs_[c]) continue;
-      const TrajectoryXY estimate = readTumPositions((runDirectory(c) / run_files::kEstimateFile).string());
+      const TrajectoryXY estimate = readRunFile(c, run_files::kEstimateFile, readTumPositions);
       plot.series.push_back(
           {experiment_.controllers[c].name, estimate.x, estimate.y, svg::paletteColour(c), false, 1.5});
     }

@@ -2,30 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
+#include "uampc/evaluator/tum_trajectory.hpp"
 #include "uampc/evaluator/voxel_octree.hpp"
 
 namespace uampc::app {
 
 TrajectoryXY readTumPositions(const std::string& path) {
   TrajectoryXY out;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    double t, x, y;
-    if (s >> t >> x >> y) {
-      out.t.push_back(t);
-      out.x.push_back(x);
-      out.y.push_back(y);
-    }
+  if (!std::filesystem::is_regular_file(path)) return out;
+  for (const evaluator::TimedPose& pose : evaluator::readTumTrajectory(path)) {
+    out.t.push_back(pose.time);
+    out.x.push_back(pose.pose.translation().x());
+    out.y.push_back(pose.pose.translation().y());
   }
   return out;
 }

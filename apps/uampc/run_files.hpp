@@ -9,7 +9,8 @@
 
 namespace uampc::app {
 
-// Positions of a TUM trajectory ("t x y z qx qy qz qw").
+// Positions of a TUM trajectory ("t x y z qx qy qz qw"), read with the evaluator's reader; empty
+// when the file is missing, std::runtime_error naming file and line when it is malformed.
 struct TrajectoryXY {
   std::vector<double> t, x, y;
 };
