@@ -7,6 +7,7 @@
 #include <set>
 
 #include "uampc/runtime/scene.hpp"
+#include "uampc/runtime/yaml_errors.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,20 +25,17 @@ std::string joinLines(const std::vector<std::string>& lines) {
 class ExperimentValidator {
  public:
   ExperimentValidator(std::string file, const std::map<std::string, std::string>& variables)
-      : file_(std::move(file)), variables_(variables) {}
+      : file_(std::move(file)),
+        variables_(variables),
+        errors_([this](const YAML::Node& node) { return YamlErrors::locationIn(file_, node); }) {}
 
   Experiment validate(const YAML::Node& root);
 
  private:
-  std::string at(const YAML::Node& node) const {
-    const YAML::Mark m = node.Mark();
-    if (m.is_null()) return file_;
-    return file_ + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
+  void error(const YAML::Node& node, const std::string& message) { errors_.add(node, message); }
+  void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) {
+    errors_.checkKeys(map, allowed, what);
   }
-  void error(const YAML::Node& node, const std::string& message) {
-    errors_.push_back(at(node) + ": error: " + message);
-  }
-  void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what);
   std::optional<std::string> text(const YAML::Node& node, const std::string& what);
   std::optional<std::string> name(const YAML::Node& node, const std::string& what, std::set<std::string>& seen);
   std::string substitute(const YAML::Node& node, const std::string& value);
@@ -50,19 +48,8 @@ class ExperimentValidator {
   std::string file_;
   std::string directory_ = fs::path(file_).parent_path().string();
   const std::map<std::string, std::string>& variables_;
-  std::vector<std::string> errors_;
+  YamlErrors errors_;
 };
-
-void ExperimentValidator::checkKeys(const YAML::Node& map, const std::set<std::string>& allowed,
-                                    const std::string& what) {
-  for (const auto& kv : map) {
-    const std::string key = kv.first.Scalar();
-    if (allowed.count(key)) continue;
-    std::string list;
-    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-    error(kv.first, "unknown key '" + key + "' in " + what + " (allowed: " + list + ")");
-  }
-}
 
 std::optional<std::string> ExperimentValidator::text(const YAML::Node& node, const std::string& what) {
   if (!node.IsScalar()) {
@@ -172,7 +159,7 @@ void ExperimentValidator::readScenes(const YAML::Node& node, Experiment& experim
     }
     checkKeys(item, {"name", "scene", "overrides"}, "a scene entry");
     ExperimentScene scene;
-    scene.location = at(item);
+    scene.location = YamlErrors::locationIn(file_, item).str();
     if (!item["name"]) error(item, "a scene entry needs a 'name'");
     if (!item["scene"]) error(item, "a scene entry needs a 'scene' file");
     if (auto n = name(item["name"], "scene name", seen)) scene.name = *n;
@@ -203,7 +190,7 @@ void ExperimentValidator::readControllers(const YAML::Node& node, Experiment& ex
     }
     checkKeys(item, {"name", "overrides"}, "a controller entry");
     ExperimentController controller;
-    controller.location = at(item);
+    controller.location = YamlErrors::locationIn(file_, item).str();
     if (!item["name"]) error(item, "a controller entry needs a 'name'");
     if (auto n = name(item["name"], "controller name", seen)) controller.name = *n;
     controller.overrides = overrides(item["overrides"]);
@@ -235,7 +222,7 @@ Experiment ExperimentValidator::validate(const YAML::Node& root) {
   experiment.controllers = defaultControllers();
   if (!root.IsMap()) {
     error(root, "an experiment is a YAML mapping with at least a 'scenes' list");
-    throw ExperimentError(errors_);
+    throw ExperimentError(errors_.messages());
   }
   checkKeys(root, {"name", "duration", "seeds", "scenes", "controllers", "compare"}, "the experiment");
   if (root["name"]) {
@@ -254,10 +241,10 @@ Experiment ExperimentValidator::validate(const YAML::Node& root) {
   if (root["scenes"])
     readScenes(root["scenes"], experiment);
   else
-    errors_.push_back(file_ + ":1:1: error: the experiment has no 'scenes'");
+    errors_.add(SourceLocation{file_, 1, 1}, "the experiment has no 'scenes'");
   if (root["controllers"]) readControllers(root["controllers"], experiment);
   if (root["compare"]) readCompare(root["compare"], experiment);
-  if (!errors_.empty()) throw ExperimentError(errors_);
+  if (!errors_.empty()) throw ExperimentError(errors_.messages());
   return experiment;
 }
 
