@@ -63,8 +63,7 @@ std::uint32_t mortonCode(const Voxel& v) {
     x = (x | (x << 2)) & 0x09249249;
     return x;
   };
-  return spread(static_cast<std::uint32_t>(v.x())) |
-         (spread(static_cast<std::uint32_t>(v.y())) << 1) |
+  return spread(static_cast<std::uint32_t>(v.x())) | (spread(static_cast<std::uint32_t>(v.y())) << 1) |
          (spread(static_cast<std::uint32_t>(v.z())) << 2);
 }
 
@@ -153,113 +152,137 @@ void IteratedEkf::predictInertial(const std::vector<InertialStep>& steps, const 
   covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
 }
 
+namespace {
+
+struct Correspondence {
+  const TimedPoint* point;
+  Plane plane;
+};
+
+// Jacobian of the residuals, dz/d(error state), one row per correspondence; row-major so that a
+// row is written contiguously.
+using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
+
+// Data association at the iterate x: each point with the plane through its k nearest map points,
+// if they are near enough, planar, and (options.match_seen_side_only) seen from the point's side.
+void associate(const std::vector<TimedPoint>& points, const BaseState& x, const LocalMap& map,
+               const UpdateOptions& options, std::vector<Correspondence>& correspondences) {
+  const double max_neighbour_distance2 = options.max_neighbour_distance * options.max_neighbour_distance;
+  std::vector<Eigen::Vector3d> neighbours;
+  std::vector<Eigen::Vector3f> views;
+  neighbours.reserve(options.nearest_neighbours);
+  views.reserve(options.nearest_neighbours);
+  correspondences.clear();
+  for (const TimedPoint& point : points) {
+    const Eigen::Vector3d q = x.R_WB * (ExpSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
+    if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
+    if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
+    const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance);
+    if (!plane) continue;
+    // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
+    // within centimetres of it, and nothing that near is seen), at the point's time.
+    if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, x.r_WB + x.v_W * point.tau)) continue;
+    correspondences.push_back({&point, *plane});
+  }
+}
+
+// The measurement model h(x) linearised at x: one row of H and one residual z per plane.
+void linearise(const std::vector<Correspondence>& correspondences, const BaseState& x, Jacobian& H,
+               Eigen::VectorXd& z) {
+  H.resize(static_cast<Eigen::Index>(correspondences.size()), 12);
+  z.resize(static_cast<Eigen::Index>(correspondences.size()));
+  const Eigen::Matrix3d R_BW = x.R_WB.transpose();
+  for (std::size_t i = 0; i < correspondences.size(); ++i) {
+    const Correspondence& c = correspondences[i];
+    const TimedPoint& point = *c.point;
+    const Eigen::Vector3d& n = c.plane.normal;
+    const ExpSO3 E(x.w_B * point.tau);        // deskew rotation, Exp(w tau)
+    const Eigen::Vector3d s = E * point.p_B;  // point in B at the scan end
+    const Eigen::Vector3d q = x.R_WB * s + x.r_WB + x.v_W * point.tau;
+    const Eigen::Vector3d n_B = R_BW * n;
+    const auto row = static_cast<Eigen::Index>(i);
+    z(row) = n.dot(q) + c.plane.offset;                 // residual
+    H.block<1, 3>(row, 0) = s.cross(n_B).transpose();   // rotation (right)
+    H.block<1, 3>(row, 3) = n.transpose();              // position
+    H.block<1, 3>(row, 6) = point.tau * n.transpose();  // linear velocity
+    H.block<1, 3>(row, 9) =                             // angular velocity
+        point.tau * point.p_B.cross(E.transposeTimes(n_B)).transpose();
+  }
+}
+
+// Gate: a residual far beyond the typical one is a wrong plane (the point lies on a surface the
+// map has not seen yet, or across an edge), not noise; left in, a few such points at weight
+// 1/sigma^2 bias the pose by millimetres to centimetres. The typical residual is 1.4826 * median
+// |z| (robust standard deviation); the gate is 3 of those, at least min_gate.
+double residualGate(const Eigen::VectorXd& z, double min_gate) {
+  std::vector<double> magnitudes(z.data(), z.data() + z.size());
+  for (double& m : magnitudes) m = std::abs(m);
+  const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
+  std::nth_element(magnitudes.begin(), middle, magnitudes.end());
+  return std::max(min_gate, 3.0 * 1.4826 * *middle);
+}
+
+// Zeroes the rows beyond the gate (a zero row contributes nothing to H^T H and H^T z); returns
+// how many rows are left.
+std::size_t applyGate(double gate, Jacobian& H, Eigen::VectorXd& z) {
+  std::size_t used = static_cast<std::size_t>(z.size());
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    if (std::abs(z(i)) > gate) {
+      H.row(i).setZero();
+      z(i) = 0.0;
+      --used;
+    }
+  }
+  return used;
+}
+
+// H^T H through a symmetric rank update: half the work of the general product.
+Matrix12d gramian(const Jacobian& H) {
+  Matrix12d HtH = Matrix12d::Zero();
+  HtH.selfadjointView<Eigen::Upper>().rankUpdate(H.transpose());
+  HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
+  return HtH;
+}
+
+}  // namespace
+
 UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const LocalMap& map,
                                   const UpdateOptions& options) {
   UpdateSummary summary;
   const BaseState prior = state_;
   const Matrix12d prior_information = covariance_.ldlt().solve(Matrix12d::Identity());
   const double inverse_variance = 1.0 / options.measurement_variance;
-  const double max_neighbour_distance2 =
-      options.max_neighbour_distance * options.max_neighbour_distance;
 
   BaseState x = prior;
   Matrix12d posterior_information = prior_information;
-  std::vector<Eigen::Vector3d> neighbours;
-  std::vector<Eigen::Vector3f> views;
-  neighbours.reserve(options.nearest_neighbours);
-  views.reserve(options.nearest_neighbours);
-  struct Correspondence {
-    const TimedPoint* point;
-    Plane plane;
-  };
   std::vector<Correspondence> correspondences;
   correspondences.reserve(points.size());
   // Query the map in spatial (Morton) order: successive queries then share most of their map
   // blocks, which stay in cache. Same result as scan order, fewer cache misses.
   const std::vector<TimedPoint> ordered = spatialOrder(points, map.voxelSize());
-  bool associate = true;
+  bool reassociate = true;
   bool gated = false;  // the residual gate is applied once the ungated iterations converged
   double gate = std::numeric_limits<double>::infinity();
   double rotation_since_association = 0.0, translation_since_association = 0.0;
-  // Jacobian of the residuals, dz/d(error state), one row per correspondence; row-major so that
-  // a row is written contiguously.
-  Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor> H;
-  Eigen::VectorXd z;  // point-to-plane residuals
-  std::vector<double> magnitudes;
+  Jacobian H;
+  Eigen::VectorXd z;                          // point-to-plane residuals
   Matrix12d information = Matrix12d::Zero();  // unit-weight H^T H of the last linearisation
 
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
-    if (associate) {
+    if (reassociate) {
       rotation_since_association = translation_since_association = 0.0;
-      // Data association at the current iterate x_j: the plane through the k nearest map points.
-      correspondences.clear();
-      for (const TimedPoint& point : ordered) {
-        const Eigen::Vector3d q =
-            x.R_WB * (ExpSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
-        if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) {
-          continue;
-        }
-        if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
-        const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance);
-        if (!plane) continue;
-        // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
-        // within centimetres of it, and nothing that near is seen), at the point's time.
-        if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, x.r_WB + x.v_W * point.tau)) continue;
-        correspondences.push_back({&point, *plane});
-      }
+      associate(ordered, x, map, options, correspondences);
       summary.correspondences = correspondences.size();
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
     }
-
-    // Linearise the measurement model h(x) at x_j: one row of H and one residual per plane.
-    H.resize(static_cast<Eigen::Index>(correspondences.size()), 12);
-    z.resize(static_cast<Eigen::Index>(correspondences.size()));
-    const Eigen::Matrix3d R_BW = x.R_WB.transpose();
-    for (std::size_t i = 0; i < correspondences.size(); ++i) {
-      const Correspondence& c = correspondences[i];
-      const TimedPoint& point = *c.point;
-      const Eigen::Vector3d& n = c.plane.normal;
-      const ExpSO3 E(x.w_B * point.tau);                   // deskew rotation, Exp(w tau)
-      const Eigen::Vector3d s = E * point.p_B;             // point in B at the scan end
-      const Eigen::Vector3d q = x.R_WB * s + x.r_WB + x.v_W * point.tau;
-      const Eigen::Vector3d n_B = R_BW * n;
-      const auto row = static_cast<Eigen::Index>(i);
-      z(row) = n.dot(q) + c.plane.offset;                  // residual
-      H.block<1, 3>(row, 0) = s.cross(n_B).transpose();    // rotation (right)
-      H.block<1, 3>(row, 3) = n.transpose();               // position
-      H.block<1, 3>(row, 6) = point.tau * n.transpose();   // linear velocity
-      H.block<1, 3>(row, 9) =                              // angular velocity
-          point.tau * point.p_B.cross(E.transposeTimes(n_B)).transpose();
-    }
-    // Gate: a residual far beyond the typical one is a wrong plane (the point lies on a surface
-    // the map has not seen yet, or across an edge), not noise; left in, a few such points at
-    // weight 1/sigma^2 bias the pose by millimetres to centimetres. The typical residual is
-    // 1.4826 * median |z| (robust standard deviation); the gate is 3 of those, at least
-    // options.min_residual_gate. It is set once, when the gated iterations start, so that they
-    // converge on a fixed set of residuals.
-    if (gated && !std::isfinite(gate)) {
-      magnitudes.assign(z.data(), z.data() + z.size());
-      for (double& m : magnitudes) m = std::abs(m);
-      const auto middle = magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() / 2);
-      std::nth_element(magnitudes.begin(), middle, magnitudes.end());
-      gate = std::max(options.min_residual_gate, 3.0 * 1.4826 * *middle);
-    }
-    std::size_t used = correspondences.size();
-    if (std::isfinite(gate)) {
-      for (Eigen::Index i = 0; i < z.size(); ++i) {
-        if (std::abs(z(i)) > gate) {
-          H.row(i).setZero();  // a zero row contributes nothing to H^T H and H^T z
-          z(i) = 0.0;
-          --used;
-        }
-      }
-    }
+    linearise(correspondences, x, H, z);
+    // The gate is set once, when the gated iterations start, so that they converge on a fixed
+    // set of residuals.
+    if (gated && !std::isfinite(gate)) gate = residualGate(z, options.min_residual_gate);
+    const std::size_t used = std::isfinite(gate) ? applyGate(gate, H, z) : correspondences.size();
     summary.correspondences = used;
     if (used < options.min_correspondences) break;
-    // H^T H through a symmetric rank update: half the work of the general product.
-    Matrix12d HtH = Matrix12d::Zero();
-    HtH.selfadjointView<Eigen::Upper>().rankUpdate(H.transpose());
-    HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
+    Matrix12d HtH = gramian(H);
     Vector12d Htz = H.transpose() * z;
     information = HtH;
     // Directions the scan cannot see get none of its information (Zhang et al. 2016): in them,
@@ -306,19 +329,10 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     }
     // Re-associating after tiny steps only makes the set of planes flicker (a 2-cycle between
     // two sets); the association is redone only once the state has moved enough since.
-    associate = rotation_since_association > options.reassociation_rotation ||
-                translation_since_association > options.reassociation_translation;
+    reassociate = rotation_since_association > options.reassociation_rotation ||
+                  translation_since_association > options.reassociation_translation;
   }
-  if (summary.applied) {
-    // The information of the last linearisation, before any projection: what the scan saw.
-    summary.pose_information = information.topLeftCorner<6, 6>();
-    summary.pose_degeneracy =
-        analysePoseDegeneracy(summary.pose_information, options.degeneracy_scales, options.degeneracy_threshold);
-    if (!options.project_degenerate) {
-      summary.state_degeneracy =
-          analyseStateDegeneracy(information, options.degeneracy_scales, options.degeneracy_threshold);
-    }
-  }
+  if (summary.applied) reportDegeneracy(information, options, summary);
   if (!summary.applied || !finite(x)) {
     summary.applied = false;
     state_ = prior;
@@ -329,6 +343,17 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   covariance_ = posterior_information.ldlt().solve(Matrix12d::Identity());
   covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
   return summary;
+}
+
+// The information of the last linearisation, before any projection: what the scan saw.
+void IteratedEkf::reportDegeneracy(const Matrix12d& information, const UpdateOptions& options, UpdateSummary& summary) {
+  summary.pose_information = information.topLeftCorner<6, 6>();
+  summary.pose_degeneracy =
+      analysePoseDegeneracy(summary.pose_information, options.degeneracy_scales, options.degeneracy_threshold);
+  if (!options.project_degenerate) {
+    summary.state_degeneracy =
+        analyseStateDegeneracy(information, options.degeneracy_scales, options.degeneracy_threshold);
+  }
 }
 
 }  // namespace uampc::lo

@@ -82,6 +82,44 @@ MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
 
 OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const frames::MotorAngleTrack& motor) {
   OdometryResult result;
+  const DerotatedScan derotated = derotateScan(scan, motor, result);
+  if (!filter_) return initialise(derotated, result);
+
+  const double end_time = derotated.points.empty() ? scan.stamp : derotated.end_time;
+  const double dt = end_time - last_time_;
+  if (!(dt > 0.0)) {
+    result.status = OdometryStatus::kRejected;
+    addWarning(result.warning, "scan ends at " + std::to_string(end_time) + " s, not after the previous one (" +
+                                   std::to_string(last_time_) + " s): ignored");
+    fillState(result);
+    return result;
+  }
+  predict(end_time, dt, motor, result);
+  const IteratedEkf predicted = *filter_;
+
+  const std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
+  result.points_used = keypoints.size();
+  const UpdateSummary summary = correct(keypoints, predicted, end_time, dt, result);
+  reportStatus(summary, keypoints.empty(), end_time, result);
+
+  // The map grows with the registered scan, at full resolution (the map voxel grid downsamples).
+  // Each point keeps the side it was seen from, taken from the base origin at the frame's end
+  // (the LiDAR turns on the motor axis there; see the seen-side test in iterated_ekf.hpp).
+  const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, filter_->state());
+  if (summary.applied) {
+    map_.insert(points_W, last_time_, filter_->state().r_WB);
+    map_.removeFarFrom(filter_->state().r_WB);
+  }
+  result.registered_points_W.reserve(points_W.size());
+  for (const auto& p : points_W) result.registered_points_W.push_back(p.cast<float>());
+  fillState(result);
+  return result;
+}
+
+// Every point into the base frame with the encoder angle at its own time (Eq. 1); what was
+// dropped, counted and said.
+DerotatedScan MotorizedLidarOdometry::derotateScan(const Scan& scan, const frames::MotorAngleTrack& motor,
+                                                   OdometryResult& result) const {
   result.points_in = scan.points_L.size();
   DerotatedScan derotated = derotate(scan, motor, config_.calibration, config_.min_range, config_.max_range);
   result.dropped_non_finite = derotated.dropped_non_finite;
@@ -94,55 +132,43 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   if (derotated.dropped_non_finite > 0) {
     addWarning(result.warning, std::to_string(derotated.dropped_non_finite) + " non-finite points dropped");
   }
+  return derotated;
+}
 
-  auto fill = [&](const IteratedEkf& filter) {
-    const BaseState& x = filter.state();
-    result.time = last_time_;
-    result.T_WB = x.pose();
-    result.linear_velocity_W = x.v_W;
-    result.angular_velocity_B = x.w_B;
-    result.covariance = filter.covariance();
-  };
-
-  if (!filter_) {
-    if (derotated.points.empty()) {
-      result.status = OdometryStatus::kPredictedOnly;
-      result.time = derotated.end_time;
-      result.T_WB = config_.initial_pose;
-      addWarning(result.warning, "no usable points: map not initialised yet");
-      return result;
-    }
-    // First scan: the map starts at the initial pose (known exactly) and velocity.
-    BaseState x;
-    x.R_WB = config_.initial_pose.linear();
-    x.r_WB = config_.initial_pose.translation();
-    x.v_W = config_.initial_velocity_W;
-    x.w_B = config_.initial_angular_velocity_B;
-    Matrix12d P = Matrix12d::Zero();
-    P.diagonal().head<6>().setConstant(1e-8);
-    P.diagonal().tail<6>().setConstant(config_.initial_velocity_variance);
-    filter_.emplace(x, P);
-    last_time_ = last_accepted_time_ = derotated.end_time;
-    const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
-    map_.insert(points_W, last_time_, x.r_WB);
-    map_.removeFarFrom(x.r_WB);
-    result.status = OdometryStatus::kInitialised;
-    result.points_used = derotated.points.size();
-    result.registered_points_W.reserve(points_W.size());
-    for (const auto& p : points_W) result.registered_points_W.push_back(p.cast<float>());
-    fill(*filter_);
+// First scan: the map starts at the initial pose (known exactly) and velocity.
+OdometryResult MotorizedLidarOdometry::initialise(const DerotatedScan& derotated, OdometryResult result) {
+  if (derotated.points.empty()) {
+    result.status = OdometryStatus::kPredictedOnly;
+    result.time = derotated.end_time;
+    result.T_WB = config_.initial_pose;
+    addWarning(result.warning, "no usable points: map not initialised yet");
     return result;
   }
+  BaseState x;
+  x.R_WB = config_.initial_pose.linear();
+  x.r_WB = config_.initial_pose.translation();
+  x.v_W = config_.initial_velocity_W;
+  x.w_B = config_.initial_angular_velocity_B;
+  Matrix12d P = Matrix12d::Zero();
+  P.diagonal().head<6>().setConstant(1e-8);
+  P.diagonal().tail<6>().setConstant(config_.initial_velocity_variance);
+  filter_.emplace(x, P);
+  last_time_ = last_accepted_time_ = derotated.end_time;
+  const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
+  map_.insert(points_W, last_time_, x.r_WB);
+  map_.removeFarFrom(x.r_WB);
+  result.status = OdometryStatus::kInitialised;
+  result.points_used = derotated.points.size();
+  result.registered_points_W.reserve(points_W.size());
+  for (const auto& p : points_W) result.registered_points_W.push_back(p.cast<float>());
+  fillState(result);
+  return result;
+}
 
-  const double end_time = derotated.points.empty() ? scan.stamp : derotated.end_time;
-  const double dt = end_time - last_time_;
-  if (!(dt > 0.0)) {
-    result.status = OdometryStatus::kRejected;
-    addWarning(result.warning, "scan ends at " + std::to_string(end_time) + " s, not after the previous one (" +
-                                   std::to_string(last_time_) + " s): ignored");
-    fill(*filter_);
-    return result;
-  }
+// The state carried to the scan's end: the IMU's readings over the frame, or else the
+// constant-velocity model.
+void MotorizedLidarOdometry::predict(double end_time, double dt, const frames::MotorAngleTrack& motor,
+                                     OdometryResult& result) {
   const std::vector<InertialStep> steps = config_.use_imu
                                               ? inertialSteps(imu_, last_time_, end_time, motor, config_.calibration)
                                               : std::vector<InertialStep>{};
@@ -155,10 +181,11 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   }
   last_time_ = end_time;
   while (!imu_.empty() && imu_.front().time < last_time_ - 0.1) imu_.pop_front();
-  const IteratedEkf predicted = *filter_;
+}
 
-  const std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
-  result.points_used = keypoints.size();
+// The iterated update against the local map, undone if it needs an implausible acceleration.
+UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& keypoints, const IteratedEkf& predicted,
+                                              double end_time, double dt, OdometryResult& result) {
   UpdateSummary summary;
   if (!keypoints.empty()) {
     summary = filter_->update(keypoints, map_, updateOptionsFrom(config_));
@@ -176,11 +203,16 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   }
   if (summary.applied) last_accepted_time_ = end_time;
   result.rejected_updates = rejected_updates_;
+  return summary;
+}
 
+// The scan's status (tracking, degenerate, predicted only, lost) and the warnings that explain it.
+void MotorizedLidarOdometry::reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time,
+                                          OdometryResult& result) const {
   if (!summary.applied) {
     result.status = OdometryStatus::kPredictedOnly;
     std::ostringstream why;
-    if (keypoints.empty()) {
+    if (no_keypoints) {
       why << "no usable points";
     } else if (result.implausible_motion) {
       why << "registration rejected: it needs an acceleration beyond " << config_.max_linear_acceleration
@@ -224,19 +256,16 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
     why << "position standard deviation " << position_std << " m exceeds " << config_.max_position_std << " m";
     addWarning(result.warning, why.str());
   }
+}
 
-  // The map grows with the registered scan, at full resolution (the map voxel grid downsamples).
-  // Each point keeps the side it was seen from, taken from the base origin at the frame's end
-  // (the LiDAR turns on the motor axis there; see the seen-side test in iterated_ekf.hpp).
-  const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, filter_->state());
-  if (summary.applied) {
-    map_.insert(points_W, last_time_, filter_->state().r_WB);
-    map_.removeFarFrom(filter_->state().r_WB);
-  }
-  result.registered_points_W.reserve(points_W.size());
-  for (const auto& p : points_W) result.registered_points_W.push_back(p.cast<float>());
-  fill(*filter_);
-  return result;
+// The filter's state at the last scan's end.
+void MotorizedLidarOdometry::fillState(OdometryResult& result) const {
+  const BaseState& x = filter_->state();
+  result.time = last_time_;
+  result.T_WB = x.pose();
+  result.linear_velocity_W = x.v_W;
+  result.angular_velocity_B = x.w_B;
+  result.covariance = filter_->covariance();
 }
 
 }  // namespace uampc::lo

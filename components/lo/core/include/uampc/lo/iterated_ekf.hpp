@@ -49,7 +49,6 @@
 
 namespace uampc::lo {
 
-
 struct UpdateOptions {
   std::size_t nearest_neighbours = 5;
   double plane_max_point_distance = 0.1;  // m
@@ -103,13 +102,14 @@ class IteratedEkf {
   // The angular velocity becomes the steps' mean rate, with noise.rate_variance: the scan's
   // deskew uses it, the gyro has measured it.
   void predictInertial(const std::vector<InertialStep>& steps, const InertialNoise& noise);
-  UpdateSummary update(const std::vector<TimedPoint>& points, const LocalMap& map,
-                       const UpdateOptions& options);
+  UpdateSummary update(const std::vector<TimedPoint>& points, const LocalMap& map, const UpdateOptions& options);
 
   const BaseState& state() const { return state_; }
   const Matrix12d& covariance() const { return covariance_; }
 
  private:
+  // The pose and state degeneracy of the last linearisation, into the summary.
+  static void reportDegeneracy(const Matrix12d& information, const UpdateOptions& options, UpdateSummary& summary);
   BaseState state_;
   Matrix12d covariance_;
 };

@@ -18,6 +18,7 @@
 
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/lo/derotation.hpp"
 #include "uampc/lo/inertial.hpp"
 #include "uampc/lo/iterated_ekf.hpp"
 #include "uampc/lo/local_map.hpp"
@@ -157,6 +158,14 @@ class MotorizedLidarOdometry {
   const OdometryConfig& config() const { return config_; }
 
  private:
+  // The steps of registerScan, in order.
+  DerotatedScan derotateScan(const Scan& scan, const frames::MotorAngleTrack& motor, OdometryResult& result) const;
+  OdometryResult initialise(const DerotatedScan& derotated, OdometryResult result);
+  void predict(double end_time, double dt, const frames::MotorAngleTrack& motor, OdometryResult& result);
+  UpdateSummary correct(const std::vector<TimedPoint>& keypoints, const IteratedEkf& predicted, double end_time,
+                        double dt, OdometryResult& result);
+  void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
+  void fillState(OdometryResult& result) const;
   // Whether the update from predicted to updated needs an acceleration beyond the configured ones.
   bool implausibleMotion(const IteratedEkf& predicted, const BaseState& updated, double dt) const;
 
