@@ -13,6 +13,7 @@
 #include "edit_distance.hpp"
 #include "scene_document.hpp"
 #include "scene_ports.hpp"
+#include "uampc/runtime/yaml_errors.hpp"
 
 namespace fs = std::filesystem;
 
@@ -98,9 +99,7 @@ class SceneValidator {
     }
     return fs::path(document_.fileOf(node, file_)).parent_path().string();
   }
-  void error(const SourceLocation& where, const std::string& message) {
-    errors_.push_back(where.str() + ": error: " + message);
-  }
+  void error(const SourceLocation& where, const std::string& message) { collector_.add(where, message); }
   void error(const YAML::Node& node, const std::string& message) { error(locationOf(node), message); }
   SourceLocation locationOf(const YAML::Node& node) const {
     for (const auto& [override_node, text] : override_nodes_) {
@@ -115,7 +114,9 @@ class SceneValidator {
     return at(node);
   }
 
-  void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what);
+  void checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) {
+    collector_.checkKeys(map, allowed, what);
+  }
   void applyOverrides(YAML::Node& root, const std::vector<Override>& overrides);
   void readTopLevel(const YAML::Node& root, Scene& scene);
   void readClock(const YAML::Node& node, Scene& scene);
@@ -154,7 +155,8 @@ class SceneValidator {
   std::string file_;
   const SceneDocument& document_;
   ComponentCatalog& catalog_;
-  std::vector<std::string> errors_;
+  YamlErrors collector_{[this](const YAML::Node& node) { return locationOf(node); }};
+  std::vector<std::string>& errors_ = collector_.messages();        // also filled by scene_ports.cpp
   std::vector<std::pair<YAML::Node, std::string>> override_nodes_;  // value grafted by --set, its text
   std::vector<std::pair<std::string, std::string>> override_keys_;  // last name of each --set, its text
   std::vector<PortReference> pending_;
@@ -168,15 +170,6 @@ class SceneValidator {
   YAML::Node rig_node_;
   std::map<std::string, std::pair<const ParameterSpec*, std::string>> rig_declared_;  // name -> spec, type
 };
-
-void SceneValidator::checkKeys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) {
-  for (const auto& kv : map) {
-    const std::string key = kv.first.as<std::string>();
-    if (allowed.count(key)) continue;
-    const std::string guess = closestMatch(key, {allowed.begin(), allowed.end()});
-    error(kv.first, "unknown key '" + key + "' in " + what + (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
-  }
-}
 
 void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override>& overrides) {
   // Overrides are parsed as YAML and grafted into the tree; errors about their values name the
