@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "command_runner.hpp"
+#include "uampc/runtime/component.hpp"
 
 namespace uampc::test {
 namespace {
@@ -234,9 +235,11 @@ TEST(ComponentLoader, RefusesALibraryBuiltForAnotherAbiVersion) {
   const CommandResult r = runShell("UAMPC_COMPONENT_PATH=" + binaryPath("tests/bad_abi_components") + " " +
                                    binaryPath("bin/uampc") + " components");
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("libuampc_bad_abi.so: built for component ABI version 42, but this uampc runtime has "
-                          "version 2; rebuild"),
-            std::string::npos)
+  // tests/components/bad_abi declares the runtime's version + 41.
+  const std::string expected = "libuampc_bad_abi.so: built for component ABI version " +
+                               std::to_string(kComponentAbiVersion + 41) + ", but this uampc runtime has version " +
+                               std::to_string(kComponentAbiVersion) + "; rebuild";
+  EXPECT_NE(r.output.find(expected), std::string::npos)
       << r.output;
 }
 
