@@ -1,5 +1,6 @@
 // constant_speed_controller: the paper's baseline. Commands one speed, always: 3.6 rad/s by
 // default (the paper's constant-speed baseline); speed 0 is the zero-speed baseline.
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc {

@@ -2,6 +2,7 @@
 // (16-bit depth, or fewer bytes than width x height floats), or never opens its declared port.
 #include <optional>
 
+#include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc {

@@ -2,6 +2,7 @@
 // survive: without a per-point time field, with NaN points, with non-finite point times, or empty.
 #include <limits>
 
+#include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 

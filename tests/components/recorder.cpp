@@ -5,6 +5,9 @@
 #include <cstdio>
 #include <memory>
 
+#include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 

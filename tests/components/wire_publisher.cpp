@@ -3,6 +3,8 @@
 #include <cstring>
 
 #include "../wire/wire_sample.hpp"
+#include "uampc/msgs/nav_msgs.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc {

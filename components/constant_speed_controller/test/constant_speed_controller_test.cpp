@@ -1,6 +1,7 @@
 // The adapter in-process: one command per period, at the configured speed.
 #include <gtest/gtest.h>
 
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 
 namespace uampc {

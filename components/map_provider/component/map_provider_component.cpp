@@ -6,6 +6,9 @@
 
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
+#include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/world/density_profile.hpp"

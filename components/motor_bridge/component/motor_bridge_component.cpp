@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "uampc/motor/simulated_motor.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
 

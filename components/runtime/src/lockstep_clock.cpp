@@ -11,6 +11,8 @@
 #include <thread>
 
 #include "dds_node.hpp"
+#include "uampc/msgs/rosgraph_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/run_progress.hpp"
 #include "uampc/runtime/process_group.hpp"

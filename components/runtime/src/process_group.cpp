@@ -10,6 +10,8 @@
 #include <thread>
 
 #include "dds_node.hpp"
+#include "uampc/msgs/rosgraph_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "wakeup.hpp"
 
 namespace uampc {

@@ -9,6 +9,8 @@
 
 #include <unistd.h>
 
+#include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/nav_msgs.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 
 namespace uampc {

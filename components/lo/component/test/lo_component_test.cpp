@@ -5,6 +5,9 @@
 
 #include <random>
 
+#include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/nav_msgs.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 

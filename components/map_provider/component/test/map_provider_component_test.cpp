@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "uampc/adapters/pose_messages.hpp"
+#include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 
 namespace uampc {

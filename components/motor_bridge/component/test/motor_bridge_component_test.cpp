@@ -2,6 +2,8 @@
 // limits, and the safe speed when commands stop.
 #include <gtest/gtest.h>
 
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 
 namespace uampc {

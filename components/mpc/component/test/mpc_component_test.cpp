@@ -2,6 +2,9 @@
 // plans nothing; with them it plans (U samples, a horizon) and publishes the panorama.
 #include <gtest/gtest.h>
 
+#include "uampc/msgs/nav_msgs.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 

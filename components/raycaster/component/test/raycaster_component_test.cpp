@@ -2,6 +2,9 @@
 // cover a frame; then frame k covers [k/rate, (k+1)/rate) with every point at its own time.
 #include <gtest/gtest.h>
 
+#include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 

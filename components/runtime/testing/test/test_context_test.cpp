@@ -1,6 +1,9 @@
 // The test context itself, on the two smallest components.
 #include <gtest/gtest.h>
 
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/std_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 
 namespace uampc::testing {

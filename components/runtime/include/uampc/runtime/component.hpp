@@ -24,7 +24,7 @@
 
 #include "uampc/runtime/component_spec.hpp"
 #include "uampc/runtime/logger.hpp"
-#include "uampc/runtime/message_types.hpp"
+#include "uampc/runtime/message_type.hpp"
 #include "uampc/runtime/parameter.hpp"
 #include "uampc/runtime/time.hpp"
 
@@ -41,11 +41,6 @@ class Writer {
   virtual ~Writer() = default;
   virtual void write(const void* sample) = 0;
 };
-using TypeSupportFactory = eprosima::fastdds::dds::TopicDataType* (*)();
-template <typename Message>
-eprosima::fastdds::dds::TopicDataType* makeTypeSupport() {
-  return new typename MessageType<Message>::PubSubType();
-}
 }  // namespace detail
 
 template <typename Message>

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "uampc/runtime/message_types.hpp"
+#include "uampc/runtime/message_type.hpp"
 #include "uampc/runtime/parameter.hpp"
 #include "uampc/runtime/qos.hpp"
 
