@@ -7,7 +7,6 @@
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <thread>
 
 #include "experiment_file.hpp"
 #include "experiment_runner.hpp"
@@ -25,97 +24,6 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 
 void onInterrupt(int) { g_interrupted = true; }
-
-struct ExperimentOptions {
-  std::string experiment_file;
-  std::string output_directory;
-  std::string data_directory;
-  int jobs = std::max(1u, std::thread::hardware_concurrency());
-  int domain_base = 100;
-  bool dry_run = false;
-  bool help = false;
-  std::vector<std::string> overrides;
-};
-
-const char* const kExperimentUsage =
-    "usage: uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N] "
-    "[--set NAME=VALUE ...] [--dry-run]\n";
-
-bool parse(const std::vector<std::string>& args, ExperimentOptions& o, std::string& error) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string* {
-      if (i + 1 >= args.size()) {
-        error = a + " needs a value";
-        return nullptr;
-      }
-      return &args[++i];
-    };
-    auto integer = [&](int lo, int hi, int& target) {
-      const std::string* v = value();
-      if (!v) return false;
-      try {
-        std::size_t used = 0;
-        target = std::stoi(*v, &used);
-        if (used == v->size() && target >= lo && target <= hi) return true;
-      } catch (const std::exception&) {
-      }
-      error = a + " must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not '" + *v + "'";
-      return false;
-    };
-    if (a == "--out") {
-      const std::string* v = value();
-      if (!v) return false;
-      o.output_directory = *v;
-    } else if (a == "--data-dir") {
-      const std::string* v = value();
-      if (!v) return false;
-      o.data_directory = fs::absolute(*v).lexically_normal().string();
-    } else if (a == "--dry-run") {
-      o.dry_run = true;
-    } else if (a == "--help" || a == "-h") {
-      o.help = true;
-      return true;
-    } else if (a == "--jobs") {
-      if (!integer(1, 133, o.jobs)) return false;
-    } else if (a == "--domain-base") {
-      if (!integer(0, 232, o.domain_base)) return false;
-    } else if (a == "--set") {
-      const std::string* v = value();
-      if (!v) return false;
-      try {
-        const Override parsed = parseOverride(*v);
-        if (parsed.path.size() == 1 && (parsed.path[0] == "seed" || parsed.path[0] == "domain_id")) {
-          error = "--set " + *v + ": " + parsed.path[0] + " is set by the experiment";
-          return false;
-        }
-      } catch (const SceneError& e) {
-        error = e.what();
-        return false;
-      }
-      o.overrides.push_back(*v);
-    } else if (!a.empty() && a[0] == '-') {
-      error = "unknown option " + a;
-      return false;
-    } else if (o.experiment_file.empty()) {
-      o.experiment_file = a;
-    } else {
-      error = "more than one experiment file given: " + o.experiment_file + " and " + a;
-      return false;
-    }
-  }
-  if (o.experiment_file.empty())
-    error = "no experiment file given";
-  else if (o.output_directory.empty())
-    error = "experiment needs --out DIR";
-  if (!error.empty()) return false;
-  if (o.domain_base + o.jobs - 1 > 232) {
-    error = "--domain-base " + std::to_string(o.domain_base) + " with --jobs " + std::to_string(o.jobs) +
-            " needs DDS domains above 232";
-    return false;
-  }
-  return true;
-}
 
 // Every scene with every controller's overrides, validated as `uampc launch` will, before the
 // first run starts: a typo in a controller's override should cost seconds, not an hour of runs.
@@ -142,19 +50,29 @@ bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>&
 
 }  // namespace
 
-int experimentCommand(const std::vector<std::string>& args) {
-  ExperimentOptions options;
-  std::string error;
-  if (!parse(args, options, error)) {
-    std::cerr << "uampc: " << error << "\n" << kExperimentUsage;
-    return 2;
+std::string experimentOptionsError(const ExperimentOptions& options) {
+  for (const std::string& text : options.overrides) {
+    try {
+      const Override parsed = parseOverride(text);
+      if (parsed.path.size() == 1 && (parsed.path[0] == "seed" || parsed.path[0] == "domain_id")) {
+        return "--set " + text + ": " + parsed.path[0] + " is set by the experiment";
+      }
+    } catch (const SceneError& e) {
+      return e.what();
+    }
   }
-  if (options.help) {  // the whole description is in `uampc --help`
-    std::cout << kExperimentUsage << "(see uampc --help for what it does)\n";
-    return 0;
+  if (options.domain_base + options.jobs - 1 > kHighestDomainId) {
+    return "--domain-base " + std::to_string(options.domain_base) + " with --jobs " + std::to_string(options.jobs) +
+           " needs DDS domains above " + std::to_string(kHighestDomainId);
   }
+  return "";
+}
+
+int experimentCommand(const ExperimentOptions& options) {
   std::map<std::string, std::string> variables;
-  if (!options.data_directory.empty()) variables["data_dir"] = options.data_directory;
+  if (!options.data_directory.empty()) {
+    variables["data_dir"] = fs::absolute(options.data_directory).lexically_normal().string();
+  }
   Experiment experiment;
   try {
     experiment = loadExperiment(options.experiment_file, variables);

@@ -2,15 +2,37 @@
 //  [--set NAME=VALUE ...] [--dry-run]`: validates the experiment and every scene it runs, runs the matrix
 // (experiment_runner.hpp), and writes DIR/results.json, DIR/results.md and DIR/report/index.html.
 // --dry-run stops after validation and prints every planned run's command line.
+// The command line is parsed in main.cpp; this file has what the command does with it.
 #pragma once
 
+#include <algorithm>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace uampc::app {
 
-// Exit codes: 0 every run finished, 1 a run failed, 2 invalid experiment or command line,
+// Fast DDS maps domain ids 0..232 to ports; each job of an experiment runs on a domain of its own.
+constexpr int kHighestDomainId = 232;
+constexpr int kDefaultDomainBase = 100;
+constexpr int kMostJobs = kHighestDomainId - kDefaultDomainBase + 1;
+
+struct ExperimentOptions {
+  std::string experiment_file;
+  std::string output_directory;
+  std::string data_directory;  // as given; ${data_dir} becomes its absolute path
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int domain_base = kDefaultDomainBase;
+  bool dry_run = false;
+  std::vector<std::string> overrides;  // --set, as given: every run gets them
+};
+
+// What is wrong with options that parsed (a --set the experiment owns or that is no NAME=VALUE,
+// domains past kHighestDomainId), as a message for the user; empty if nothing.
+std::string experimentOptionsError(const ExperimentOptions& options);
+
+// Exit codes: 0 every run finished, 1 a run failed, 2 invalid experiment,
 // 130 Ctrl-C (what finished is still written to the results).
-int experimentCommand(const std::vector<std::string>& args);
+int experimentCommand(const ExperimentOptions& options);
 
 }  // namespace uampc::app

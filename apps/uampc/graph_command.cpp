@@ -91,13 +91,6 @@ void dot(const Scene& scene, const std::vector<Topic>& topics, std::ostream& out
   out << "}\n";
 }
 
-const char* const kGraphUsage = "usage: uampc graph SCENE.yaml [--set NAME=VALUE ...] [--format mermaid|dot]\n";
-
-int usage(const std::string& message) {
-  std::cerr << "uampc graph: " << message << "\n" << kGraphUsage;
-  return 2;
-}
-
 }  // namespace
 
 std::string renderGraph(const Scene& scene, GraphFormat format) {
@@ -110,45 +103,10 @@ std::string renderGraph(const Scene& scene, GraphFormat format) {
   return out.str();
 }
 
-int graphCommand(const std::vector<std::string>& args) {
-  std::string scene_path;
-  std::vector<Override> overrides;
-  GraphFormat format = GraphFormat::kMermaid;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
-      std::cout << kGraphUsage;
-      return 0;
-    }
-    if (a == "--set" || a == "--format") {
-      if (i + 1 >= args.size()) return usage(a + " needs a value");
-      const std::string& value = args[++i];
-      if (a == "--format") {
-        if (value == "mermaid")
-          format = GraphFormat::kMermaid;
-        else if (value == "dot")
-          format = GraphFormat::kDot;
-        else
-          return usage("--format must be mermaid or dot, not '" + value + "'");
-        continue;
-      }
-      try {
-        overrides.push_back(parseOverride(value));
-      } catch (const std::exception& e) {
-        return usage(e.what());
-      }
-    } else if (!a.empty() && a[0] == '-') {
-      return usage("unknown option " + a);
-    } else if (scene_path.empty()) {
-      scene_path = a;
-    } else {
-      return usage("more than one scene given: " + scene_path + " and " + a);
-    }
-  }
-  if (scene_path.empty()) return usage("no scene file given");
+int graphCommand(const LaunchOptions& options, GraphFormat format) {
   ComponentCatalog catalog;
   try {
-    const Scene scene = loadScene(scene_path, overrides, catalog);
+    const Scene scene = loadScene(options.scene_path, options.overrides, catalog);
     for (const auto& w : scene.warnings) std::cerr << w << "\n";
     std::cout << renderGraph(scene, format);
     return 0;

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "uampc/runtime/launcher.hpp"
 #include "uampc/runtime/scene.hpp"
 
 namespace uampc::app {
@@ -15,6 +16,8 @@ enum class GraphFormat { kMermaid, kDot };
 // with no writer or no reader in the scene is a node of its own, drawn dashed.
 std::string renderGraph(const Scene& scene, GraphFormat format);
 
-int graphCommand(const std::vector<std::string>& args);
+// Prints the graph of options.scene_path with options.overrides (the command line is parsed in
+// main.cpp). Exit codes: 0, or 2 for an invalid scene.
+int graphCommand(const LaunchOptions& options, GraphFormat format);
 
 }  // namespace uampc::app

@@ -1,13 +1,12 @@
-// The uampc command line.
-//
-//   uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]
-//   uampc components [--json]
-//   uampc validate SCENE.yaml [--set NAME=VALUE ...]
-//   uampc graph SCENE.yaml [--set NAME=VALUE ...] [--format mermaid|dot]
-//   uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--set NAME=VALUE ...]
-//   uampc run-process SCENE.yaml --process NAME ...;  uampc clock SCENE.yaml ...
-#include <cstring>
+// The uampc command line: one CLI11 app with a subcommand per command. This file only turns the
+// command line into each command's options; what a command does is in launcher.hpp and
+// *_command.hpp. Every command and option is described here, once: `uampc --help` and
+// `uampc COMMAND --help` print these texts.
+#include <CLI/CLI.hpp>
+#include <functional>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,124 +14,283 @@
 #include "experiment_command.hpp"
 #include "graph_command.hpp"
 #include "uampc/runtime/launcher.hpp"
+#include "version.hpp"
 
 namespace {
 
-const char* const kUsage = R"(usage:
-  uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]
-      Validate and run a scene. NAME is component.parameter, clock.key or a top-level key
-      (seed, domain_id, ...). --out DIR collects the run's outputs. Ctrl-C stops everything.
-  uampc validate SCENE.yaml [--set NAME=VALUE ...]
-      Only validate the scene; print every problem with file:line:column.
-  uampc graph SCENE.yaml [--set NAME=VALUE ...] [--format mermaid|dot]
-      Print the scene's resolved graph (components, and the topics between them with their types)
-      as a Mermaid flowchart (default) or Graphviz DOT.
-  uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]
-                   [--set NAME=VALUE ...] [--dry-run]
-      Run every scene x controller x seed of an experiment (at most N at once, default: one per
-      CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,
-      DIR/results.md (the paper's table) and DIR/report/index.html. Finished runs are kept:
-      running it again only runs what is missing or failed. ${data_dir} in the experiment's
-      overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.
-  uampc components [--json]
-      List installed component types with their ports and parameters.
-  uampc run-process SCENE.yaml --process NAME [--set NAME=VALUE ...] [--out DIR]
-      Run one process group of a scene (launch does this for every group; use it to spread a
-      scene over containers or hosts).
-  uampc clock SCENE.yaml [--set NAME=VALUE ...]
-      Run only the lockstep clock of a scene whose process groups were started with run-process.
+constexpr int kCommandLineError = 2;  // also "bad scene": both mean nothing ran
 
-Component libraries are searched in $UAMPC_COMPONENT_PATH (colon-separated), then next to this binary
+const char* const kFooter =
+    R"(Component libraries are searched in $UAMPC_COMPONENT_PATH (colon-separated), then next to this binary
 in ../lib/uampc/components. Log level: UAMPC_LOG_LEVEL=debug|info|warn|error.
-Exit codes: 0 success, 1 run failed, 2 bad scene or command line, 130 Ctrl-C.
-)";
+Exit codes: 0 success, 1 run failed, 2 bad scene or command line, 130 Ctrl-C.)";
 
-int usageError(const std::string& message) {
-  std::cerr << "uampc: " << message << "\n\n" << kUsage;
-  return 2;
-}
+const char* const kSetHelp =
+    "Override a value of the scene: component.parameter, clock.key, rig.key or a top-level key\n"
+    "(seed, domain_id, ...). Repeatable; applied in the order given.";
 
-// Parses SCENE [--set X=Y]... [--out DIR] [--process P] into options.
-bool parseLaunchArguments(const std::vector<std::string>& args, uampc::LaunchOptions& options,
-                          std::string* process, std::string& error) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&](const char* flag) -> const std::string* {
-      if (i + 1 >= args.size()) {
-        error = std::string(flag) + " needs a value";
-        return nullptr;
-      }
-      return &args[++i];
-    };
-    if (a == "--set") {
-      const std::string* v = value("--set");
-      if (!v) return false;
-      try {
-        options.overrides.push_back(uampc::parseOverride(*v));
-      } catch (const std::exception& e) {
-        error = e.what();
-        return false;
-      }
-    } else if (a == "--out") {
-      const std::string* v = value("--out");
-      if (!v) return false;
-      options.output_directory = *v;
-    } else if (a == "--process" && process) {
-      const std::string* v = value("--process");
-      if (!v) return false;
-      *process = *v;
-    } else if (!a.empty() && a[0] == '-') {
-      error = "unknown option " + a;
-      return false;
-    } else if (options.scene_path.empty()) {
-      options.scene_path = a;
-    } else {
-      error = "more than one scene given: " + options.scene_path + " and " + a;
-      return false;
+// CLI11's help, laid out as uampc's always was: a synopsis per command ("uampc launch SCENE.yaml
+// [--set NAME=VALUE ...] [--out DIR]") above its description, where CLI11 would print
+// "Usage: uampc launch [OPTIONS] SCENE.yaml".
+class SynopsisFormatter : public CLI::Formatter {
+ public:
+  // A line break in a synopsis continues it under its first argument.
+  void addSynopsis(const std::string& command, const std::string& synopsis) { synopses_[command] = synopsis; }
+
+  std::string make_help(const CLI::App* app, std::string name, CLI::AppFormatMode mode) const override {
+    if (mode == CLI::AppFormatMode::Sub) return make_expanded(app);
+    return make_usage(app, name) + make_description(app) + make_positionals(app) + make_groups(app, mode) +
+           make_subcommands(app, mode) + "\n" + make_footer(app);
+  }
+
+  std::string make_usage(const CLI::App* app, std::string) const override {
+    if (app->get_parent() == nullptr) {
+      return "usage: uampc COMMAND ...   (uampc COMMAND --help describes a command and its options)\n";
     }
+    return "usage: " + synopsis(*app, "usage: ") + "\n";
   }
-  if (options.scene_path.empty()) {
-    error = "no scene file given";
-    return false;
+
+  std::string make_subcommand(const CLI::App* sub) const override {
+    return "  " + synopsis(*sub, "  ") + "\n" + indented(sub->get_description(), "      ") + "\n";
   }
-  return true;
-}
+
+ private:
+  std::string synopsis(const CLI::App& command, const std::string& prefix) const {
+    const auto found = synopses_.find(command.get_name());
+    const std::string text = found == synopses_.end() ? "uampc " + command.get_name() : found->second;
+    const std::string continuation = "\n" + std::string(prefix.size() + command.get_name().size() + 7, ' ');
+    return CLI::detail::find_and_replace(text, "\n", continuation);
+  }
+
+  static std::string indented(const std::string& text, const std::string& indent) {
+    return indent + CLI::detail::find_and_replace(text, "\n", "\n" + indent);
+  }
+
+  std::map<std::string, std::string> synopses_;
+};
+
+// Everything the command line sets; each command reads its part.
+struct CommandLine {
+  uampc::LaunchOptions scene;                // launch, validate, graph, run-process, clock
+  std::vector<std::string> overrides;        // --set, as given, parsed into scene.overrides
+  std::string process;                       // run-process
+  std::string graph_format = "mermaid";      // graph
+  bool json = false;                         // components
+  uampc::app::ExperimentOptions experiment;  // experiment
+};
+
+// A command: its subcommand in the app and what runs when it was given.
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+class UampcCli {
+ public:
+  UampcCli() {
+    app_.formatter(formatter_);  // before the subcommands: they copy their parent's formatter
+    app_.set_help_flag("-h,--help", "Print this help and exit");
+    app_.set_version_flag("--version", uampc::app::versionText,
+                          "Print uampc's version (git describe when it was built) and Fast DDS's, and exit");
+    app_.require_subcommand(1);
+    app_.footer(kFooter);
+    addLaunch();
+    addValidate();
+    addGraph();
+    addExperiment();
+    addComponents();
+    addRunProcess();
+    addClock();
+  }
+
+  int run(int argc, char** argv) {
+    if (argc < 2) {
+      std::cout << app_.help();
+      return kCommandLineError;
+    }
+    // CLI11 would say "A subcommand is required"; name what it got instead.
+    const std::string first = argv[1];
+    bool known = app_.get_option_no_throw(first) != nullptr;
+    for (const Command& c : commands_) known = known || c.app->get_name() == first;
+    if (!known) {
+      return commandLineError(nullptr,
+                              (first.rfind('-', 0) == 0 ? "unknown option '" : "unknown command '") + first + "'");
+    }
+    try {
+      app_.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app_.exit(e);  // --help, --version
+      return commandLineError(given(), e.what());
+    }
+    const Command* command = given();
+    return command ? command->run() : commandLineError(nullptr, "no command given");
+  }
+
+ private:
+  CLI::App* addCommand(const std::string& name, const std::string& synopsis, const std::string& description) {
+    formatter_->addSynopsis(name, synopsis);
+    CLI::App* sub = app_.add_subcommand(name, description);
+    sub->group("Commands");
+    return sub;
+  }
+
+  void addScene(CLI::App* sub) {
+    sub->add_option("SCENE.yaml", options_.scene.scene_path, "The scene file.")->required()->type_name("");
+  }
+
+  void addOverrides(CLI::App* sub) {
+    sub->add_option("--set", options_.overrides, kSetHelp)->allow_extra_args(false)->type_name("NAME=VALUE");
+  }
+
+  void addOutput(CLI::App* sub) {
+    sub->add_option("--out", options_.scene.output_directory, "Collect the run's outputs in DIR.")->type_name("DIR");
+  }
+
+  // The scene commands: their --set values parsed as the scene loader reads them, then the command.
+  std::function<int()> withOverrides(std::function<int()> command) {
+    return [this, command] {
+      try {
+        for (const std::string& text : options_.overrides)
+          options_.scene.overrides.push_back(uampc::parseOverride(text));
+      } catch (const uampc::SceneError& e) {
+        return commandLineError(given(), e.what());
+      }
+      return command();
+    };
+  }
+
+  void addLaunch() {
+    CLI::App* sub =
+        addCommand("launch", "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]",
+                   "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
+                   "(seed, domain_id, ...). --out DIR collects the run's outputs. Ctrl-C stops everything.");
+    addScene(sub);
+    addOverrides(sub);
+    addOutput(sub);
+    commands_.push_back({sub, withOverrides([this] { return uampc::launch(options_.scene); })});
+  }
+
+  void addValidate() {
+    CLI::App* sub = addCommand("validate", "uampc validate SCENE.yaml [--set NAME=VALUE ...]",
+                               "Only validate the scene; print every problem with file:line:column.");
+    addScene(sub);
+    addOverrides(sub);
+    commands_.push_back({sub, withOverrides([this] { return uampc::app::validateCommand(options_.scene); })});
+  }
+
+  void addGraph() {
+    CLI::App* sub =
+        addCommand("graph", "uampc graph SCENE.yaml [--set NAME=VALUE ...] [--format mermaid|dot]",
+                   "Print the scene's resolved graph (components, and the topics between them with their types)\n"
+                   "as a Mermaid flowchart (default) or Graphviz DOT.");
+    addScene(sub);
+    addOverrides(sub);
+    sub->add_option("--format", options_.graph_format, "mermaid (default) or dot.")
+        ->check(CLI::IsMember({"mermaid", "dot"}).description(""))
+        ->type_name("mermaid|dot");
+    commands_.push_back({sub, withOverrides([this] {
+                           const auto format = options_.graph_format == "dot" ? uampc::app::GraphFormat::kDot
+                                                                              : uampc::app::GraphFormat::kMermaid;
+                           return uampc::app::graphCommand(options_.scene, format);
+                         })});
+  }
+
+  void addExperiment() {
+    using uampc::app::kHighestDomainId;
+    uampc::app::ExperimentOptions& o = options_.experiment;
+    CLI::App* sub =
+        addCommand("experiment",
+                   "uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]\n"
+                   "[--set NAME=VALUE ...] [--dry-run]",
+                   "Run every scene x controller x seed of an experiment (at most N at once, default: one per\n"
+                   "CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,\n"
+                   "DIR/results.md (the paper's table) and DIR/report/index.html. Finished runs are kept:\n"
+                   "running it again only runs what is missing or failed. ${data_dir} in the experiment's\n"
+                   "overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.");
+    sub->add_option("EXPERIMENT.yaml", o.experiment_file, "The experiment file.")->required()->type_name("");
+    sub->add_option("--out", o.output_directory, "Write the runs, results and report into DIR.")
+        ->required()
+        ->type_name("DIR");
+    sub->add_option(
+           "--jobs", o.jobs,
+           "Run at most N (1 to " + std::to_string(uampc::app::kMostJobs) + ") at once (default: one per CPU).")
+        ->check(CLI::Range(1, uampc::app::kMostJobs).description(""))
+        ->type_name("N");
+    sub->add_option("--data-dir", o.data_directory, "What ${data_dir} in the experiment's overrides stands for.")
+        ->type_name("DIR");
+    sub->add_option("--domain-base", o.domain_base,
+                    "The first run's DDS domain; slot k runs on N + k (default " +
+                        std::to_string(uampc::app::kDefaultDomainBase) + ", at most " +
+                        std::to_string(kHighestDomainId) + " with the slots).")
+        ->check(CLI::Range(0, kHighestDomainId).description(""))
+        ->type_name("N");
+    sub->add_option("--set", o.overrides,
+                    "Override a value of every run's scene (NAME=VALUE as for launch;\n"
+                    "not seed or domain_id, which the experiment sets). Repeatable.")
+        ->allow_extra_args(false)
+        ->type_name("NAME=VALUE");
+    sub->add_flag("--dry-run", o.dry_run, "Only validate the experiment and its scenes and list the runs.");
+    commands_.push_back({sub, [this] {
+                           const std::string error = uampc::app::experimentOptionsError(options_.experiment);
+                           if (!error.empty()) return commandLineError(given(), error);
+                           return uampc::app::experimentCommand(options_.experiment);
+                         }});
+  }
+
+  void addComponents() {
+    CLI::App* sub = addCommand("components", "uampc components [--json]",
+                               "List installed component types with their ports and parameters.");
+    sub->add_flag("--json", options_.json, "Print them as JSON (for tools) instead of text.");
+    commands_.push_back({sub, [this] { return uampc::app::componentsCommand(options_.json); }});
+  }
+
+  void addRunProcess() {
+    CLI::App* sub =
+        addCommand("run-process", "uampc run-process SCENE.yaml --process NAME [--set NAME=VALUE ...] [--out DIR]",
+                   "Run one process group of a scene (launch does this for every group; use it to spread a\n"
+                   "scene over containers or hosts).");
+    addScene(sub);
+    sub->add_option("--process", options_.process, "The process group to run (a process: of the scene).")
+        ->required()
+        ->type_name("NAME");
+    addOverrides(sub);
+    addOutput(sub);
+    commands_.push_back(
+        {sub, withOverrides([this] { return uampc::runProcessCommand(options_.scene, options_.process); })});
+  }
+
+  void addClock() {
+    CLI::App* sub =
+        addCommand("clock", "uampc clock SCENE.yaml [--set NAME=VALUE ...]",
+                   "Run only the lockstep clock of a scene whose process groups were started with run-process.");
+    addScene(sub);
+    addOverrides(sub);
+    commands_.push_back({sub, withOverrides([this] { return uampc::runClockCommand(options_.scene); })});
+  }
+
+  // The command on the command line, if CLI11 got as far as reading it.
+  const Command* given() const {
+    for (const Command& c : commands_) {
+      if (c.app->parsed()) return &c;
+    }
+    return nullptr;
+  }
+
+  // "uampc launch: <message>", the command's synopsis and where to read more; exit code 2.
+  int commandLineError(const Command* command, const std::string& message) const {
+    const std::string name = command ? "uampc " + command->app->get_name() : "uampc";
+    std::cerr << name << ": " << message << "\n";
+    if (command) std::cerr << formatter_->make_usage(command->app, "");
+    std::cerr << "(" << name << " --help for more)\n";
+    return kCommandLineError;
+  }
+
+  std::shared_ptr<SynopsisFormatter> formatter_ = std::make_shared<SynopsisFormatter>();
+  CLI::App app_{"", "uampc"};
+  CommandLine options_;
+  std::vector<Command> commands_;
+};
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-    std::cout << kUsage;
-    return argc < 2 ? 2 : 0;
-  }
-  const std::string command = argv[1];
-  const std::vector<std::string> args(argv + 2, argv + argc);
-  std::string error;
-  uampc::LaunchOptions options;
-  if (command == "launch") {
-    if (!parseLaunchArguments(args, options, nullptr, error)) return usageError(error);
-    return uampc::launch(options);
-  }
-  if (command == "validate") {
-    if (!parseLaunchArguments(args, options, nullptr, error)) return usageError(error);
-    return uampc::app::validateCommand(options);
-  }
-  if (command == "clock") {
-    if (!parseLaunchArguments(args, options, nullptr, error)) return usageError(error);
-    return uampc::runClockCommand(options);
-  }
-  if (command == "run-process") {
-    std::string process;
-    if (!parseLaunchArguments(args, options, &process, error) || process.empty()) {
-      return usageError(error.empty() ? "run-process needs --process" : error);
-    }
-    return uampc::runProcessCommand(options, process);
-  }
-  if (command == "graph") return uampc::app::graphCommand(args);
-  if (command == "experiment") return uampc::app::experimentCommand(args);
-  if (command == "components") {
-    if (args.size() > 1 || (args.size() == 1 && args[0] != "--json")) return usageError("components takes only --json");
-    return uampc::app::componentsCommand(args.size() == 1);
-  }
-  return usageError("unknown command '" + command + "'");
-}
+int main(int argc, char** argv) { return UampcCli().run(argc, argv); }
