@@ -189,120 +189,134 @@ bool isRunComplete(const std::string& run_directory) {
   return run_files::readDoneMarker(run_directory).has_value() && readRunMetrics(run_directory).has_value();
 }
 
-std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,
-                              const RunnerOptions& options) {
-  std::vector<RunResult> results(plan.size());
-  std::vector<std::size_t> pending;
-  // For the ETA: each scene's length in sim seconds once known (every controller and seed of a
-  // scene simulates the same time), from runs of before or from a running one's progress file.
-  std::map<std::size_t, double> scene_length_s;
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    RunResult& r = results[i];
-    r.scene = experiment.scenes[plan[i].scene].name;
-    r.controller = experiment.controllers[plan[i].controller].name;
-    r.seed = plan[i].seed;
-    r.directory = plan[i].directory;
-    const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
-    if (isRunComplete(dir.string())) {
-      r.status = RunStatus::kReused;
-      r.exit_code = 0;
-      readRunOutputs(dir.string(), r);
-      if (r.metrics.sim_time_s > 0) scene_length_s[plan[i].scene] = r.metrics.sim_time_s;
-      continue;
-    }
-    r.retried = fs::exists(dir) && !fs::is_empty(dir);
-    pending.push_back(i);
-  }
+namespace {
 
-  Progress progress(plan.size(), plan.size() - pending.size());
-  for (std::size_t i : pending) {
-    if (!results[i].retried) continue;
-    const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
-    const std::string before = lastLine(run_files::readFailedMarker(dir.string()));
-    progress.say("experiment: retrying " + plan[i].directory +
-                 (before.empty() ? " (unfinished before)" : " (failed before: " + before + ")"));
-  }
-  if (pending.empty()) progress.print(0, 0, 0, 0.0);  // nothing to run: say so
-  std::map<pid_t, Running> running;
-  std::vector<bool> slot_busy(static_cast<std::size_t>(std::max(options.jobs, 1)), false);
-  std::size_t next = 0, finished_now = 0, failed = 0;
-  std::vector<StartedRun> finished_work;  // for the ETA: the runs finished in this invocation
-  auto logProgress = [&](std::size_t run) {
-    const SimProgress p = runProgress((fs::path(options.output_directory) / plan[run].directory).string());
-    if (p.total_s > 0) scene_length_s[plan[run].scene] = p.total_s;
-    return p;
-  };
-  auto secondsSince = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  auto report = [&](bool force) {
-    if (!progress.due(force)) return;
-    std::vector<StartedRun> work = finished_work;
-    for (const auto& [pid, r] : running) work.push_back({logProgress(r.run), secondsSince(r.start)});
-    std::vector<double> pending_lengths;
-    for (std::size_t k = next; k < pending.size(); ++k) {
-      const auto known = scene_length_s.find(plan[pending[k]].scene);
-      pending_lengths.push_back(known == scene_length_s.end() ? -1.0 : known->second);
-    }
-    progress.print(finished_now, running.size(), failed, estimateRemainingSeconds(work, pending_lengths, options.jobs));
-  };
-  bool stopping = false;
-  while (true) {
-    if (options.interrupted && *options.interrupted && !stopping) {
-      stopping = true;
-      progress.say("experiment: interrupted; stopping " + std::to_string(running.size()) + " run(s)");
-      for (const auto& [pid, _] : running) kill(pid, SIGINT);  // the launcher stops its run cleanly
-    }
-    while (!stopping && next < pending.size()) {
-      int slot = -1;
-      for (std::size_t k = 0; k < slot_busy.size(); ++k) {
-        if (!slot_busy[k]) {
-          slot = static_cast<int>(k);
-          break;
-        }
-      }
-      if (slot < 0) break;
-      const std::size_t i = pending[next++];
-      const fs::path dir = fs::path(options.output_directory) / plan[i].directory;
-      fs::remove_all(dir);  // no stale file of an earlier attempt may pass for this one's
-      fs::create_directories(dir);
-      std::vector<std::string> args = plan[i].args;
-      args.insert(args.end(),
-                  {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options.domain_base + slot)});
-      const pid_t pid = startRun(options.executable, args, dir);
-      if (pid < 0) {
-        results[i].status = RunStatus::kFailed;
-        results[i].failure = std::string("cannot start a process: ") + std::strerror(errno);
-        ++failed;
-        ++finished_now;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// runAll's state and its steps: the runs of before taken as they are, the others started into
+// free slots, each finished one collected, progress reported.
+class Scheduler {
+ public:
+  Scheduler(const Experiment& experiment, const std::vector<PlannedRun>& plan, const RunnerOptions& options)
+      : experiment_(experiment),
+        plan_(plan),
+        options_(options),
+        results_(plan.size()),
+        slot_busy_(static_cast<std::size_t>(std::max(options.jobs, 1)), false) {}
+
+  std::vector<RunResult> run() {
+    reuseCompleteRuns();
+    Progress progress(plan_.size(), plan_.size() - pending_.size());
+    progress_ = &progress;
+    announceRetries();
+    if (pending_.empty()) progress.print(0, 0, 0, 0.0);  // nothing to run: say so
+    while (true) {
+      if (options_.interrupted && *options_.interrupted && !stopping_) stop();
+      if (!stopping_) startPending();
+      if (running_.empty()) break;
+      report(false);
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, WNOHANG);
+      if (pid <= 0) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
         continue;
       }
-      slot_busy[static_cast<std::size_t>(slot)] = true;
-      running[pid] = {i, slot, Clock::now()};
+      const auto found = running_.find(pid);
+      if (found == running_.end()) continue;  // not one of ours
+      const Running done = found->second;
+      running_.erase(found);
+      collect(done, status);
+      report(true);
     }
-    if (running.empty()) break;
-    report(false);
+    progress.finish();
+    return results_;
+  }
 
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid <= 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      continue;
+ private:
+  fs::path directoryOf(std::size_t run) const { return fs::path(options_.output_directory) / plan_[run].directory; }
+
+  // Complete runs of before are read, not run again; the others are pending.
+  void reuseCompleteRuns() {
+    for (std::size_t i = 0; i < plan_.size(); ++i) {
+      RunResult& r = results_[i];
+      r.scene = experiment_.scenes[plan_[i].scene].name;
+      r.controller = experiment_.controllers[plan_[i].controller].name;
+      r.seed = plan_[i].seed;
+      r.directory = plan_[i].directory;
+      const fs::path dir = directoryOf(i);
+      if (isRunComplete(dir.string())) {
+        r.status = RunStatus::kReused;
+        r.exit_code = 0;
+        readRunOutputs(dir.string(), r);
+        if (r.metrics.sim_time_s > 0) scene_length_s_[plan_[i].scene] = r.metrics.sim_time_s;
+        continue;
+      }
+      r.retried = fs::exists(dir) && !fs::is_empty(dir);
+      pending_.push_back(i);
     }
-    const auto found = running.find(pid);
-    if (found == running.end()) continue;  // not one of ours
-    const Running done = found->second;
-    running.erase(found);
-    slot_busy[static_cast<std::size_t>(done.slot)] = false;
-    ++finished_now;
-    RunResult& r = results[done.run];
-    const fs::path dir = fs::path(options.output_directory) / plan[done.run].directory;
+  }
+
+  void announceRetries() {
+    for (std::size_t i : pending_) {
+      if (!results_[i].retried) continue;
+      const std::string before = lastLine(run_files::readFailedMarker(directoryOf(i).string()));
+      progress_->say("experiment: retrying " + plan_[i].directory +
+                     (before.empty() ? " (unfinished before)" : " (failed before: " + before + ")"));
+    }
+  }
+
+  void stop() {
+    stopping_ = true;
+    progress_->say("experiment: interrupted; stopping " + std::to_string(running_.size()) + " run(s)");
+    for (const auto& [pid, _] : running_) kill(pid, SIGINT);  // the launcher stops its run cleanly
+  }
+
+  int freeSlot() const {
+    for (std::size_t k = 0; k < slot_busy_.size(); ++k) {
+      if (!slot_busy_[k]) return static_cast<int>(k);
+    }
+    return -1;
+  }
+
+  // Starts pending runs while slots are free, each on its slot's DDS domain.
+  void startPending() {
+    while (next_ < pending_.size()) {
+      const int slot = freeSlot();
+      if (slot < 0) return;
+      const std::size_t i = pending_[next_++];
+      const fs::path dir = directoryOf(i);
+      fs::remove_all(dir);  // no stale file of an earlier attempt may pass for this one's
+      fs::create_directories(dir);
+      std::vector<std::string> args = plan_[i].args;
+      args.insert(args.end(),
+                  {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options_.domain_base + slot)});
+      const pid_t pid = startRun(options_.executable, args, dir);
+      if (pid < 0) {
+        results_[i].status = RunStatus::kFailed;
+        results_[i].failure = std::string("cannot start a process: ") + std::strerror(errno);
+        ++failed_;
+        ++finished_now_;
+        continue;
+      }
+      slot_busy_[static_cast<std::size_t>(slot)] = true;
+      running_[pid] = {i, slot, Clock::now()};
+    }
+  }
+
+  // A run's process ended: its result, and its done or failed marker.
+  void collect(const Running& done, int status) {
+    slot_busy_[static_cast<std::size_t>(done.slot)] = false;
+    ++finished_now_;
+    RunResult& r = results_[done.run];
+    const fs::path dir = directoryOf(done.run);
     const double wall = secondsSince(done.start);
-    finished_work.push_back({logProgress(done.run), wall});
+    finished_work_.push_back({progressOf(done.run), wall});
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (r.exit_code == 0 && readRunMetrics(dir.string())) {
       run_files::writeDoneMarker(dir.string(), wall);
       r.status = RunStatus::kOk;
       readRunOutputs(dir.string(), r);
-    } else if (stopping) {
+    } else if (stopping_) {
       r.status = RunStatus::kNotRun;  // stopped by Ctrl-C: not a failure of the run
       r.failure = "interrupted";
       run_files::writeFailedMarker(dir.string(), r.failure);
@@ -311,15 +325,54 @@ std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<Pl
       r.failure = r.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(status);
       r.wall_time_s = wall;
       run_files::writeFailedMarker(dir.string(), r.failure);
-      ++failed;
+      ++failed_;
       const std::string last = lastLine(readText(dir / run_files::kRunLog));
-      progress.say("experiment: " + plan[done.run].directory + " failed (" + r.failure + "): " + last +
-                   "\n            full log: " + (dir / run_files::kRunLog).string());
+      progress_->say("experiment: " + plan_[done.run].directory + " failed (" + r.failure + "): " + last +
+                     "\n            full log: " + (dir / run_files::kRunLog).string());
     }
-    report(true);
   }
-  progress.finish();
-  return results;
+
+  // A run's progress file; it also tells its scene's length (every controller and seed of a scene
+  // simulates the same time), for the ETA of the scene's pending runs.
+  SimProgress progressOf(std::size_t run) {
+    const SimProgress p = runProgress(directoryOf(run).string());
+    if (p.total_s > 0) scene_length_s_[plan_[run].scene] = p.total_s;
+    return p;
+  }
+
+  void report(bool force) {
+    if (!progress_->due(force)) return;
+    std::vector<StartedRun> work = finished_work_;
+    for (const auto& [pid, r] : running_) work.push_back({progressOf(r.run), secondsSince(r.start)});
+    std::vector<double> pending_lengths;
+    for (std::size_t k = next_; k < pending_.size(); ++k) {
+      const auto known = scene_length_s_.find(plan_[pending_[k]].scene);
+      pending_lengths.push_back(known == scene_length_s_.end() ? -1.0 : known->second);
+    }
+    progress_->print(finished_now_, running_.size(), failed_,
+                     estimateRemainingSeconds(work, pending_lengths, options_.jobs));
+  }
+
+  const Experiment& experiment_;
+  const std::vector<PlannedRun>& plan_;
+  const RunnerOptions& options_;
+  std::vector<RunResult> results_;
+  std::vector<std::size_t> pending_;              // runs to start, in plan order
+  std::size_t next_ = 0;                          // the next of pending_ to start
+  std::map<std::size_t, double> scene_length_s_;  // scene -> sim seconds, once known
+  std::map<pid_t, Running> running_;
+  std::vector<bool> slot_busy_;
+  std::size_t finished_now_ = 0, failed_ = 0;
+  std::vector<StartedRun> finished_work_;  // for the ETA: the runs finished in this invocation
+  Progress* progress_ = nullptr;
+  bool stopping_ = false;
+};
+
+}  // namespace
+
+std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,
+                              const RunnerOptions& options) {
+  return Scheduler(experiment, plan, options).run();
 }
 
 }  // namespace uampc::app
