@@ -5,72 +5,51 @@
 #include <iostream>
 #include <sstream>
 
+#include "uampc/run_files/json_text.hpp"
 #include "uampc/runtime/component_library.hpp"
 
 namespace uampc::app {
 
 namespace {
 
-std::string jsonString(const std::string& s) {
-  std::ostringstream out;
-  out << '"';
-  for (const char c : s) {
-    switch (c) {
-      case '"': out << "\\\""; break;
-      case '\\': out << "\\\\"; break;
-      case '\n': out << "\\n"; break;
-      case '\t': out << "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << static_cast<int>(c) << std::dec;
-        } else {
-          out << c;
-        }
-    }
-  }
-  out << '"';
-  return out.str();
-}
-
-std::string jsonValue(const ParameterValue& v) {
-  if (auto* s = std::get_if<std::string>(&v)) return jsonString(*s);
-  return toString(v);  // bool, numbers and lists print as valid JSON
+// A parameter value as JSON: strings, booleans, integers, doubles and lists of doubles.
+run_files::Json jsonValue(const ParameterValue& v) {
+  return std::visit([](const auto& value) { return run_files::Json(value); }, v);
 }
 
 const char* directionName(PortDirection d) { return d == PortDirection::kInput ? "input" : "output"; }
 
+run_files::Json portJson(const PortSpec& port) {
+  return {{"name", port.name},         {"direction", directionName(port.direction)},
+          {"type", port.type_name},    {"topic", port.default_topic},
+          {"qos", toString(port.qos)}, {"doc", port.doc}};
+}
+
+run_files::Json parameterJson(const ParameterSpec& param) {
+  run_files::Json json = {{"name", param.name}, {"type", toString(param.type)}, {"required", param.required()}};
+  if (param.default_value) json["default"] = jsonValue(*param.default_value);
+  if (param.min) json["min"] = *param.min;
+  if (param.max) json["max"] = *param.max;
+  if (!param.choices.empty()) json["choices"] = param.choices;
+  if (param.rig) json["rig"] = true;
+  json["doc"] = param.doc;
+  return json;
+}
+
 void printJson(const std::vector<const ComponentLibrary*>& libraries) {
-  std::cout << "[\n";
-  for (std::size_t i = 0; i < libraries.size(); ++i) {
-    const ComponentSpec& spec = libraries[i]->spec();
-    std::cout << "  {\"type\": " << jsonString(spec.type) << ", \"summary\": " << jsonString(spec.summary)
-              << ", \"library\": " << jsonString(libraries[i]->path()) << ",\n   \"ports\": [";
-    for (std::size_t p = 0; p < spec.ports().size(); ++p) {
-      const PortSpec& port = spec.ports()[p];
-      std::cout << (p ? ",\n     " : "\n     ") << "{\"name\": " << jsonString(port.name)
-                << ", \"direction\": \"" << directionName(port.direction) << "\", \"type\": "
-                << jsonString(port.type_name) << ", \"topic\": " << jsonString(port.default_topic)
-                << ", \"qos\": \"" << toString(port.qos) << "\", \"doc\": " << jsonString(port.doc) << "}";
-    }
-    std::cout << "],\n   \"parameters\": [";
-    for (std::size_t p = 0; p < spec.parameters().size(); ++p) {
-      const ParameterSpec& param = spec.parameters()[p];
-      std::cout << (p ? ",\n     " : "\n     ") << "{\"name\": " << jsonString(param.name) << ", \"type\": \""
-                << toString(param.type) << "\", \"required\": " << (param.required() ? "true" : "false");
-      if (param.default_value) std::cout << ", \"default\": " << jsonValue(*param.default_value);
-      if (param.min) std::cout << ", \"min\": " << formatNumber(*param.min);
-      if (param.max) std::cout << ", \"max\": " << formatNumber(*param.max);
-      if (!param.choices.empty()) {
-        std::cout << ", \"choices\": [";
-        for (std::size_t c = 0; c < param.choices.size(); ++c) std::cout << (c ? ", " : "") << jsonString(param.choices[c]);
-        std::cout << "]";
-      }
-      if (param.rig) std::cout << ", \"rig\": true";
-      std::cout << ", \"doc\": " << jsonString(param.doc) << "}";
-    }
-    std::cout << "]}" << (i + 1 < libraries.size() ? "," : "") << "\n";
+  run_files::Json components = run_files::Json::array();
+  for (const auto* library : libraries) {
+    const ComponentSpec& spec = library->spec();
+    run_files::Json ports = run_files::Json::array(), parameters = run_files::Json::array();
+    for (const auto& port : spec.ports()) ports.push_back(portJson(port));
+    for (const auto& param : spec.parameters()) parameters.push_back(parameterJson(param));
+    components.push_back({{"type", spec.type},
+                          {"summary", spec.summary},
+                          {"library", library->path()},
+                          {"ports", ports},
+                          {"parameters", parameters}});
   }
-  std::cout << "]\n";
+  std::cout << run_files::dumpJson(components) << "\n";
 }
 
 void printText(const std::vector<const ComponentLibrary*>& libraries) {
@@ -119,8 +98,10 @@ int componentsCommand(bool json) {
   ComponentCatalog catalog;
   std::vector<std::string> problems;
   const auto libraries = catalog.all(&problems);
-  if (json) printJson(libraries);
-  else printText(libraries);
+  if (json)
+    printJson(libraries);
+  else
+    printText(libraries);
   for (const auto& p : problems) std::cerr << "uampc: " << p << "\n";
   if (libraries.empty()) {
     std::cerr << "uampc: no component libraries found in:";
