@@ -9,9 +9,14 @@
 #include <string>
 
 #include "command_runner.hpp"
+#include "uampc/evaluator/completeness.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/motor/simulated_motor.hpp"
 #include "uampc/mpc/ua_mpc_controller.hpp"
+#include "uampc/raycaster/imu_simulator.hpp"
+#include "uampc/raycaster/ray_caster.hpp"
+#include "uampc/world/world_source.hpp"
 
 namespace uampc::test {
 namespace {
@@ -82,6 +87,55 @@ TEST(ComponentDefaults, MotorBridgeDeclaresItsCoresDefaults) {
   EXPECT_DOUBLE_EQ(motor["max_acceleration"].as<double>(), core.max_acceleration);
   EXPECT_DOUBLE_EQ(motor["time_constant"].as<double>(), core.time_constant);
   EXPECT_DOUBLE_EQ(motor["encoder_resolution"].as<double>(), core.encoder_resolution);
+}
+
+TEST(ComponentDefaults, RaycasterDeclaresItsCoresDefaults) {
+  const YAML::Node raycaster = defaultsOf(installedComponents(), "raycaster");
+  ASSERT_TRUE(raycaster.size() > 0) << "no raycaster component installed";
+  const raycaster::RayCasterConfig scans;
+  const raycaster::ImuSimulatorConfig imu;
+  EXPECT_NEAR(raycaster["angular_noise_deg"].as<double>(), scans.angular_noise_stddev * 180.0 / M_PI, 1e-12);
+  EXPECT_DOUBLE_EQ(raycaster["dropout"].as<double>(), scans.dropout_probability);
+  EXPECT_DOUBLE_EQ(raycaster["imu_rate"].as<double>(), imu.rate_hz);
+  EXPECT_DOUBLE_EQ(raycaster["gyro_noise_density"].as<double>(), imu.noise.gyro_noise_density);
+  EXPECT_DOUBLE_EQ(raycaster["gyro_random_walk"].as<double>(), imu.noise.gyro_random_walk);
+  EXPECT_DOUBLE_EQ(raycaster["accel_noise_density"].as<double>(), imu.noise.accel_noise_density);
+  EXPECT_DOUBLE_EQ(raycaster["accel_random_walk"].as<double>(), imu.noise.accel_random_walk);
+  // Deliberately not the core's (exact casts, range_noise_stddev 0): the default model's datasheet.
+  EXPECT_DOUBLE_EQ(raycaster["range_noise"].as<double>(), lidar::livoxMid360().range_precision);
+}
+
+TEST(ComponentDefaults, EvaluatorDeclaresItsCoresDefaults) {
+  const YAML::Node evaluator = defaultsOf(installedComponents(), "evaluator");
+  ASSERT_TRUE(evaluator.size() > 0) << "no evaluator component installed";
+  const evaluator::CompletenessConfig core;
+  EXPECT_DOUBLE_EQ(evaluator["voxel_size"].as<double>(), core.voxel_size);
+  EXPECT_DOUBLE_EQ(evaluator["window"].as<double>(), core.window_duration);
+  // grid_offset is deliberately not the core's 0 (see evaluator_component.cpp).
+}
+
+TEST(ComponentDefaults, MapProviderDeclaresItsCoresDefaults) {
+  const YAML::Node map = defaultsOf(installedComponents(), "map_provider");
+  ASSERT_TRUE(map.size() > 0) << "no map_provider component installed";
+  const world::WorldSettings core;
+  EXPECT_EQ(map["world"].as<std::string>(), core.world);
+  EXPECT_EQ(map["map_file"].as<std::string>(), core.map_file);
+  EXPECT_DOUBLE_EQ(map["map_voxel_size"].as<double>(), core.map_voxel_size);
+  ASSERT_EQ(map["map_offset"].size(), 3u);
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(map["map_offset"][i].as<double>(), core.map_offset[i]);
+  EXPECT_EQ(map["trajectory"].as<std::string>(), core.trajectory);
+  EXPECT_EQ(map["trajectory_file"].as<std::string>(), core.trajectory_file);
+  EXPECT_EQ(map["attitude"].as<std::string>(), core.attitude);
+  EXPECT_EQ(map["interpolation"].as<std::string>(), core.interpolation);
+  EXPECT_DOUBLE_EQ(map["smoothing"].as<double>(), core.smoothing);
+  EXPECT_DOUBLE_EQ(map["trajectory_start"].as<double>(), core.trajectory_start);
+  EXPECT_DOUBLE_EQ(map["path_speed"].as<double>(), core.path_speed);
+  EXPECT_EQ(map["path_laps"].as<int>(), core.path_laps);
+  EXPECT_DOUBLE_EQ(map["base_height"].as<double>(), core.base_height);
+  EXPECT_EQ(map["campus_poor_rows"].as<int>(), core.campus_poor_rows);
+  EXPECT_DOUBLE_EQ(map["corridor_door_spacing"].as<double>(), core.corridor_door_spacing);
+  EXPECT_EQ(map["density_profile"].as<std::string>(), core.density_profile);
+  EXPECT_DOUBLE_EQ(map["open_fraction"].as<double>(), core.open_fraction);
 }
 
 }  // namespace

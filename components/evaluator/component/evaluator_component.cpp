@@ -36,6 +36,7 @@
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/time_series.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
 
@@ -58,10 +59,12 @@ class EvaluatorComponent : public Component {
     spec.input<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,
                                         "controller's panoramic depth map (32FC1), saved as snapshots");
     spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT");
-    spec.param("voxel_size", 0.5, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
-    spec.param("window", 5.0, "CMPLT window, s (the paper: 5)").between(0.1, 3600.0);
-    // Not 0: procedural indoor worlds put walls on round coordinates, i.e. on voxel faces, where
-    // exactly posed points fall on both sides and count twice (see completeness.hpp).
+    evaluator::CompletenessConfig defaults;
+    ParameterBinding binding(spec);
+    bindCompletenessParameters(binding, defaults);
+    // Not bound: the core keeps grid_offset 0 (its tests place points on the unshifted grid's
+    // faces). Not 0 here: procedural indoor worlds put walls on round coordinates, i.e. on voxel
+    // faces, where exactly posed points fall on both sides and count twice (see completeness.hpp).
     spec.param("grid_offset", 0.1234,
                "CMPLT voxel grid shifted by this on every axis, m, so that walls at round coordinates do not lie "
                "on voxel faces (the saved .bt holds the shifted grid's voxels)")
@@ -77,8 +80,8 @@ class EvaluatorComponent : public Component {
   explicit EvaluatorComponent(Context& ctx)
       : ctx_(ctx),
         trajectory_([this](double t) { return ground_truth_(t); }),
-        cmplt_({ctx.paramDouble("voxel_size"), ctx.paramDouble("window"), ctx.paramDouble("grid_offset")}),
-        cmplt_gt_({ctx.paramDouble("voxel_size"), ctx.paramDouble("window"), ctx.paramDouble("grid_offset")}),
+        cmplt_(completenessFrom(ctx)),
+        cmplt_gt_(completenessFrom(ctx)),
         metrics_pub_(ctx.publisher<msg::Metrics>("metrics")) {
     calibration_ = adapters::rigCalibration(ctx);
     const std::string& out = ctx.outputDirectory();
@@ -199,6 +202,20 @@ class EvaluatorComponent : public Component {
   }
 
  private:
+  // The parameters that set CMPLT's config: declared from the core's defaults, read into them.
+  static void bindCompletenessParameters(ParameterBinding& b, evaluator::CompletenessConfig& c) {
+    b.bind("voxel_size", c.voxel_size, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
+    b.bind("window", c.window_duration, "CMPLT window, s (the paper: 5)").between(0.1, 3600.0);
+  }
+
+  static evaluator::CompletenessConfig completenessFrom(const Context& ctx) {
+    evaluator::CompletenessConfig c;
+    ParameterBinding binding(ctx);
+    bindCompletenessParameters(binding, c);
+    c.grid_offset = ctx.paramDouble("grid_offset");
+    return c;
+  }
+
   void onLoStatus(const msg::Metrics& m) {
     for (const auto& v : m.values()) {
       if (v.name() == "lost" && v.value() > 0.5) {

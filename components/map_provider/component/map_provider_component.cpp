@@ -11,6 +11,7 @@
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/parameter_binding.hpp"
 #include "uampc/world/density_profile.hpp"
 #include "uampc/world/point_sampling.hpp"
 #include "uampc/world/world_source.hpp"
@@ -26,41 +27,14 @@ class MapProvider : public Component {
                                                "point sample of the world, for viewers");
     spec.output<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
                                                  "ground-truth base pose T_WB at sim time");
-    spec.param("world", "campus", "campus, corridor, multilevel, around_trajectory or file")
-        .oneOf({"campus", "corridor", "multilevel", "around_trajectory", "file"});
+    world::WorldSettings defaults;
+    ParameterBinding binding(spec);
+    bindParameters(binding, defaults);
+    // Not bound (ParameterBinding has no path or 3-vector binding); the core's defaults are the
+    // same: no file, no offset.
     spec.pathParam("map_file", "", "world: file: a PCD or PLY map (PLY with faces: a mesh)");
-    spec.param("map_voxel_size", 0.0, "voxel downsampling of point maps, m (0: none)").between(0.0, 10.0);
     spec.param("map_offset", std::vector<double>{0.0, 0.0, 0.0}, "added to every map point, m (x, y, z)");
-    spec.param("trajectory", "generated", "generated (a path through the world) or file").oneOf({"generated", "file"});
     spec.pathParam("trajectory_file", "", "MCD CSV (num,t,x,y,z,qx,qy,qz,qw) or TUM (t x y z qx qy qz qw)");
-    spec.param("attitude", "from_file", "from_file (MCD: z-down frame turned z-up), yaw_only or identity")
-        .oneOf({"from_file", "yaw_only", "identity"});
-    spec.param("interpolation", "linear",
-               "between trajectory samples: linear (position) and slerp (attitude), or smooth (C1: cubic "
-               "Hermite and SQUAD through the same samples; file trajectories only)")
-        .oneOf({"linear", "smooth"});
-    spec.param("smoothing", 0.0,
-               "moving-average window over a file trajectory's poses, s (0: none); recorded ground truth "
-               "carries attitude noise no vehicle performs")
-        .between(0.0, 10.0);
-    spec.param("trajectory_start", 0.0, "seconds of a file trajectory skipped at its start").atLeast(0.0);
-    spec.param("path_speed", 1.5, "speed of generated paths, m/s").between(0.01, 50.0);
-    spec.param("path_laps", 1, "laps of closed generated paths (campus)").between(1, 1000);
-    spec.param("base_height", 1.0, "height of generated paths above the ground, m").between(0.0, 100.0);
-    spec.param("campus_poor_rows", 1, "world: campus: rows of blocks with poor geometry (0: all rich)").between(0, 3);
-    spec.param("corridor_door_spacing", 0.0,
-               "world: corridor: a 1 m door recessed 0.3 m every this many metres, alternating sides (0: plain "
-               "walls, nothing fixes the position along the axis between the end walls)")
-        .between(0.0, 1000.0);
-    spec.param("density_profile", world::WorldSettings{}.density_profile.c_str(),
-               "world: around_trajectory: how built-up the path's stretches (30-90 m, seeded) are; open stretches "
-               "(lawn, car park, one long wall, a street of two) make up this share of the path: " +
-                   profileFractions() + " (chosen with constant motor speeds only, see README)")
-        .oneOf(profileNames());
-    spec.param("open_fraction", world::WorldSettings::kUseProfile,
-               "world: around_trajectory: share of path length that is open, 0 to 1, overriding density_profile "
-               "(-1: density_profile's)")
-        .between(-1.0, 1.0);
     spec.param("pose_rate", 200.0, "ground-truth pose rate, Hz").between(1.0, 10000.0);
     spec.param("map_point_spacing", 0.5, "voxel size of the published map sample, m").between(0.05, 10.0);
     spec.param("chunk_triangles", 10000, "triangles per world chunk (keeps samples under ~0.5 MB)")
@@ -96,25 +70,51 @@ class MapProvider : public Component {
     return text;
   }
 
+  // The parameters that set the world and its trajectory: declared from the core's defaults, read
+  // into them.
+  static void bindParameters(ParameterBinding& b, world::WorldSettings& s) {
+    b.bind("world", s.world, "campus, corridor, multilevel, around_trajectory or file")
+        .oneOf({"campus", "corridor", "multilevel", "around_trajectory", "file"});
+    b.bind("map_voxel_size", s.map_voxel_size, "voxel downsampling of point maps, m (0: none)").between(0.0, 10.0);
+    b.bind("trajectory", s.trajectory, "generated (a path through the world) or file").oneOf({"generated", "file"});
+    b.bind("attitude", s.attitude, "from_file (MCD: z-down frame turned z-up), yaw_only or identity")
+        .oneOf({"from_file", "yaw_only", "identity"});
+    b.bind("interpolation", s.interpolation,
+           "between trajectory samples: linear (position) and slerp (attitude), or smooth (C1: cubic "
+           "Hermite and SQUAD through the same samples; file trajectories only)")
+        .oneOf({"linear", "smooth"});
+    b.bind("smoothing", s.smoothing,
+           "moving-average window over a file trajectory's poses, s (0: none); recorded ground truth "
+           "carries attitude noise no vehicle performs")
+        .between(0.0, 10.0);
+    b.bind("trajectory_start", s.trajectory_start, "seconds of a file trajectory skipped at its start").atLeast(0.0);
+    b.bind("path_speed", s.path_speed, "speed of generated paths, m/s").between(0.01, 50.0);
+    b.bind("path_laps", s.path_laps, "laps of closed generated paths (campus)").between(1, 1000);
+    b.bind("base_height", s.base_height, "height of generated paths above the ground, m").between(0.0, 100.0);
+    b.bind("campus_poor_rows", s.campus_poor_rows, "world: campus: rows of blocks with poor geometry (0: all rich)")
+        .between(0, 3);
+    b.bind("corridor_door_spacing", s.corridor_door_spacing,
+           "world: corridor: a 1 m door recessed 0.3 m every this many metres, alternating sides (0: plain "
+           "walls, nothing fixes the position along the axis between the end walls)")
+        .between(0.0, 1000.0);
+    b.bind("density_profile", s.density_profile,
+           "world: around_trajectory: how built-up the path's stretches (30-90 m, seeded) are; open stretches "
+           "(lawn, car park, one long wall, a street of two) make up this share of the path: " +
+               profileFractions() + " (chosen with constant motor speeds only, see README)")
+        .oneOf(profileNames());
+    b.bind("open_fraction", s.open_fraction,
+           "world: around_trajectory: share of path length that is open, 0 to 1, overriding density_profile "
+           "(-1: density_profile's)")
+        .between(-1.0, 1.0);
+  }
+
   static world::WorldSettings settingsFrom(const Context& ctx) {
     world::WorldSettings s;
-    s.world = ctx.paramString("world");
+    ParameterBinding binding(ctx);
+    bindParameters(binding, s);
     s.map_file = ctx.paramString("map_file");
-    s.map_voxel_size = ctx.paramDouble("map_voxel_size");
     s.map_offset = adapters::vector3Param(ctx, "map_offset").cast<float>();
-    s.trajectory = ctx.paramString("trajectory");
     s.trajectory_file = ctx.paramString("trajectory_file");
-    s.attitude = ctx.paramString("attitude");
-    s.interpolation = ctx.paramString("interpolation");
-    s.smoothing = ctx.paramDouble("smoothing");
-    s.trajectory_start = ctx.paramDouble("trajectory_start");
-    s.path_speed = ctx.paramDouble("path_speed");
-    s.path_laps = static_cast<int>(ctx.paramInt("path_laps"));
-    s.base_height = ctx.paramDouble("base_height");
-    s.campus_poor_rows = static_cast<int>(ctx.paramInt("campus_poor_rows"));
-    s.corridor_door_spacing = ctx.paramDouble("corridor_door_spacing");
-    s.density_profile = ctx.paramString("density_profile");
-    s.open_fraction = ctx.paramDouble("open_fraction");
     s.seed = ctx.seed();
     return s;
   }

@@ -21,6 +21,7 @@
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
 
@@ -38,35 +39,18 @@ class RaycasterComponent : public Component {
                                        "IMU in the LiDAR frame, turning with the motor (with imu: true)");
     adapters::declareLidarModelParameters(spec);
     adapters::declareRigParameters(spec);
-    // Noise defaults: the Mid-360's datasheet range precision (1 sigma), the default model's.
-    // Its angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with it the
-    // LiDAR-only LO loses the MCD worlds' open stretches within 10-45 s and the rich campus at
-    // 3 m/s (README, "Sensor noise"); a scene may turn it on.
-    const lidar::LidarModel mid360 = lidar::livoxMid360();
-    spec.param("range_noise", mid360.range_precision,
+    // Not bound: the core's range_noise_stddev stays 0 (exact casts, which its range tests and
+    // tools/lo_replay rely on); a scene gets the default model's datasheet precision (1 sigma).
+    spec.param("range_noise", lidar::livoxMid360().range_precision,
                "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
         .between(0.0, 1.0);
-    spec.param("angular_noise_deg", 0.0,
-               "standard deviation of the reported direction of a return, per axis, degrees (the Mid-360 "
-               "datasheet: 0.15; off by default, see README)")
-        .between(0.0, 10.0);
-    spec.param("dropout", 0.0, "probability that a return is lost").between(0.0, 1.0);
     spec.param("frame_id", "lidar", "frame_id of the published scans and IMU samples");
-    const raycaster::ImuNoiseParameters icm40609;  // the Mid-360's IMU
     spec.param("imu", false, "publish the LiDAR's IMU (angular velocity and specific force in the LiDAR frame)");
-    spec.param("imu_rate", 200.0, "imu: sample rate, Hz").between(1.0, 1000.0);
-    spec.param("gyro_noise_density", icm40609.gyro_noise_density,
-               "imu: gyroscope white noise, rad/s/sqrt(Hz) (ICM-40609 datasheet: 4.5 mdps/sqrt(Hz))")
-        .between(0.0, 1.0);
-    spec.param("gyro_random_walk", icm40609.gyro_random_walk,
-               "imu: gyroscope bias random walk, rad/s^2/sqrt(Hz) (assumed: the datasheet gives none)")
-        .between(0.0, 1.0);
-    spec.param("accel_noise_density", icm40609.accel_noise_density,
-               "imu: accelerometer white noise, m/s^2/sqrt(Hz) (ICM-40609 datasheet: 100 ug/sqrt(Hz))")
-        .between(0.0, 10.0);
-    spec.param("accel_random_walk", icm40609.accel_random_walk,
-               "imu: accelerometer bias random walk, m/s^3/sqrt(Hz) (assumed: the datasheet gives none)")
-        .between(0.0, 10.0);
+    raycaster::RayCasterConfig scan_defaults;
+    raycaster::ImuSimulatorConfig imu_defaults;  // the Mid-360's IMU, an ICM-40609
+    ParameterBinding binding(spec);
+    bindScanParameters(binding, scan_defaults);
+    bindImuParameters(binding, imu_defaults);
   }
 
   explicit RaycasterComponent(Context& ctx)
@@ -90,26 +74,51 @@ class RaycasterComponent : public Component {
   }
 
  private:
+  // The parameters that set the core's configs: declared from their defaults, read into them.
+  static void bindScanParameters(ParameterBinding& b, raycaster::RayCasterConfig& c) {
+    // The Mid-360's angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with
+    // it the LiDAR-only LO loses the MCD worlds' open stretches within 10-45 s and the rich campus
+    // at 3 m/s (README, "Sensor noise"); a scene may turn it on.
+    b.bindDegrees("angular_noise_deg", c.angular_noise_stddev,
+                  "standard deviation of the reported direction of a return, per axis, degrees (the Mid-360 "
+                  "datasheet: 0.15; off by default, see README)")
+        .between(0.0, 10.0);
+    b.bind("dropout", c.dropout_probability, "probability that a return is lost").between(0.0, 1.0);
+  }
+
+  static void bindImuParameters(ParameterBinding& b, raycaster::ImuSimulatorConfig& c) {
+    b.bind("imu_rate", c.rate_hz, "imu: sample rate, Hz").between(1.0, 1000.0);
+    b.bind("gyro_noise_density", c.noise.gyro_noise_density,
+           "imu: gyroscope white noise, rad/s/sqrt(Hz) (ICM-40609 datasheet: 4.5 mdps/sqrt(Hz))")
+        .between(0.0, 1.0);
+    b.bind("gyro_random_walk", c.noise.gyro_random_walk,
+           "imu: gyroscope bias random walk, rad/s^2/sqrt(Hz) (assumed: the datasheet gives none)")
+        .between(0.0, 1.0);
+    b.bind("accel_noise_density", c.noise.accel_noise_density,
+           "imu: accelerometer white noise, m/s^2/sqrt(Hz) (ICM-40609 datasheet: 100 ug/sqrt(Hz))")
+        .between(0.0, 10.0);
+    b.bind("accel_random_walk", c.noise.accel_random_walk,
+           "imu: accelerometer bias random walk, m/s^3/sqrt(Hz) (assumed: the datasheet gives none)")
+        .between(0.0, 10.0);
+  }
+
   static raycaster::RayCasterConfig configFrom(const Context& ctx) {
     raycaster::RayCasterConfig c;
     c.model = adapters::lidarModel(ctx);
     c.calibration = adapters::rigCalibration(ctx);
     c.range_noise_stddev = ctx.paramDouble("range_noise");
-    c.angular_noise_stddev = ctx.paramDouble("angular_noise_deg") * M_PI / 180.0;
-    c.dropout_probability = ctx.paramDouble("dropout");
     c.seed = ctx.seed();
+    ParameterBinding binding(ctx);
+    bindScanParameters(binding, c);
     return c;
   }
 
   static raycaster::ImuSimulatorConfig imuConfigFrom(const Context& ctx, const raycaster::RayCasterConfig& scans) {
     raycaster::ImuSimulatorConfig c;
     c.calibration = scans.calibration;
-    c.rate_hz = ctx.paramDouble("imu_rate");
-    c.noise.gyro_noise_density = ctx.paramDouble("gyro_noise_density");
-    c.noise.gyro_random_walk = ctx.paramDouble("gyro_random_walk");
-    c.noise.accel_noise_density = ctx.paramDouble("accel_noise_density");
-    c.noise.accel_random_walk = ctx.paramDouble("accel_random_walk");
     c.seed = scans.seed;
+    ParameterBinding binding(ctx);
+    bindImuParameters(binding, c);
     return c;
   }
 
