@@ -1,6 +1,5 @@
 #include "experiment_runner.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,10 +13,12 @@
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "experiment_eta.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/runtime/child_processes.hpp"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -118,34 +119,18 @@ std::vector<std::string> runEnvironment(const fs::path& progress_file) {
   return environment;
 }
 
-std::vector<char*> nullTerminated(std::vector<std::string>& texts) {
-  std::vector<char*> pointers;
-  for (auto& t : texts) pointers.push_back(t.data());
-  pointers.push_back(nullptr);
-  return pointers;
-}
-
-pid_t startRun(const std::string& executable, const std::vector<std::string>& args, const fs::path& directory) {
-  std::vector<std::string> argv_text{"uampc"};
-  argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<std::string> environment = runEnvironment(directory / run_files::kProgressFile);
-  // Prepared before fork: the child may only make async-signal-safe calls until exec.
-  const std::vector<char*> argv = nullTerminated(argv_text), envp = nullTerminated(environment);
-  const fs::path log = directory / run_files::kRunLog;
-  const pid_t pid = fork();
-  if (pid != 0) return pid;  // parent, or -1
-  // Child: only async-signal-safe calls until exec.
-  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const int null = open("/dev/null", O_RDONLY);
-  if (fd >= 0) {
-    dup2(fd, STDOUT_FILENO);
-    dup2(fd, STDERR_FILENO);
-  }
-  if (null >= 0) dup2(null, STDIN_FILENO);
-  execve(executable.c_str(), argv.data(), envp.data());
-  const char message[] = "uampc experiment: cannot execute the uampc binary\n";
-  (void)!write(STDERR_FILENO, message, sizeof(message) - 1);
-  _exit(127);
+// A run: `uampc <args>` with its output in the run directory's log.
+ChildCommand runCommand(const std::string& executable, const std::vector<std::string>& args,
+                        const fs::path& directory) {
+  ChildCommand command;
+  command.name = directory.string();
+  command.executable = executable;
+  command.argv = {"uampc"};
+  command.argv.insert(command.argv.end(), args.begin(), args.end());
+  command.environment = runEnvironment(directory / run_files::kProgressFile);
+  command.log_file = (directory / run_files::kRunLog).string();
+  command.exec_failure_message = "uampc experiment: cannot execute the uampc binary\n";
+  return command;
 }
 
 std::string describeExit(int status) {
@@ -215,17 +200,15 @@ class Scheduler {
       if (!stopping_) startPending();
       if (running_.empty()) break;
       report(false);
-      int status = 0;
-      const pid_t pid = waitpid(-1, &status, WNOHANG);
-      if (pid <= 0) {
+      const auto exit = children_.pollExit();
+      if (!exit) {
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
         continue;
       }
-      const auto found = running_.find(pid);
-      if (found == running_.end()) continue;  // not one of ours
+      const auto found = running_.find(exit->pid);
       const Running done = found->second;
       running_.erase(found);
-      collect(done, status);
+      collect(done, exit->status);
       report(true);
     }
     progress.finish();
@@ -268,7 +251,7 @@ class Scheduler {
   void stop() {
     stopping_ = true;
     progress_->say("experiment: interrupted; stopping " + std::to_string(running_.size()) + " run(s)");
-    for (const auto& [pid, _] : running_) kill(pid, SIGINT);  // the launcher stops its run cleanly
+    children_.signalAll(SIGINT);  // the launcher stops its run cleanly
   }
 
   int freeSlot() const {
@@ -290,10 +273,12 @@ class Scheduler {
       std::vector<std::string> args = plan_[i].args;
       args.insert(args.end(),
                   {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options_.domain_base + slot)});
-      const pid_t pid = startRun(options_.executable, args, dir);
-      if (pid < 0) {
+      pid_t pid = -1;
+      try {
+        pid = children_.start(runCommand(options_.executable, args, dir));
+      } catch (const std::system_error& e) {
         results_[i].status = RunStatus::kFailed;
-        results_[i].failure = std::string("cannot start a process: ") + std::strerror(errno);
+        results_[i].failure = "cannot start a process: " + e.code().message();
         ++failed_;
         ++finished_now_;
         continue;
@@ -360,7 +345,8 @@ class Scheduler {
   std::vector<std::size_t> pending_;              // runs to start, in plan order
   std::size_t next_ = 0;                          // the next of pending_ to start
   std::map<std::size_t, double> scene_length_s_;  // scene -> sim seconds, once known
-  std::map<pid_t, Running> running_;
+  ChildProcesses children_;
+  std::map<pid_t, Running> running_;  // the runs of children_, by pid
   std::vector<bool> slot_busy_;
   std::size_t finished_now_ = 0, failed_ = 0;
   std::vector<StartedRun> finished_work_;  // for the ETA: the runs finished in this invocation

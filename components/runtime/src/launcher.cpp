@@ -2,7 +2,6 @@
 
 #include <signal.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -13,6 +12,7 @@
 #include <thread>
 
 #include "lockstep_clock.hpp"
+#include "uampc/runtime/child_processes.hpp"
 #include "uampc/runtime/process_group.hpp"
 
 namespace fs = std::filesystem;
@@ -65,40 +65,31 @@ class ProcessSupervisor {
   ProcessSupervisor(const Scene& scene, const LaunchOptions& options) : scene_(scene), options_(options) {}
 
   void start(const std::string& process) {
-    std::vector<std::string> args = {"uampc", "run-process", options_.scene_path, "--process", process};
+    ChildCommand command;
+    command.name = process;
+    command.executable = "/proc/self/exe";
+    command.argv = {"uampc", "run-process", options_.scene_path, "--process", process};
     for (const auto& o : options_.overrides) {
-      args.push_back("--set");
-      args.push_back(o.text);
+      command.argv.push_back("--set");
+      command.argv.push_back(o.text);
     }
     if (!options_.output_directory.empty()) {
-      args.push_back("--out");
-      args.push_back(options_.output_directory);
+      command.argv.push_back("--out");
+      command.argv.push_back(options_.output_directory);
     }
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + strerror(errno));
-    if (pid == 0) {
-      std::vector<char*> argv;
-      for (auto& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      execv("/proc/self/exe", argv.data());
-      std::perror("uampc: exec of the process group failed");
-      _exit(127);
-    }
-    running_[pid] = process;
+    command.exec_failure_message = "uampc: exec of the process group '" + process + "' failed\n";
+    children_.start(command);
   }
 
   // A process that ended since the last call, described; empty if none. Applies the restart
   // policy in real-time mode.
   std::string poll() {
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
-    if (pid <= 0) return {};
-    auto it = running_.find(pid);
-    if (it == running_.end()) return {};
-    const std::string process = it->second;
-    running_.erase(it);
-    if (g_stop && WIFEXITED(status) && WEXITSTATUS(status) == 0) return {};
-    const std::string what = "process '" + process + "' (pid " + std::to_string(pid) + ") " + describeStatus(status);
+    const auto exit = children_.pollExit();
+    if (!exit) return {};
+    const std::string& process = exit->name;
+    if (g_stop && WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0) return {};
+    const std::string what =
+        "process '" + process + "' (pid " + std::to_string(exit->pid) + ") " + describeStatus(exit->status);
     if (scene_.on_crash == CrashPolicy::kRestart && !g_stop && restarts_[process] < scene_.max_restarts) {
       ++restarts_[process];
       std::cerr << "uampc: " << what << "; restarting it (" << restarts_[process] << " of " << scene_.max_restarts
@@ -112,44 +103,31 @@ class ProcessSupervisor {
 
   // Asks every process to stop, waits, and kills those that do not.
   void stopAll() {
-    for (const auto& [pid, name] : running_) kill(pid, SIGTERM);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-    while (!running_.empty()) {
-      int status = 0;
-      const pid_t pid = waitpid(-1, &status, WNOHANG);
-      if (pid > 0) {
-        auto it = running_.find(pid);
-        if (it != running_.end()) {
-          if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
-            std::cerr << "uampc: process '" << it->second << "' " << describeStatus(status) << " while stopping\n";
-            failed_ = true;
-          }
-          running_.erase(it);
-        }
-        continue;
-      }
-      if (std::chrono::steady_clock::now() > deadline) {
-        for (const auto& [p, name] : running_) {
+    children_.signalAll(SIGTERM);
+    const auto deadline = ChildProcesses::Clock::now() + std::chrono::seconds(5);
+    while (!children_.empty()) {
+      const auto exit = children_.waitForExit(deadline);
+      if (!exit) {
+        for (const auto& [pid, name] : children_.running())
           std::cerr << "uampc: process '" << name << "' did not stop within 5 s; killing it\n";
-          kill(p, SIGKILL);
-        }
+        children_.killAll();
         failed_ = true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        while (waitpid(-1, &status, WNOHANG) > 0) {}
-        running_.clear();
         break;
       }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      if (!(WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0)) {
+        std::cerr << "uampc: process '" << exit->name << "' " << describeStatus(exit->status) << " while stopping\n";
+        failed_ = true;
+      }
     }
   }
 
-  bool empty() const { return running_.empty(); }
+  bool empty() const { return children_.empty(); }
   bool failed() const { return failed_; }
 
  private:
   const Scene& scene_;
   const LaunchOptions& options_;
-  std::map<pid_t, std::string> running_;
+  ChildProcesses children_;
   std::map<std::string, int> restarts_;
   bool failed_ = false;
 };
