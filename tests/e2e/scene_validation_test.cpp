@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "command_runner.hpp"
 #include "uampc/runtime/component.hpp"
 
@@ -239,23 +241,45 @@ TEST(ComponentLoader, RefusesALibraryBuiltForAnotherAbiVersion) {
   const std::string expected = "libuampc_bad_abi.so: built for component ABI version " +
                                std::to_string(kComponentAbiVersion + 41) + ", but this uampc runtime has version " +
                                std::to_string(kComponentAbiVersion) + "; rebuild";
-  EXPECT_NE(r.output.find(expected), std::string::npos)
-      << r.output;
+  EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+}
+
+// The element of a JSON array whose "name" (or "type") is name; null if none.
+nlohmann::json named(const nlohmann::json& array, const std::string& key, const std::string& name) {
+  for (const auto& element : array) {
+    if (element.value(key, "") == name) return element;
+  }
+  return nullptr;
 }
 
 TEST(ComponentLoader, ListsInstalledComponentsWithPortsAndParametersAsJson) {
   const CommandResult r = runUampc("components --json");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("\"type\": \"motor_bridge\""), std::string::npos);
-  EXPECT_NE(r.output.find("{\"name\": \"state\", \"direction\": \"output\", \"type\": \"sensor_msgs/msg/JointState\", "
-                          "\"topic\": \"/motor/state\""),
-            std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("{\"name\": \"encoder_rate\", \"type\": \"double\", \"required\": false, \"default\": 200, "
-                          "\"min\": 1, \"max\": 10000"),
-            std::string::npos)
-      << r.output;
-  EXPECT_NE(r.output.find("{\"name\": \"mode\", \"type\": \"string\", \"required\": true"), std::string::npos);
+  const nlohmann::json components = nlohmann::json::parse(r.output);
+  const nlohmann::json motor = named(components, "type", "motor_bridge");
+  ASSERT_FALSE(motor.is_null()) << r.output;
+  const nlohmann::json state = named(motor["ports"], "name", "state");
+  ASSERT_FALSE(state.is_null());
+  EXPECT_EQ(state["direction"], "output");
+  EXPECT_EQ(state["type"], "sensor_msgs/msg/JointState");
+  EXPECT_EQ(state["topic"], "/motor/state");
+  const nlohmann::json rate = named(motor["parameters"], "name", "encoder_rate");
+  ASSERT_FALSE(rate.is_null());
+  EXPECT_EQ(rate["type"], "double");
+  EXPECT_EQ(rate["required"], false);
+  EXPECT_EQ(rate["default"], 200.0);
+  EXPECT_EQ(rate["min"], 1.0);
+  EXPECT_EQ(rate["max"], 10000.0);
+  // A required parameter has no default; a rig parameter says so.
+  bool required_mode = false;
+  for (const auto& c : components) {
+    const nlohmann::json mode = named(c["parameters"], "name", "mode");
+    if (!mode.is_null() && mode["required"] == true && !mode.contains("default")) required_mode = true;
+  }
+  EXPECT_TRUE(required_mode) << r.output;
+  const nlohmann::json tilt = named(named(components, "type", "lo")["parameters"], "name", "tilt_deg");
+  ASSERT_FALSE(tilt.is_null());
+  EXPECT_EQ(tilt["rig"], true);
 }
 
 TEST(ComponentLoader, TextListingKeepsColumnsApartForLongNames) {
