@@ -10,8 +10,6 @@ namespace uampc {
 
 using namespace eprosima::fastdds::dds;
 
-std::string ddsTopicName(const std::string& ros_topic) { return "rt" + ros_topic; }
-
 namespace {
 
 // The QoS a preset means; in lockstep mode the loop must not lose a sample, so everything is

@@ -15,12 +15,10 @@
 #include <string>
 
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/qos.hpp"
 
 namespace uampc {
-
-// "/motor/state" travels as "rt/motor/state", as in ROS 2.
-std::string ddsTopicName(const std::string& ros_topic);
 
 class DdsNode {
  public:

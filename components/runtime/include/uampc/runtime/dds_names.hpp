@@ -1,0 +1,21 @@
+// ROS 2's conventions for names on the DDS wire (docs/design.md section 4), in one place: the
+// runtime uses them to create topics, the recorder, player and topic tools to read what others
+// created.
+#pragma once
+
+#include <string>
+
+namespace uampc {
+
+// "/motor/state" travels as "rt/motor/state".
+std::string ddsTopicName(const std::string& ros_topic);
+// "rt/motor/state" -> "/motor/state"; "" for a DDS topic that is not a ROS topic (no "rt/" prefix).
+std::string rosTopicName(const std::string& dds_topic);
+
+// "sensor_msgs/msg/PointCloud2" -> "sensor_msgs::msg::dds_::PointCloud2_" (what fastddsgen -typeros2
+// and every ROS 2 rmw name the type on the wire).
+std::string ddsTypeName(const std::string& ros_type);
+// The inverse; "" for a DDS type name that does not follow the convention.
+std::string rosTypeName(const std::string& dds_type);
+
+}  // namespace uampc
