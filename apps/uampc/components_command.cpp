@@ -43,11 +43,13 @@ void printJson(const std::vector<const ComponentLibrary*>& libraries) {
     run_files::Json ports = run_files::Json::array(), parameters = run_files::Json::array();
     for (const auto& port : spec.ports()) ports.push_back(portJson(port));
     for (const auto& param : spec.parameters()) parameters.push_back(parameterJson(param));
-    components.push_back({{"type", spec.type},
-                          {"summary", spec.summary},
-                          {"library", library->path()},
-                          {"ports", ports},
-                          {"parameters", parameters}});
+    run_files::Json component = {{"type", spec.type},
+                                 {"summary", spec.summary},
+                                 {"library", library->path()},
+                                 {"ports", ports},
+                                 {"parameters", parameters}};
+    if (spec.scenePortResolver()) component["scene_ports"] = spec.scenePortsDoc();
+    components.push_back(component);
   }
   std::cout << run_files::dumpJson(components) << "\n";
 }
@@ -71,6 +73,7 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
                 << port.name << std::setw(port_type) << port.type_name << std::setw(port_topic) << port.default_topic
                 << "[" << toString(port.qos) << "] " << port.doc << "\n";
     }
+    if (spec.scenePortResolver()) std::cout << "  ports  decided by the scene: " << spec.scenePortsDoc() << "\n";
     const auto& parameters = spec.parameters();
     const int param_name = widest(parameters, [](const auto& p) { return p.name; });
     const int param_type = widest(parameters, [](const auto& p) { return std::string(toString(p.type)); });

@@ -24,7 +24,7 @@ std::vector<Topic> topicsOf(const Scene& scene) {
   std::vector<Topic> topics;
   std::map<std::string, std::size_t> index;
   for (const auto& c : scene.components) {
-    for (const auto& port : c.library->spec().ports()) {
+    for (const auto& port : c.ports) {
       const std::string& name = c.topics.at(port.name);
       auto [it, added] = index.emplace(name, topics.size());
       if (added) topics.push_back({name, port.type_name, {}, {}});

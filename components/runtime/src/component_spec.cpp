@@ -33,6 +33,10 @@ ParameterSpec& ComponentSpec::param(const std::string& name, const char* value, 
 ParameterSpec& ComponentSpec::param(const std::string& name, std::vector<double> value, const std::string& doc) {
   return addParameter({name, ParameterType::kDoubleList, ParameterValue(std::move(value)), doc, {}, {}, {}});
 }
+ParameterSpec& ComponentSpec::stringListParam(const std::string& name, std::vector<std::string> value,
+                                              const std::string& doc) {
+  return addParameter({name, ParameterType::kStringList, ParameterValue(std::move(value)), doc, {}, {}, {}});
+}
 ParameterSpec& ComponentSpec::pathParam(const std::string& name, const std::string& value, const std::string& doc) {
   return addParameter({name, ParameterType::kPath, ParameterValue(value), doc, {}, {}, {}});
 }

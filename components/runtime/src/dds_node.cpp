@@ -65,7 +65,7 @@ DdsNode::~DdsNode() {
 }
 
 Topic* DdsNode::topic(const std::string& ros_topic, const std::string& type_name,
-                      detail::TypeSupportFactory type_support) {
+                      const TypeSupportMaker& type_support) {
   if (auto it = topics_.find(ros_topic); it != topics_.end()) {
     if (topic_types_[ros_topic] != type_name) {
       throw std::runtime_error("topic " + ros_topic + " is used with two types: " + topic_types_[ros_topic] +
@@ -89,7 +89,7 @@ Topic* DdsNode::topic(const std::string& ros_topic, const std::string& type_name
 }
 
 DataWriter* DdsNode::createWriter(const std::string& ros_topic, const std::string& type_name,
-                                  detail::TypeSupportFactory type_support, QosPreset preset) {
+                                  const TypeSupportMaker& type_support, QosPreset preset) {
   Topic* t = topic(ros_topic, type_name, type_support);
   DataWriterQos qos = publisher_->get_default_datawriter_qos();
   applyPreset(qos, preset, lockstep_);
@@ -107,7 +107,7 @@ DataWriter* DdsNode::createWriter(const std::string& ros_topic, const std::strin
 }
 
 DataReader* DdsNode::createReader(const std::string& ros_topic, const std::string& type_name,
-                                  detail::TypeSupportFactory type_support, QosPreset preset,
+                                  const TypeSupportMaker& type_support, QosPreset preset,
                                   DataReaderListener* listener) {
   Topic* t = topic(ros_topic, type_name, type_support);
   DataReaderQos qos = subscriber_->get_default_datareader_qos();

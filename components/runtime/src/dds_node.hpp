@@ -11,6 +11,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <functional>
 #include <map>
 #include <string>
 
@@ -19,6 +20,9 @@
 #include "uampc/runtime/qos.hpp"
 
 namespace uampc {
+
+// Makes a new type support; DdsNode registers it once per type.
+using TypeSupportMaker = std::function<eprosima::fastdds::dds::TopicDataType*()>;
 
 class DdsNode {
  public:
@@ -29,9 +33,9 @@ class DdsNode {
   DdsNode& operator=(const DdsNode&) = delete;
 
   eprosima::fastdds::dds::DataWriter* createWriter(const std::string& ros_topic, const std::string& type_name,
-                                                   detail::TypeSupportFactory type_support, QosPreset qos);
+                                                   const TypeSupportMaker& type_support, QosPreset qos);
   eprosima::fastdds::dds::DataReader* createReader(const std::string& ros_topic, const std::string& type_name,
-                                                   detail::TypeSupportFactory type_support, QosPreset qos,
+                                                   const TypeSupportMaker& type_support, QosPreset qos,
                                                    eprosima::fastdds::dds::DataReaderListener* listener);
   void deleteWriter(eprosima::fastdds::dds::DataWriter* writer);
   void deleteReader(eprosima::fastdds::dds::DataReader* reader);
@@ -40,7 +44,7 @@ class DdsNode {
 
  private:
   eprosima::fastdds::dds::Topic* topic(const std::string& ros_topic, const std::string& type_name,
-                                       detail::TypeSupportFactory type_support);
+                                       const TypeSupportMaker& type_support);
 
   bool lockstep_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;

@@ -16,6 +16,7 @@ const char* toString(ParameterType type) {
     case ParameterType::kString: return "string";
     case ParameterType::kPath: return "path";
     case ParameterType::kDoubleList: return "double list";
+    case ParameterType::kStringList: return "string list";
   }
   return "?";
 }
@@ -39,6 +40,10 @@ std::string toString(const ParameterValue& value) {
         else if constexpr (std::is_same_v<T, std::vector<double>>) {
           out << '[';
           for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << formatNumber(v[i]);
+          out << ']';
+        } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+          out << '[';
+          for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << '"' << v[i] << '"';
           out << ']';
         } else if constexpr (std::is_same_v<T, double>) out << formatNumber(v);
         else out << v;

@@ -37,9 +37,10 @@ struct ReaderPort {
   std::string component;
   std::string port;
   std::string topic;
+  DdsNode* node = nullptr;  // the participant the reader belongs to
   DataReader* reader = nullptr;
   TypeSupport type;
-  std::function<void(const void*)> callback;
+  std::function<void(const void*, Time source_time)> callback;
   std::deque<Sample> deferred;  // lockstep: taken early, belongs to a later step
   std::uint64_t delivered = 0;  // samples handed to the callback so far
 
@@ -76,8 +77,9 @@ struct ProcessState {
 
 class DdsWriter : public detail::Writer {
  public:
-  DdsWriter(DataWriter* writer, std::string topic, QosPreset qos, const ProcessState& state)
-      : writer_(writer), topic_(std::move(topic)), qos_(qos), state_(state) {}
+  DdsWriter(DdsNode& node, DataWriter* writer, std::string topic, QosPreset qos, const ProcessState& state)
+      : node_(node), writer_(writer), topic_(std::move(topic)), qos_(qos), state_(state) {}
+  ~DdsWriter() override { node_.deleteWriter(writer_); }
   void write(const void* sample) override {
     if (state_.lockstep && !state_.started && qos_ != QosPreset::kLatched) {
       // Before the run starts, readers in other processes may not be matched yet and the sample
@@ -107,6 +109,7 @@ class DdsWriter : public detail::Writer {
   std::uint64_t written() const { return written_; }
 
  private:
+  DdsNode& node_;
   DataWriter* writer_;
   std::string topic_;
   QosPreset qos_;
@@ -116,12 +119,15 @@ class DdsWriter : public detail::Writer {
 
 class ContextImpl : public Context {
  public:
+  // serialized_dds: the participant of the process's serialized ports, made on first use.
   ContextImpl(const Scene& scene, const ComponentInstance& instance, const std::string& output_directory,
-              DdsNode& dds, ProcessState& state, std::vector<std::shared_ptr<DdsWriter>>& writers)
+              DdsNode& dds, std::function<DdsNode&()> serialized_dds, ProcessState& state,
+              std::vector<std::shared_ptr<DdsWriter>>& writers)
       : scene_(scene),
         instance_(instance),
         output_directory_(output_directory),
         dds_(dds),
+        serialized_dds_(std::move(serialized_dds)),
         state_(state),
         writers_(writers),
         logger_(instance.name, [&state] { return state.now.seconds(); }) {}
@@ -155,6 +161,10 @@ class ContextImpl : public Context {
   std::vector<double> paramDoubleList(const std::string& n) const override {
     return std::get<std::vector<double>>(param(n));
   }
+  std::vector<std::string> paramStringList(const std::string& n) const override {
+    return std::get<std::vector<std::string>>(param(n));
+  }
+  const std::vector<PortSpec>& ports() const override { return instance_.ports; }
   std::string topicOf(const std::string& port) const override {
     auto it = instance_.topics.find(port);
     if (it == instance_.topics.end()) {
@@ -167,7 +177,7 @@ class ContextImpl : public Context {
   // run waits until every declared port is matched, so such a port would stall it.
   std::vector<std::string> unopenedPorts() const {
     std::vector<std::string> unopened;
-    for (const PortSpec& spec : instance_.library->spec().ports()) {
+    for (const PortSpec& spec : instance_.ports) {
       if (!opened_ports_.count(spec.name)) unopened.push_back(spec.name);
     }
     return unopened;
@@ -177,26 +187,30 @@ class ContextImpl : public Context {
   std::shared_ptr<detail::Writer> makeWriter(const std::string& port, const char* type_name,
                                              detail::TypeSupportFactory type_support) override {
     const PortSpec& spec = checkPort(port, PortDirection::kOutput, type_name);
-    opened_ports_.insert(port);
-    const std::string topic = topicOf(port);
-    auto writer = std::make_shared<DdsWriter>(dds_.createWriter(topic, type_name, type_support, spec.qos), topic,
-                                              spec.qos, state_);
-    writers_.push_back(writer);
-    return writer;
+    return openWriter(port, dds_, type_support, spec);
   }
 
   void addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory type_support,
                  std::function<void(const void*)> callback) override {
     const PortSpec& spec = checkPort(port, PortDirection::kInput, type_name);
-    opened_ports_.insert(port);
-    auto r = std::make_unique<ReaderPort>();
-    r->component = instance_.name;
-    r->port = port;
-    r->topic = topicOf(port);
-    r->type = TypeSupport(type_support());
-    r->callback = std::move(callback);
-    r->reader = dds_.createReader(r->topic, type_name, type_support, spec.qos, &state_.wakeup);
-    state_.readers.push_back(std::move(r));
+    openReader(port, dds_, type_support, spec,
+               [callback = std::move(callback)](const void* sample, Time) { callback(sample); });
+  }
+
+  // Serialized ports live on a participant of their own: one participant registers one type
+  // support per type name, and the process's typed ports of the same type have theirs.
+  std::shared_ptr<detail::Writer> makeSerializedWriter(const std::string& port) override {
+    const PortSpec& spec = checkPort(port, PortDirection::kOutput, nullptr);
+    return openWriter(port, serialized_dds_(), serializedTypeSupport(spec), spec);
+  }
+
+  void addSerializedReader(const std::string& port,
+                           std::function<void(const SerializedMessage&, Time)> callback) override {
+    const PortSpec& spec = checkPort(port, PortDirection::kInput, nullptr);
+    openReader(port, serialized_dds_(), serializedTypeSupport(spec), spec,
+               [callback = std::move(callback)](const void* sample, Time published) {
+                 callback(*static_cast<const SerializedMessage*>(sample), published);
+               });
   }
 
  private:
@@ -207,14 +221,48 @@ class ContextImpl : public Context {
     }
     return it->second;
   }
+  std::shared_ptr<detail::Writer> openWriter(const std::string& port, DdsNode& node,
+                                             const TypeSupportMaker& type_support, const PortSpec& spec) {
+    opened_ports_.insert(port);
+    const std::string topic = topicOf(port);
+    auto writer = std::make_shared<DdsWriter>(node, node.createWriter(topic, spec.type_name, type_support, spec.qos),
+                                              topic, spec.qos, state_);
+    writers_.push_back(writer);
+    return writer;
+  }
+
+  void openReader(const std::string& port, DdsNode& node, const TypeSupportMaker& type_support, const PortSpec& spec,
+                  std::function<void(const void*, Time)> callback) {
+    opened_ports_.insert(port);
+    auto r = std::make_unique<ReaderPort>();
+    r->component = instance_.name;
+    r->port = port;
+    r->topic = topicOf(port);
+    r->node = &node;
+    r->type = TypeSupport(type_support());
+    r->callback = std::move(callback);
+    r->reader = node.createReader(r->topic, spec.type_name, type_support, spec.qos, &state_.wakeup);
+    state_.readers.push_back(std::move(r));
+  }
+
+  // The real type's maximum size, when this process knows the type, sizes Fast DDS's buffers.
+  static TypeSupportMaker serializedTypeSupport(const PortSpec& spec) {
+    std::uint32_t size_hint = 1024;
+    if (const MessageTypeInfo* known = findMessageType(spec.type_name)) {
+      std::unique_ptr<TopicDataType> real(known->make_type_support());
+      size_hint = real->m_typeSize;
+    }
+    return [name = ddsTypeName(spec.type_name), size_hint] { return new SerializedTypeSupport(name, size_hint); };
+  }
+
   const PortSpec& checkPort(const std::string& port, PortDirection direction, const char* type_name) const {
-    const PortSpec* spec = instance_.library->spec().findPort(port);
+    const PortSpec* spec = instance_.findPort(port);
     if (!spec) throw std::logic_error(instance_.name + ": no port '" + port + "' (not declared in describe())");
     if (spec->direction != direction) {
       throw std::logic_error(instance_.name + ": port '" + port + "' is declared as an " +
                              (spec->direction == PortDirection::kInput ? "input" : "output"));
     }
-    if (spec->type_name != type_name) {
+    if (type_name && spec->type_name != type_name) {
       throw std::logic_error(instance_.name + ": port '" + port + "' is declared with type " + spec->type_name +
                              ", not " + type_name);
     }
@@ -225,6 +273,7 @@ class ContextImpl : public Context {
   const ComponentInstance& instance_;
   std::string output_directory_;
   DdsNode& dds_;
+  std::function<DdsNode&()> serialized_dds_;
   ProcessState& state_;
   std::vector<std::shared_ptr<DdsWriter>>& writers_;
   std::set<std::string> opened_ports_;
@@ -248,10 +297,10 @@ class ProcessRunner {
 
   ~ProcessRunner() {
     components_.clear();
-    for (auto& r : state_.readers) dds_.deleteReader(r->reader);
-    for (auto& w : writers_) dds_.deleteWriter(w->dds());
+    for (auto& r : state_.readers) r->node->deleteReader(r->reader);
+    writers_.clear();  // each deletes its DDS writer
     if (clock_reader_) dds_.deleteReader(clock_reader_->reader);
-    if (ack_writer_) dds_.deleteWriter(ack_writer_->dds());
+    ack_writer_.reset();
     if (ack_reader_) dds_.deleteReader(ack_reader_->reader);
   }
 
@@ -273,8 +322,9 @@ class ProcessRunner {
   bool createComponents() {
     for (const auto& instance : scene_.components) {
       if (instance.process != process_) continue;
-      contexts_.push_back(
-          std::make_unique<ContextImpl>(scene_, instance, output_directory_, dds_, state_, writers_));
+      contexts_.push_back(std::make_unique<ContextImpl>(
+          scene_, instance, output_directory_, dds_, [this]() -> DdsNode& { return serializedDds(); }, state_,
+          writers_));
       try {
         components_.emplace_back(instance.name, instance.library->create(*contexts_.back()));
       } catch (const std::exception& e) {
@@ -289,6 +339,14 @@ class ProcessRunner {
       }
     }
     return true;
+  }
+
+  DdsNode& serializedDds() {
+    if (!serialized_dds_) {
+      serialized_dds_ = std::make_unique<DdsNode>(scene_.domain_id, scene_.dds_profile, state_.lockstep,
+                                                  "uampc/" + process_ + "/serialized");
+    }
+    return *serialized_dds_;
   }
 
   // Calls `work` and turns an exception into a failure that names the component.
@@ -324,7 +382,7 @@ class ProcessRunner {
         }
         ++r->delivered;
         if (!guarded(r->component, ("input '" + r->port + "' (" + r->topic + ")").c_str(),
-                     [&] { r->callback(s.data.get()); })) {
+                     [&] { r->callback(s.data.get(), s.source_time); })) {
           return false;
         }
       }
@@ -368,6 +426,9 @@ class ProcessRunner {
 
   bool waitForMatches(const std::atomic<bool>& stop) {
     const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.startupTimeout());
+    // A start that takes long says what it waits for (a component on another host, a process that
+    // failed to start), every few seconds.
+    auto next_report = SteadyClock::now() + std::chrono::seconds(2);
     for (;;) {
       std::string missing;
       for (const auto& w : writers_) {
@@ -404,6 +465,10 @@ class ProcessRunner {
         log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(), " s; still missing:",
                    missing);
         return false;
+      }
+      if (SteadyClock::now() > next_report) {
+        log_.info("starting: waiting for", missing);
+        next_report = SteadyClock::now() + std::chrono::seconds(5);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
@@ -476,7 +541,7 @@ class ProcessRunner {
                                               &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
                                               QosPreset::kControl, &state_.wakeup);
     ack_writer_ = std::make_unique<DdsWriter>(
-        dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+        dds_, dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                           &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
         kStepAckTopic, QosPreset::kControl, state_);
     // Every process reads every acknowledgement: they say how many samples to wait for.
@@ -527,6 +592,7 @@ class ProcessRunner {
   std::string process_;
   std::string output_directory_;
   DdsNode dds_;
+  std::unique_ptr<DdsNode> serialized_dds_;  // declared after dds_: destroyed before it
   ProcessState state_;
   Logger log_;
   std::vector<std::shared_ptr<DdsWriter>> writers_;

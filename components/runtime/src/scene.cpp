@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <regex>
@@ -44,7 +45,7 @@ std::vector<std::string> Scene::processes() const {
 static int countPorts(const Scene& scene, const std::string& topic, PortDirection direction) {
   int n = 0;
   for (const auto& c : scene.components) {
-    for (const auto& port : c.library->spec().ports()) {
+    for (const auto& port : c.ports) {
       if (port.direction == direction && c.topics.at(port.name) == topic) ++n;
     }
   }
@@ -53,6 +54,13 @@ static int countPorts(const Scene& scene, const std::string& topic, PortDirectio
 
 int Scene::readersOf(const std::string& topic) const { return countPorts(*this, topic, PortDirection::kInput); }
 int Scene::writersOf(const std::string& topic) const { return countPorts(*this, topic, PortDirection::kOutput); }
+
+const PortSpec* ComponentInstance::findPort(const std::string& port) const {
+  for (const auto& p : ports) {
+    if (p.name == port) return &p;
+  }
+  return nullptr;
+}
 
 const ComponentInstance* Scene::find(const std::string& name) const {
   for (const auto& c : components) {
@@ -239,6 +247,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     checkRigKeys(scene);
     const std::size_t errors_before = errors_.size();
     resolvePortReferences(scene, pending_, errors_);
+    resolveScenePorts(scene, errors_);
     // A reference that failed leaves its port on its default topic: checking that would only
     // add confusing messages.
     if (errors_.size() == errors_before) checkConnections(scene, topic_locations_, errors_);
@@ -264,6 +273,16 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
         error(root["domain_id"], "domain_id must be between 0 and 232");
       else
         scene.domain_id = *v;
+    }
+  } else if (const char* env = std::getenv("ROS_DOMAIN_ID"); env && *env) {
+    // As a ROS 2 user expects: the scene's domain_id (or --set domain_id=N) first, then this.
+    char* end = nullptr;
+    const long v = std::strtol(env, &end, 10);
+    if (*end != '\0' || v < 0 || v > 232) {
+      errors_.push_back("ROS_DOMAIN_ID: error: '" + std::string(env) +
+                        "' is not a domain id between 0 and 232 (the scene names no domain_id, so it is used)");
+    } else {
+      scene.domain_id = static_cast<int>(v);
     }
   }
   if (root["seed"]) {
@@ -553,12 +572,26 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
       }
       return ParameterValue(values);
     }
+    case ParameterType::kStringList: {
+      if (!node.IsSequence()) {
+        error(node, what + " must be a list of strings, e.g. [/lidar/points, /motor/state]");
+        return std::nullopt;
+      }
+      std::vector<std::string> values;
+      for (const auto& item : node) {
+        auto v = scalar<std::string>(item, what);
+        if (!v) return std::nullopt;
+        values.push_back(*v);
+      }
+      return ParameterValue(values);
+    }
   }
   return std::nullopt;
 }
 
 void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
                                 std::vector<PortReference>& references) {
+  instance.ports = spec.ports();
   for (const auto& port : spec.ports()) instance.topics[port.name] = port.default_topic;
   if (!node || node.IsNull()) return;
   if (!node.IsMap()) {

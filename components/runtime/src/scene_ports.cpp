@@ -118,6 +118,67 @@ std::string portList(const std::vector<Binding>& bindings) {
 
 }  // namespace
 
+namespace {
+
+// Every topic written in the scene by a component other than `self`, with the first port writing it.
+std::map<std::string, const PortSpec*> writtenTopics(const Scene& scene, const ComponentInstance* self) {
+  std::map<std::string, const PortSpec*> written;
+  for (const auto& c : scene.components) {
+    if (&c == self) continue;
+    for (const auto& port : c.ports) {
+      if (port.direction == PortDirection::kOutput) written.emplace(c.topics.at(port.name), &port);
+    }
+  }
+  return written;
+}
+
+std::string checkScenePort(const ComponentInstance& c, const PortSpec& port) {
+  if (port.name.empty() || port.name.front() != '/') return "asked for a port that is not a topic: '" + port.name + "'";
+  if (port.type_name.empty()) return "asked for port " + port.name + " without a type";
+  if (c.topics.count(port.name)) return "asked for port " + port.name + " twice";
+  return "";
+}
+
+}  // namespace
+
+// Two rounds, so that what one component decides is seen by another whatever their order in the
+// file (a recorder of every topic records what a player publishes): the first round finds the
+// outputs, the second decides with them. A resolver must only depend on its parameters and on the
+// written topics it is given.
+void resolveScenePorts(Scene& scene, std::vector<std::string>& errors) {
+  for (int round = 0; round < 2; ++round) {
+    for (auto& c : scene.components) {
+      const ScenePortResolver& resolve = c.library->spec().scenePortResolver();
+      if (!resolve) continue;
+      std::vector<PortSpec> decided;
+      try {
+        decided = resolve({c.params, writtenTopics(scene, &c)});
+      } catch (const std::exception& e) {
+        if (round == 1) {
+          errors.push_back(diagnostic(c.location, "error", "component '" + c.name + "' (" + c.type + "): " + e.what()));
+        }
+        continue;
+      }
+      // The second round replaces what the first decided.
+      c.ports.resize(c.library->spec().ports().size());
+      for (auto it = c.topics.begin(); it != c.topics.end();) {
+        it = c.library->spec().findPort(it->first) ? std::next(it) : c.topics.erase(it);
+      }
+      for (auto& port : decided) {
+        port.default_topic = port.name;
+        const std::string problem = checkScenePort(c, port);
+        if (!problem.empty()) {
+          if (round == 1)
+            errors.push_back(diagnostic(c.location, "error", "component '" + c.name + "' (" + c.type + ") " + problem));
+          continue;
+        }
+        c.topics[port.name] = port.name;
+        c.ports.push_back(std::move(port));
+      }
+    }
+  }
+}
+
 // An input whose topic no component of the scene writes is an error only when the scene itself
 // remapped that port (an explicit `topics:` entry): there the topic was typed by hand, and a typo
 // such as /lo/odometri would leave the reader waiting forever. With the port's own default topic it
@@ -129,7 +190,7 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
                       std::vector<std::string>& errors) {
   std::map<std::string, std::vector<Binding>> by_topic;
   for (const auto& c : scene.components) {
-    for (const auto& port : c.library->spec().ports()) by_topic[c.topics.at(port.name)].push_back({&c, &port});
+    for (const auto& port : c.ports) by_topic[c.topics.at(port.name)].push_back({&c, &port});
   }
   auto whereSet = [&](const Binding& b) {
     const auto it = remapped.find(b.key());

@@ -26,6 +26,10 @@ std::string diagnostic(const SourceLocation& where, const char* severity, const 
 void resolvePortReferences(Scene& scene, const std::vector<PortReference>& references,
                            std::vector<std::string>& errors);
 
+// Adds to every component that decides ports from the scene (ComponentSpec::scenePorts, e.g. a
+// recorder or a player) the ports it asks for; errors for what it rejects.
+void resolveScenePorts(Scene& scene, std::vector<std::string>& errors);
+
 // Type clashes (errors), inputs no component writes and outputs nobody reads (see the .cpp for
 // which is an error). `remapped` holds "instance.port" -> where the scene set that port's topic.
 void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>& remapped,

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "fastdds/rtps/common/SerializedPayload.h"
+#include "uampc/runtime/dds_names.hpp"
 
 namespace uampc::testing {
 
@@ -16,9 +17,10 @@ using eprosima::fastrtps::rtps::SerializedPayload_t;
 // support, and the test names the C++ type when it reads the samples back.
 class TestContext::CapturingWriter : public detail::Writer {
  public:
-  CapturingWriter(std::string port, const char* type_name, detail::TypeSupportFactory type_support, QosPreset qos,
-                  const bool& started)
-      : port_(std::move(port)), type_name_(type_name), type_(type_support()), qos_(qos), started_(started) {}
+  CapturingWriter(std::string port, std::string type_name, std::unique_ptr<TopicDataType> type_support,
+                  QosPreset qos, const bool& started)
+      : port_(std::move(port)), type_name_(std::move(type_name)), type_(std::move(type_support)), qos_(qos),
+        started_(started) {}
 
   void write(const void* sample) override {
     if (!started_ && qos_ != QosPreset::kLatched) {
@@ -37,6 +39,12 @@ class TestContext::CapturingWriter : public detail::Writer {
     SerializedPayload_t copy;
     copy.copy(samples_.at(index).get(), false);
     if (!type_->deserialize(&copy, sample)) throw std::runtime_error("cannot read back a sample of " + port_);
+  }
+
+  // The sample as it travels, whichever way the port was opened.
+  SerializedMessage bytes(std::size_t index) const {
+    const SerializedPayload_t& payload = *samples_.at(index);
+    return {std::vector<std::uint8_t>(payload.data, payload.data + payload.length)};
   }
 
   const std::string& typeName() const { return type_name_; }
@@ -89,6 +97,9 @@ ParameterValue readParameter(const std::string& type, const ParameterSpec& spec,
       case ParameterType::kDoubleList:
         value = node.as<std::vector<double>>();
         break;
+      case ParameterType::kStringList:
+        value = node.as<std::vector<std::string>>();
+        break;
     }
   } catch (const YAML::Exception&) {
     throw fail("'" + text + "' is not a " + toString(spec.type));
@@ -123,6 +134,15 @@ TestContext::TestContext(const std::string& type, const std::map<std::string, st
     if (params_.count(spec.name)) continue;
     if (spec.required()) throw std::invalid_argument(parameterError(type, spec.name, "required, not given"));
     params_[spec.name] = *spec.default_value;
+  }
+  ports_ = library_->spec().ports();
+  if (const ScenePortResolver& resolve = library_->spec().scenePortResolver()) {
+    std::map<std::string, const PortSpec*> written;
+    for (const PortSpec& output : options_.scene_outputs) written.emplace(output.default_topic, &output);
+    for (PortSpec& port : resolve({params_, written})) {
+      port.default_topic = port.name;
+      ports_.push_back(std::move(port));
+    }
   }
   component_ = library_->create(*this);
   started_ = true;
@@ -173,14 +193,25 @@ std::vector<double> TestContext::paramDoubleList(const std::string& name) const 
   return std::get<std::vector<double>>(param(name));
 }
 
+std::vector<std::string> TestContext::paramStringList(const std::string& name) const {
+  return std::get<std::vector<std::string>>(param(name));
+}
+
+const PortSpec* TestContext::findPort(const std::string& port) const {
+  for (const PortSpec& p : ports_) {
+    if (p.name == port) return &p;
+  }
+  return nullptr;
+}
+
 std::string TestContext::topicOf(const std::string& port) const {
-  const PortSpec* spec = library_->spec().findPort(port);
+  const PortSpec* spec = findPort(port);
   if (!spec) throw std::logic_error(options_.name + ": no port '" + port + "' (not declared in describe())");
   return spec->default_topic;
 }
 
 const PortSpec& TestContext::checkPort(const std::string& port, PortDirection direction, const char* type_name) const {
-  const PortSpec* spec = library_->spec().findPort(port);
+  const PortSpec* spec = findPort(port);
   if (!spec) throw std::logic_error(options_.name + ": no port '" + port + "' (not declared in describe())");
   if (spec->direction != direction) {
     throw std::logic_error(options_.name + ": port '" + port + "' is declared as an " +
@@ -197,8 +228,45 @@ std::shared_ptr<detail::Writer> TestContext::makeWriter(const std::string& port,
                                                         detail::TypeSupportFactory type_support) {
   const PortSpec& spec = checkPort(port, PortDirection::kOutput, type_name);
   auto& writer = writers_[port];
-  if (!writer) writer = std::make_shared<CapturingWriter>(port, type_name, type_support, spec.qos, started_);
+  if (!writer) {
+    writer = std::make_shared<CapturingWriter>(port, type_name, std::unique_ptr<TopicDataType>(type_support()), spec.qos,
+                                               started_);
+  }
   return writer;
+}
+
+std::shared_ptr<detail::Writer> TestContext::makeSerializedWriter(const std::string& port) {
+  const PortSpec& spec = checkPort(port, PortDirection::kOutput, nullptr);
+  auto& writer = writers_[port];
+  if (!writer) {
+    writer = std::make_shared<CapturingWriter>(
+        port, spec.type_name, std::make_unique<SerializedTypeSupport>(ddsTypeName(spec.type_name)), spec.qos, started_);
+  }
+  return writer;
+}
+
+void TestContext::addSerializedReader(const std::string& port,
+                                      std::function<void(const SerializedMessage&, Time)> callback) {
+  checkPort(port, PortDirection::kInput, nullptr);
+  serialized_readers_[port] = std::move(callback);
+}
+
+void TestContext::injectSerialized(const std::string& port, const SerializedMessage& sample, Time published) {
+  checkPort(port, PortDirection::kInput, nullptr);
+  auto it = serialized_readers_.find(port);
+  if (it == serialized_readers_.end()) {
+    throw std::logic_error(options_.name + ": nothing subscribed serialized to port '" + port + "'");
+  }
+  it->second(sample, published);
+}
+
+std::vector<SerializedMessage> TestContext::publishedSerialized(const std::string& port) const {
+  checkPort(port, PortDirection::kOutput, nullptr);
+  std::vector<SerializedMessage> samples;
+  auto it = writers_.find(port);
+  if (it == writers_.end()) return samples;
+  for (std::size_t i = 0; i < it->second->size(); ++i) samples.push_back(it->second->bytes(i));
+  return samples;
 }
 
 void TestContext::addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory,

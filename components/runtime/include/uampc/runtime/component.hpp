@@ -26,13 +26,15 @@
 #include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/message_type.hpp"
 #include "uampc/runtime/parameter.hpp"
+#include "uampc/runtime/serialized_message.hpp"
 #include "uampc/runtime/time.hpp"
 
 namespace uampc {
 
 // Bumped whenever Component, Context or the plugin entry change in a way that breaks libraries
 // built against an older runtime. The loader refuses a library built for another version.
-constexpr std::uint32_t kComponentAbiVersion = 2;  // 2: ParameterSpec::rig
+// 2: ParameterSpec::rig; 3: ports decided by the scene, serialized ports, string-list parameters.
+constexpr std::uint32_t kComponentAbiVersion = 3;
 
 namespace detail {
 // The runtime's side of a typed port; components use Publisher<T> and Context::subscribe<T>.
@@ -89,6 +91,20 @@ class Context {
               });
   }
 
+  // Ports of any type, the samples kept as their CDR bytes: how a recorder or a player moves
+  // samples without knowing their types (ports decided by the scene, ComponentSpec::scenePorts; a
+  // declared port may be opened this way too). `published` is when the writer published the sample
+  // (sim time in lockstep, wall time in real time).
+  Publisher<SerializedMessage> serializedPublisher(const std::string& port) {
+    return Publisher<SerializedMessage>(makeSerializedWriter(port));
+  }
+  void subscribeSerialized(const std::string& port,
+                           std::function<void(const SerializedMessage&, Time published)> callback) {
+    addSerializedReader(port, std::move(callback));
+  }
+  // Every port of this instance: the declared ones, then those the scene decided.
+  virtual const std::vector<PortSpec>& ports() const = 0;
+
   // callback runs every period_s seconds of clock time, first at the start of the run.
   virtual void timer(double period_s, std::function<void()> callback) = 0;
 
@@ -98,6 +114,7 @@ class Context {
   virtual double paramDouble(const std::string& name) const = 0;  // accepts integer values too
   virtual std::string paramString(const std::string& name) const = 0;  // paths come back absolute
   virtual std::vector<double> paramDoubleList(const std::string& name) const = 0;
+  virtual std::vector<std::string> paramStringList(const std::string& name) const = 0;
 
   // The topic a port is bound to after the scene's remapping, e.g. "/motor/state".
   virtual std::string topicOf(const std::string& port) const = 0;
@@ -108,6 +125,9 @@ class Context {
   virtual void addReader(const std::string& port, const char* type_name,
                          detail::TypeSupportFactory type_support,
                          std::function<void(const void*)> callback) = 0;
+  virtual std::shared_ptr<detail::Writer> makeSerializedWriter(const std::string& port) = 0;
+  virtual void addSerializedReader(const std::string& port,
+                                   std::function<void(const SerializedMessage&, Time)> callback) = 0;
 };
 
 class Component {

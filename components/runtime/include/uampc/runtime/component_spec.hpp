@@ -2,6 +2,8 @@
 // scene against these before anything starts, and `uampc components` lists them.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,17 @@ struct PortSpec {
   QosPreset qos = QosPreset::kControl;
   std::string doc;
 };
+
+// What a component that decides its ports from the scene (ComponentSpec::scenePorts) is given.
+struct ScenePortRequest {
+  const std::map<std::string, ParameterValue>& params;  // the instance's, validated, defaults filled in
+  // Every topic the scene's other components write (declared outputs and the outputs other
+  // components decided from the scene), with the port that writes it first.
+  const std::map<std::string, const PortSpec*>& written;
+};
+// Returns the ports; each one's name is its topic (default_topic), and it cannot be remapped.
+// Throws std::runtime_error with a message for the user when the parameters do not make sense.
+using ScenePortResolver = std::function<std::vector<PortSpec>(const ScenePortRequest&)>;
 
 class ComponentSpec {
  public:
@@ -44,11 +57,24 @@ class ComponentSpec {
   ParameterSpec& param(const std::string& name, double default_value, const std::string& doc);
   ParameterSpec& param(const std::string& name, const char* default_value, const std::string& doc);
   ParameterSpec& param(const std::string& name, std::vector<double> default_value, const std::string& doc);
+  ParameterSpec& stringListParam(const std::string& name, std::vector<std::string> default_value,
+                                 const std::string& doc);
   // A file path; empty default: none given. Non-empty values must name an existing file.
   ParameterSpec& pathParam(const std::string& name, const std::string& default_value, const std::string& doc);
   // A parameter the scene must set.
   ParameterSpec& requiredParam(const std::string& name, ParameterType type, const std::string& doc);
 
+  // Ports only the scene can tell (which topics a recorder records, which a player publishes from
+  // its file), decided when the scene is loaded, in addition to the declared ones. The component
+  // opens them with Context::subscribeSerialized / serializedPublisher.
+  void scenePorts(const std::string& doc, ScenePortResolver resolver) {
+    scene_ports_doc_ = doc;
+    scene_port_resolver_ = std::move(resolver);
+  }
+  const ScenePortResolver& scenePortResolver() const { return scene_port_resolver_; }
+  const std::string& scenePortsDoc() const { return scene_ports_doc_; }
+
+  // The declared ports (a scene instance's are ComponentInstance::ports).
   const std::vector<PortSpec>& ports() const { return ports_; }
   const std::vector<ParameterSpec>& parameters() const { return parameters_; }
   const PortSpec* findPort(const std::string& name) const;
@@ -60,6 +86,8 @@ class ComponentSpec {
 
   std::vector<PortSpec> ports_;
   std::vector<ParameterSpec> parameters_;
+  ScenePortResolver scene_port_resolver_;
+  std::string scene_ports_doc_;
 };
 
 }  // namespace uampc

@@ -16,11 +16,13 @@ enum class ParameterType {
   kString,
   kPath,        // a string naming a file that must exist; relative paths are from the scene file
   kDoubleList,
+  kStringList,  // e.g. topics: [/lidar/points, /motor/state]
 };
 
 const char* toString(ParameterType type);
 
-using ParameterValue = std::variant<bool, std::int64_t, double, std::string, std::vector<double>>;
+using ParameterValue =
+    std::variant<bool, std::int64_t, double, std::string, std::vector<double>, std::vector<std::string>>;
 
 // Human-readable value, as it would be written in YAML (and valid JSON for numbers and lists).
 std::string toString(const ParameterValue& value);

@@ -54,6 +54,8 @@ struct ComponentInstance {
   SourceLocation location;
   std::map<std::string, ParameterValue> params;  // every declared parameter, defaults filled in
   std::map<std::string, std::string> topics;     // every port -> its topic after remapping
+  std::vector<PortSpec> ports;  // the declared ports, then those decided by the scene (scenePorts)
+  const PortSpec* findPort(const std::string& port) const;
   const ComponentLibrary* library = nullptr;
 };
 

@@ -27,6 +27,9 @@ struct TestOptions {
   std::string name = "under_test";  // the instance name
   std::uint64_t seed = 1;
   std::string output_directory;  // empty: none, as without uampc launch --out
+  // What the rest of the scene writes (default_topic, type_name, qos of each output), for a
+  // component that decides its ports from the scene (ComponentSpec::scenePorts).
+  std::vector<PortSpec> scene_outputs;
 };
 
 class TestContext : public Context {
@@ -56,6 +59,10 @@ class TestContext : public Context {
   }
   std::size_t publishedCount(const std::string& port) const { return publishedCount(port, nullptr); }
 
+  // The same for ports opened serialized (Context::subscribeSerialized, serializedPublisher).
+  void injectSerialized(const std::string& port, const SerializedMessage& sample, Time published);
+  std::vector<SerializedMessage> publishedSerialized(const std::string& port) const;
+
   // Moves the clock to t, firing every timer due on the way at its own time, earliest first
   // (timers due at the same time in the order they were created). t may not be in the past.
   void advanceTo(Time t);
@@ -76,13 +83,18 @@ class TestContext : public Context {
   double paramDouble(const std::string& name) const override;
   std::string paramString(const std::string& name) const override;
   std::vector<double> paramDoubleList(const std::string& name) const override;
+  std::vector<std::string> paramStringList(const std::string& name) const override;
   std::string topicOf(const std::string& port) const override;
+  const std::vector<PortSpec>& ports() const override { return ports_; }
 
  protected:
   std::shared_ptr<detail::Writer> makeWriter(const std::string& port, const char* type_name,
                                              detail::TypeSupportFactory type_support) override;
   void addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory type_support,
                  std::function<void(const void*)> callback) override;
+  std::shared_ptr<detail::Writer> makeSerializedWriter(const std::string& port) override;
+  void addSerializedReader(const std::string& port,
+                           std::function<void(const SerializedMessage&, Time)> callback) override;
 
  private:
   class CapturingWriter;
@@ -92,6 +104,7 @@ class TestContext : public Context {
     std::function<void()> callback;
   };
 
+  const PortSpec* findPort(const std::string& port) const;
   const PortSpec& checkPort(const std::string& port, PortDirection direction, const char* type_name) const;
   const ParameterValue& param(const std::string& name) const;
   void deliver(const std::string& port, const char* type_name, const void* sample);
@@ -102,12 +115,14 @@ class TestContext : public Context {
   ComponentCatalog catalog_;
   const ComponentLibrary* library_ = nullptr;
   std::map<std::string, ParameterValue> params_;
+  std::vector<PortSpec> ports_;  // declared, then decided from options_.scene_outputs
   Logger logger_;
   Time now_{0};
   bool started_ = false;  // false while the component is being constructed
   std::vector<Timer> timers_;
   std::map<std::string, std::function<void(const void*)>> readers_;  // by port
   std::map<std::string, std::shared_ptr<CapturingWriter>> writers_;  // by port
+  std::map<std::string, std::function<void(const SerializedMessage&, Time)>> serialized_readers_;  // by port
   std::unique_ptr<Component> component_;
 };
 
