@@ -1,4 +1,4 @@
-#include "edit_distance.hpp"
+#include "uampc/runtime/edit_distance.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -138,6 +138,7 @@ class ContextImpl : public Context {
   std::uint64_t seed() const override { return scene_.seed; }
   const std::string& outputDirectory() const override { return output_directory_; }
   bool lockstep() const override { return state_.lockstep; }
+  Time step() const override { return state_.lockstep ? state_.step : Time{0}; }
 
   void timer(double period_s, std::function<void()> callback) override {
     if (!(period_s > 0)) throw std::invalid_argument(instance_.name + ": timer period must be positive");

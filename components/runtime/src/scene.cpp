@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "edit_distance.hpp"
+#include "uampc/runtime/edit_distance.hpp"
 #include "scene_document.hpp"
 #include "scene_ports.hpp"
 #include "uampc/runtime/yaml_errors.hpp"

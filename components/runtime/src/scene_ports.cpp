@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <set>
 
-#include "edit_distance.hpp"
+#include "uampc/runtime/edit_distance.hpp"
 
 namespace uampc {
 

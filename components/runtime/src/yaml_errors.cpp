@@ -2,7 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "edit_distance.hpp"
+#include "uampc/runtime/edit_distance.hpp"
 
 namespace uampc {
 

@@ -75,6 +75,8 @@ class Context {
   virtual const std::string& outputDirectory() const = 0;
   // True in lockstep (deterministic, simulated time) mode.
   virtual bool lockstep() const = 0;
+  // Lockstep: the clock's step (a timer never fires more often); real time: 0.
+  virtual Time step() const = 0;
 
   template <typename Message>
   Publisher<Message> publisher(const std::string& port) {

@@ -27,6 +27,7 @@ struct TestOptions {
   std::string name = "under_test";  // the instance name
   std::uint64_t seed = 1;
   std::string output_directory;  // empty: none, as without uampc launch --out
+  Time step = Time{5'000'000};   // what Context::step() says (the tests step the clock by hand)
   // What the rest of the scene writes (default_topic, type_name, qos of each output), for a
   // component that decides its ports from the scene (ComponentSpec::scenePorts).
   std::vector<PortSpec> scene_outputs;
@@ -77,6 +78,7 @@ class TestContext : public Context {
   std::uint64_t seed() const override { return options_.seed; }
   const std::string& outputDirectory() const override { return options_.output_directory; }
   bool lockstep() const override { return true; }
+  Time step() const override { return options_.step; }
   void timer(double period_s, std::function<void()> callback) override;
   bool paramBool(const std::string& name) const override;
   std::int64_t paramInt(const std::string& name) const override;
