@@ -1,5 +1,8 @@
 #include "uampc/runtime/dds_names.hpp"
 
+#include <cstdlib>
+#include <stdexcept>
+
 namespace uampc {
 
 namespace {
@@ -32,6 +35,18 @@ std::string rosTypeName(const std::string& dds_type) {
   for (std::size_t i; (i = scope.find("::")) != std::string::npos;) scope.replace(i, 2, "/");
   const std::size_t name_start = infix + sizeof(kTypeInfix) - 1;
   return scope + "/" + dds_type.substr(name_start, dds_type.size() - name_start - 1);
+}
+
+std::optional<int> rosDomainIdFromEnvironment() {
+  const char* env = std::getenv("ROS_DOMAIN_ID");
+  if (!env || !*env) return std::nullopt;
+  char* end = nullptr;
+  const long v = std::strtol(env, &end, 10);
+  if (*end != '\0' || v < 0 || v > kMaxDomainId) {
+    throw std::invalid_argument("ROS_DOMAIN_ID is '" + std::string(env) + "', not a domain id between 0 and " +
+                                std::to_string(kMaxDomainId));
+  }
+  return static_cast<int>(v);
 }
 
 }  // namespace uampc

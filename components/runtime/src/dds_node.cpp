@@ -1,4 +1,4 @@
-#include "dds_node.hpp"
+#include "uampc/runtime/dds_node.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>

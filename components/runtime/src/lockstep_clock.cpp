@@ -10,7 +10,7 @@
 #include <set>
 #include <thread>
 
-#include "dds_node.hpp"
+#include "uampc/runtime/dds_node.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/run_files/run_directory.hpp"

@@ -9,7 +9,7 @@
 #include <mutex>
 #include <thread>
 
-#include "dds_node.hpp"
+#include "uampc/runtime/dds_node.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "wakeup.hpp"

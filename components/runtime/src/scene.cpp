@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/edit_distance.hpp"
 #include "scene_document.hpp"
 #include "scene_ports.hpp"
@@ -267,22 +267,18 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
     if (auto v = scalar<std::string>(root["name"], "name")) scene.name = *v;
   }
   if (root["domain_id"]) {
-    // Fast DDS maps domains to UDP ports; 232 is the highest that fits the default port mapping.
     if (auto v = scalar<int>(root["domain_id"], "domain_id")) {
-      if (*v < 0 || *v > 232)
-        error(root["domain_id"], "domain_id must be between 0 and 232");
+      if (*v < 0 || *v > kMaxDomainId)
+        error(root["domain_id"], "domain_id must be between 0 and " + std::to_string(kMaxDomainId));
       else
         scene.domain_id = *v;
     }
-  } else if (const char* env = std::getenv("ROS_DOMAIN_ID"); env && *env) {
+  } else {
     // As a ROS 2 user expects: the scene's domain_id (or --set domain_id=N) first, then this.
-    char* end = nullptr;
-    const long v = std::strtol(env, &end, 10);
-    if (*end != '\0' || v < 0 || v > 232) {
-      errors_.push_back("ROS_DOMAIN_ID: error: '" + std::string(env) +
-                        "' is not a domain id between 0 and 232 (the scene names no domain_id, so it is used)");
-    } else {
-      scene.domain_id = static_cast<int>(v);
+    try {
+      scene.domain_id = rosDomainIdFromEnvironment().value_or(scene.domain_id);
+    } catch (const std::invalid_argument& e) {
+      errors_.push_back(std::string("error: ") + e.what() + " (the scene names no domain_id, so it is used)");
     }
   }
   if (root["seed"]) {

@@ -3,6 +3,7 @@
 // created.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace uampc {
@@ -17,5 +18,12 @@ std::string rosTopicName(const std::string& dds_topic);
 std::string ddsTypeName(const std::string& ros_type);
 // The inverse; "" for a DDS type name that does not follow the convention.
 std::string rosTypeName(const std::string& dds_type);
+
+// Fast DDS maps domains to UDP ports; 232 is the highest that fits the default port mapping.
+constexpr int kMaxDomainId = 232;
+// ROS_DOMAIN_ID, as a ROS 2 user expects it to be honoured where nothing else names the domain (a
+// scene's domain_id, a command's --domain); nullopt when unset or empty. Throws
+// std::invalid_argument when it is not a domain id.
+std::optional<int> rosDomainIdFromEnvironment();
 
 }  // namespace uampc

@@ -1,5 +1,6 @@
-// One Fast DDS participant per process, with its topics and registered types, and the translation
-// from our QoS presets and ROS 2 topic names to DDS (docs/design.md section 4).
+// One Fast DDS participant, with its topics and registered types, and the translation from our QoS
+// presets and ROS 2 topic names to DDS (docs/design.md section 4): a scene's process has one (and
+// one more for its serialized ports), `uampc play` and `uampc record` one each.
 #pragma once
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
