@@ -6,7 +6,8 @@
 // Publishes running figures; writes the run directory's files (--out; names and contents in
 // components/run_files): during the run motor.csv, timings.csv, uncertainty.csv and snapshots of the
 // controller's panorama; at the end the trajectories, ate.csv, the CMPLT windows, scanned_voxels.bt
-// (OctoMap, opens in octovis) and metrics.json last.
+// (OctoMap, opens in octovis) and metrics.json last, with what the run was (run_info.json, written
+// by `uampc launch` when the run started) as its "run" object.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,8 @@
 #include <deque>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
@@ -34,6 +37,7 @@
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/run_files/metrics_file.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_info.hpp"
 #include "uampc/run_files/time_series.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
@@ -94,6 +98,7 @@ class EvaluatorComponent : public Component {
       timings_ = std::make_unique<run_files::TimingsWriter>(run_files::inDirectory(out, run_files::kTimingsFile));
       uncertainty_ =
           std::make_unique<run_files::UncertaintyWriter>(run_files::inDirectory(out, run_files::kUncertaintyFile));
+      run_info_ = readRunInfo(out);
     }
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& m) {
       ground_truth_.add({fromMsg(m.header().stamp()).seconds(), adapters::toIsometry(m.pose())});
@@ -142,8 +147,13 @@ class EvaluatorComponent : public Component {
     ctx.subscribe<msg::MotorCommand>("command", [this](const msg::MotorCommand& m) { command_ = m.velocity(); });
     ctx.subscribe<msg::UncertaintyProfile>("profile", [this](const msg::UncertaintyProfile& m) {
       if (!uncertainty_ || m.samples().empty()) return;
-      uncertainty_->add({fromMsg(m.header().stamp()).seconds(), m.theta_start(), m.delta_theta(), m.command(),
-                         std::vector<double>(m.samples().begin(), m.samples().end())});
+      try {
+        uncertainty_->add({fromMsg(m.header().stamp()).seconds(), m.theta_start(), m.delta_theta(), m.command(),
+                           std::vector<double>(m.samples().begin(), m.samples().end())});
+      } catch (const std::invalid_argument& e) {
+        // A controller that changed its sample count: the file's columns cannot hold the row.
+        bad_profile_log_.warn(ctx_.log(), "profiles on ", ctx_.topicOf("profile"), ": ", e.what(), " (said once)");
+      }
     });
     auto onMetrics = [this](const msg::Metrics& m) {
       if (!timings_) return;
@@ -190,6 +200,7 @@ class EvaluatorComponent : public Component {
     if (first_lost_time_ >= 0.0) metrics.lo.first_lost_time = first_lost_time_;
     metrics.lo.lost_frames = lost_frames_;
     metrics.lo.rejected_updates = rejected_updates_;
+    metrics.run = run_info_;
     run_files::writeMetricsFile(inDirectory(out, run_files::kMetricsFile), metrics);
     evaluator::writeTumTrajectory(inDirectory(out, run_files::kEstimateFile), trajectory_.pairedEstimates());
     evaluator::writeTumTrajectory(inDirectory(out, run_files::kGroundTruthFile), trajectory_.pairedGroundTruth());
@@ -206,6 +217,23 @@ class EvaluatorComponent : public Component {
   static void bindCompletenessParameters(ParameterBinding& b, evaluator::CompletenessConfig& c) {
     b.bind("voxel_size", c.voxel_size, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
     b.bind("window", c.window_duration, "CMPLT window, s (the paper: 5)").between(0.1, 3600.0);
+  }
+
+  // What the run was, from the launcher (one source: run_info.json, written from the resolved
+  // scene); none when the process was started otherwise, e.g. `uampc run-process` by hand.
+  std::optional<run_files::RunInfo> readRunInfo(const std::string& out) const {
+    const std::string path = run_files::inDirectory(out, run_files::kRunInfoFile);
+    if (!std::filesystem::exists(path)) {
+      ctx_.log().info("no ", path, " (the run was not started by uampc launch --out): metrics.json will not say ",
+                      "what the run was");
+      return std::nullopt;
+    }
+    try {
+      return run_files::readRunInfoFile(path);
+    } catch (const std::runtime_error& e) {
+      ctx_.log().warn(e.what(), "; metrics.json will not say what the run was");
+      return std::nullopt;
+    }
   }
 
   static evaluator::CompletenessConfig completenessFrom(const Context& ctx) {
@@ -331,6 +359,8 @@ class EvaluatorComponent : public Component {
   double panorama_max_range_ = 0.0;
   double next_panorama_ = 0.0;
   RateLimitedLog bad_panorama_log_ = RateLimitedLog::once();
+  RateLimitedLog bad_profile_log_ = RateLimitedLog::once();
+  std::optional<run_files::RunInfo> run_info_;
   evaluator::MotorActivity motor_activity_{0.1};
 };
 

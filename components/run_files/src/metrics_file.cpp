@@ -98,6 +98,7 @@ void eachField(S& s, Visit&& visit) {
   visit("cmplt_ground_truth", s.cmplt_ground_truth);
   visit("motor", s.motor);
   visit("lo", s.lo);
+  visit("run", s.run);  // last: the figures above stay where they always were
 }
 
 std::string rpeKey(double segment_length_m) { return kRpeKeyPrefix + formatDouble(segment_length_m) + "m"; }
@@ -126,6 +127,9 @@ struct Writer {
   void operator()(const char*, const std::vector<RpeSummary>& segments) {
     for (const RpeSummary& rpe : segments) (*this)(rpeKey(rpe.segment_length_m).c_str(), rpe);
   }
+  void operator()(const char* key, const std::optional<RunInfo>& run) {
+    if (run) json[key] = runInfoToJson(*run);
+  }
 };
 
 // ---------------------------------------------------------------- reading
@@ -152,6 +156,15 @@ struct Reader {
   }
   void operator()(const char* key, std::optional<double>& value) {
     if (const Json* number = member(key); number && number->is_number()) value = number->get<double>();
+  }
+  void operator()(const char* key, std::optional<RunInfo>& run) {
+    const Json* object = member(key);
+    if (!object) return;
+    try {
+      run = runInfoFromJson(*object, key);
+    } catch (const std::runtime_error&) {
+      run.reset();  // not whole: as if absent (the figures are what the readers need)
+    }
   }
   void operator()(const char*, std::vector<RpeSummary>& segments) {
     for (const auto& [key, object] : json.items()) {

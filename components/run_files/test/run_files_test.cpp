@@ -2,6 +2,7 @@
 // text the evaluator has always written (metrics.json is compared byte for byte across versions).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "uampc/run_files/json_text.hpp"
 #include "uampc/run_files/metrics_file.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_info.hpp"
 #include "uampc/run_files/run_progress.hpp"
 #include "uampc/run_files/time_series.hpp"
 
@@ -211,8 +213,9 @@ TEST(TimeSeries, UncertaintyAndTimingsInTheirOwnPrecision) {
     UncertaintyWriter writer(u);
     writer.add({0.1, 0.25, 0.5, 3.6, {1.0, 0.123456789123}});
   }
-  EXPECT_EQ(contentOf(u),
-            "time,theta_start,delta_theta,command,samples...\n0.100000000,0.25,0.5,3.6000000000000001,1,0.123456789\n");
+  EXPECT_EQ(
+      contentOf(u),
+      "time,theta_start,delta_theta,command,u_000,u_001\n0.100000000,0.25,0.5,3.6000000000000001,1,0.123456789\n");
   const auto rows = readUncertainty(u);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].command, 3.6);
@@ -229,6 +232,160 @@ TEST(TimeSeries, UncertaintyAndTimingsInTheirOwnPrecision) {
   EXPECT_EQ(timings[0].source, "lo");
   EXPECT_EQ(timings[0].name, "registration_ms");
   EXPECT_EQ(timings[0].value, 1.25);
+}
+
+// The number of comma-separated fields of every line of a file.
+std::vector<std::size_t> fieldsPerLine(const std::string& path) {
+  std::vector<std::size_t> counts;
+  std::stringstream lines(contentOf(path));
+  for (std::string line; std::getline(lines, line);) counts.push_back(std::count(line.begin(), line.end(), ',') + 1u);
+  return counts;
+}
+
+TEST(TimeSeries, UncertaintyIsRectangularWithAColumnPerSample) {
+  const std::string dir = freshDirectory("uncertainty");
+  const std::string u = inDirectory(dir, kUncertaintyFile);
+  UncertaintyRow row{0.1, 0.0, 2 * M_PI / 72, 3.6, std::vector<double>(72, 0.5)};
+  {
+    UncertaintyWriter writer(u);
+    writer.add(row);
+    row.time = 0.2;
+    writer.add(row);
+    UncertaintyRow shorter = row;
+    shorter.samples.pop_back();
+    try {
+      writer.add(shorter);
+      ADD_FAILURE() << "a row of 71 samples was accepted under 72 columns";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(u + ": a row of 71 U samples"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(fieldsPerLine(u), (std::vector<std::size_t>{76, 76, 76}));  // the refused row left out
+  const CsvTable table = readCsv(u);
+  EXPECT_EQ(table.columns[4], "u_000");
+  EXPECT_EQ(table.columns[75], "u_071");
+  EXPECT_EQ(uncertaintySampleColumn(1234), "u_1234");
+  const auto rows = readUncertainty(u);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].time, 0.2);
+  EXPECT_EQ(rows[1].samples, std::vector<double>(72, 0.5));
+
+  // A controller that never sampled: the header alone, without sample columns.
+  const std::string none = inDirectory(dir, "none.csv");
+  { UncertaintyWriter writer(none); }
+  EXPECT_EQ(contentOf(none), "time,theta_start,delta_theta,command\n");
+  EXPECT_TRUE(readUncertainty(none).empty());
+}
+
+TEST(TimeSeries, UncertaintyReaderChecksTheShapeAndReadsOlderRuns) {
+  const std::string dir = freshDirectory("uncertainty_read");
+  const std::string u = inDirectory(dir, kUncertaintyFile);
+  auto expectError = [&](const std::string& text, const std::string& wanted) {
+    writeText(u, text);
+    try {
+      readUncertainty(u);
+      ADD_FAILURE() << "no error for:\n" << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(wanted), std::string::npos) << e.what();
+    }
+  };
+  expectError("time,theta_start,delta_theta,command,u_000,u_001\n0.1,0,3.14,3.6,1,2\n0.2,0,3.14,3.6,1\n",
+              u + ":3: 5 fields, but the header names 6");
+  expectError("time,theta_start,delta_theta,command,u_000,u_002\n", u + ":1: not the header of uncertainty.csv");
+  expectError("time,theta_start,delta_theta,command,u_000,u_002\n", "column 6 is 'u_002', expected 'u_001'");
+  expectError("theta_start,time,delta_theta,command\n", "column 1 is 'theta_start'");
+  // Before it was rectangular: one name for all the samples, rows of any length.
+  writeText(u, "time,theta_start,delta_theta,command,samples...\n0.1,0,3.14,3.6,1,2\n0.2,0,2.09,3.6,1,2,3\n");
+  const auto legacy = readUncertainty(u);
+  ASSERT_EQ(legacy.size(), 2u);
+  EXPECT_EQ(legacy[1].samples, (std::vector<double>{1, 2, 3}));
+  // Empty: the evaluator stopped before the controller's first profile.
+  writeText(u, "");
+  EXPECT_TRUE(readUncertainty(u).empty());
+}
+
+RunInfo sampleRunInfo() {
+  RunInfo info;
+  info.scene_copy = kSceneCopyFile;
+  info.scene_source = "/scenes/campus \"ua\".yaml";
+  info.overrides = {"clock.duration=2", "seed=7"};
+  info.started_utc = "2025-01-31T12:00:00Z";
+  info.seed = 18446744073709551615u;  // every uint64 seed survives
+  info.domain_id = 63;
+  info.uampc_version = "v0.3-12-gabcdef0-dirty";
+  info.fastdds_version = "2.9.1";
+  info.components = Json::parse(R"({"motor": {"type": "motor_bridge", "process": "main",
+      "params": {"encoder_rate": 200, "inertia": 0.25, "enabled": true, "topics": ["/a", "/b"]}}})");
+  return info;
+}
+
+TEST(RunInfoFile, ReadsBackWhatItWrote) {
+  const std::string path = inDirectory(freshDirectory("run_info"), kRunInfoFile);
+  writeRunInfoFile(path, sampleRunInfo());
+  const RunInfo read = readRunInfoFile(path);
+  EXPECT_EQ(read.scene_copy, "scene.yaml");
+  EXPECT_EQ(read.scene_source, "/scenes/campus \"ua\".yaml");
+  EXPECT_EQ(read.overrides, (std::vector<std::string>{"clock.duration=2", "seed=7"}));
+  EXPECT_EQ(read.started_utc, "2025-01-31T12:00:00Z");
+  EXPECT_EQ(read.seed, 18446744073709551615u);
+  EXPECT_EQ(read.domain_id, 63);
+  EXPECT_EQ(read.uampc_version, "v0.3-12-gabcdef0-dirty");
+  EXPECT_EQ(read.fastdds_version, "2.9.1");
+  EXPECT_EQ(read.components, sampleRunInfo().components);
+  EXPECT_EQ(read.components["motor"]["params"]["inertia"].get<double>(), 0.25);
+}
+
+TEST(RunInfoFile, AMissingOrMistypedKeyIsNamed) {
+  const std::string path = inDirectory(freshDirectory("run_info_bad"), kRunInfoFile);
+  auto expectError = [&](const std::string& text, const std::string& wanted) {
+    writeText(path, text);
+    try {
+      readRunInfoFile(path);
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(wanted), std::string::npos) << e.what();
+    }
+  };
+  Json json = runInfoToJson(sampleRunInfo());
+  json.erase("uampc_version");
+  expectError(json.dump(), path + ": no key 'uampc_version'");
+  json = runInfoToJson(sampleRunInfo());
+  json["seed"] = -1;
+  expectError(json.dump(), path + ": 'seed' is -1, not of the expected type");
+  json["seed"] = 1.5;
+  expectError(json.dump(), "'seed' is 1.5");
+  json = runInfoToJson(sampleRunInfo());
+  json["components"] = Json::array();
+  expectError(json.dump(), "'components' is []");
+  expectError("[1, 2]", path + ": not a JSON object");
+  expectError("{\"scene\": ", path + ": not JSON");
+}
+
+TEST(MetricsFile, TheRunObjectComesLastAndReadsBackOnlyWhole) {
+  const std::string path = inDirectory(freshDirectory("metrics_run"), kMetricsFile);
+  MetricsDocument m = sampleMetrics();
+  m.run = sampleRunInfo();
+  writeMetricsFile(path, m);
+  const std::string text = contentOf(path);
+  // The figures print as before, then the run.
+  EXPECT_NE(text.find("\"rejected_updates\": -1\n  },\n  \"run\": {\n    \"scene\": \"scene.yaml\","),
+            std::string::npos)
+      << text;
+  const auto read = readMetricsFile(path);
+  ASSERT_TRUE(read && read->run);
+  EXPECT_EQ(read->run->seed, 18446744073709551615u);
+  EXPECT_EQ(read->run->components, m.run->components);
+  // A run object lacking a key: absent, the figures still read.
+  Json json = readJsonFile(path);
+  json["run"].erase("seed");
+  writeText(path, json.dump());
+  const auto torn = readMetricsFile(path);
+  ASSERT_TRUE(torn);
+  EXPECT_FALSE(torn->run);
+  EXPECT_EQ(torn->sim_time, 20.0);
+  // No run object: none read.
+  writeMetricsFile(path, sampleMetrics());
+  EXPECT_FALSE(readMetricsFile(path)->run);
 }
 
 TEST(RunDirectory, MarkersAndSnapshotNames) {

@@ -28,8 +28,9 @@ class CsvWriter {
   std::ofstream out_;
 };
 
-// A CSV file read back: the header's names and numeric rows. Rows may differ in length (as
-// uncertainty.csv's do: its last header name stands for all the samples).
+// A CSV file read back: the header's names and numeric rows. Rows may differ in length (as in
+// uncertainty.csv files written before it was rectangular: their last header name stood for all
+// the samples); readers that need a rectangular table check it.
 struct CsvTable {
   std::string path;
   std::vector<std::string> columns;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "uampc/run_files/run_info.hpp"
+
 namespace uampc::run_files {
 
 constexpr double kNotANumber = std::numeric_limits<double>::quiet_NaN();
@@ -80,6 +82,10 @@ struct MetricsDocument {
   CompletenessSummary cmplt_ground_truth;  // from the raw scans placed with ground truth
   MotorSummary motor;
   LoSummary lo;
+  // What the run was (run_info.hpp): absent when the run was not started by `uampc launch --out`
+  // (e.g. `uampc run-process` by hand) or was made before metrics.json recorded it. Read back
+  // only when whole: a torn or older "run" object reads as absent.
+  std::optional<RunInfo> run;
 };
 
 // Throws std::runtime_error naming path on failure.

@@ -1,5 +1,6 @@
 // The files of a run directory (`uampc launch --out DIR`), by who writes them. Their contents are
-// in time_series.hpp (CSV), metrics_file.hpp (metrics.json) and run_progress.hpp (progress.json).
+// in time_series.hpp (CSV), metrics_file.hpp (metrics.json), run_info.hpp (run_info.json) and
+// run_progress.hpp (progress.json).
 #pragma once
 
 #include <optional>
@@ -24,6 +25,12 @@ inline constexpr char kPanoramaDirectory[] = "panorama";           // PNG snapsh
 std::string panoramaSnapshotName(double sim_time_s);
 // The time part of such a name ("00004.5"), or nullopt for another file.
 std::optional<std::string> panoramaSnapshotTime(const std::string& file_name);
+
+// Written by `uampc launch` (components/runtime launcher.cpp) when the run starts: the resolved
+// scene, a scene file that `uampc launch` runs again to reproduce the run, and what the run was
+// (run_info.hpp), which the evaluator copies into metrics.json as its "run" object.
+inline constexpr char kSceneCopyFile[] = "scene.yaml";
+inline constexpr char kRunInfoFile[] = "run_info.json";
 
 // Written by the lockstep clock when the environment names a file (the experiment runner does).
 inline constexpr char kProgressFile[] = "progress.json";

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,8 +60,10 @@ struct MotorRow {
   }
 };
 
-// uncertainty.csv: UA-MPC's U samples over one turn at each control step. Rows are as long as
-// the controller samples; the header's last name stands for all the samples.
+// uncertainty.csv: UA-MPC's U samples over one turn at each control step, one column per sample:
+// time,theta_start,delta_theta,command,u_000,u_001,... (sample k at theta_start + k delta_theta).
+// Rectangular: every row has as many fields as the header has names. The controller's sample count
+// is fixed, so the first row sets the columns.
 struct UncertaintyRow {
   double time = 0.0;         // s
   double theta_start = 0.0;  // rad, the angle of samples[0]
@@ -78,13 +81,20 @@ struct TimingRow {
 
 // The two files written line by line through a run in their own precision (times to the
 // nanosecond, U samples to 9 digits), as fprintf prints them.
+// The header is written with the first row (whose sample count names the columns), or without
+// sample columns when the writer ends having had none; until then the file is empty.
 class UncertaintyWriter {
  public:
   explicit UncertaintyWriter(const std::string& path);  // throws naming path
+  ~UncertaintyWriter();
+  // Throws std::invalid_argument naming the file when the row's sample count differs from the
+  // first row's (the columns are fixed by then); nothing is written then.
   void add(const UncertaintyRow& row);
 
  private:
+  std::string path_;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+  std::optional<std::size_t> samples_;  // set by the first row
 };
 
 class TimingsWriter {
@@ -96,7 +106,12 @@ class TimingsWriter {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
 };
 
-// Throw std::runtime_error naming path:line on a malformed row.
+// The name of sample k's column: "u_" and k, zero-padded to 3 digits ("u_007").
+std::string uncertaintySampleColumn(std::size_t k);
+
+// Throw std::runtime_error naming path:line on a malformed row. readUncertainty also reads the
+// files of runs made before uncertainty.csv was rectangular (header "...,command,samples...", rows
+// of any length), and an empty file (the evaluator stopped before the first row) as no rows.
 std::vector<UncertaintyRow> readUncertainty(const std::string& path);
 std::vector<TimingRow> readTimings(const std::string& path);
 

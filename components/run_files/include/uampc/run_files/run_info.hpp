@@ -1,0 +1,38 @@
+// run_info.json: what a run was, for whoever reads its results later. `uampc launch --out DIR`
+// writes it when the run starts, from the resolved scene it also writes as DIR/scene.yaml; the
+// evaluator copies it into metrics.json as its "run" object. Its keys are named once, in
+// run_info.cpp, for writing and reading alike.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "uampc/run_files/json_text.hpp"
+
+namespace uampc::run_files {
+
+struct RunInfo {
+  std::string scene_copy;              // the resolved scene's file in the run directory (kSceneCopyFile)
+  std::string scene_source;            // the scene file that was launched, absolute
+  std::vector<std::string> overrides;  // the --set NAME=VALUE given, in order
+  std::string started_utc;             // when the launcher started, "2025-01-31T12:00:00Z"
+  std::uint64_t seed = 0;
+  int domain_id = 0;
+  std::string uampc_version;    // git describe when uampc was built, as `uampc --version` prints it
+  std::string fastdds_version;  // the Fast DDS uampc was built with
+  // Every parameter of every component, defaults and rig values included, in the scene's order:
+  // instance name -> {"type": ..., "process": ..., "params": {name: value}}.
+  Json components = Json::object();
+};
+
+Json runInfoToJson(const RunInfo& info);
+// Throws std::runtime_error naming `where` and the key when a key is missing or of another type.
+RunInfo runInfoFromJson(const Json& json, const std::string& where);
+
+// Throws std::runtime_error naming path on failure.
+void writeRunInfoFile(const std::string& path, const RunInfo& info);
+// Throws std::runtime_error naming path when the file cannot be read, is not JSON or lacks a key.
+RunInfo readRunInfoFile(const std::string& path);
+
+}  // namespace uampc::run_files
