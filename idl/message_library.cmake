@@ -2,8 +2,10 @@
 # Builds the shared library `name` from the IDL packages under IDL_ROOT (IDL_ROOT/<package>/msg/*.idl):
 # fastddsgen -typeros2 at build time (type names follow ROS 2: sensor_msgs::msg::dds_::PointCloud2_),
 # nothing generated is committed. Each package also gets the header uampc/msgs/<package>.hpp that
-# declares and registers its types (UAMPC_MESSAGE_TYPE, one per IDL file, named after the file);
-# ALL_HEADER adds uampc/msgs/all.hpp, which includes every package of the library.
+# declares and registers its types (UAMPC_MESSAGE_TYPE, one per IDL file, named after the file), and
+# the library holds the text of each IDL file (embed_idl.cmake), which the registration hands to the
+# registry for the types' message definitions; ALL_HEADER adds uampc/msgs/all.hpp, which includes
+# every package of the library.
 # Users of the headers link uampc_runtime (the registry).
 find_program(FASTDDSGEN fastddsgen REQUIRED)
 
@@ -44,6 +46,15 @@ function(uampc_add_message_library)
       DEPENDS ${all_idl} ${idl_cmake_dir}/generate_package.cmake
       COMMENT "fastddsgen: ${package}"
       VERBATIM)
+    set(idl_texts ${generated_dir}/${package}/idl_texts.cpp)
+    add_custom_command(
+      OUTPUT ${idl_texts}
+      COMMAND ${CMAKE_COMMAND} -DIDL_ROOT=${L_IDL_ROOT} -DPACKAGE=${package} "-DNAMES=${names}" -DOUTPUT=${idl_texts}
+              -P ${idl_cmake_dir}/embed_idl.cmake
+      DEPENDS ${idl_files} ${idl_cmake_dir}/embed_idl.cmake
+      COMMENT "IDL texts: ${package}"
+      VERBATIM)
+    list(APPEND generated_sources ${idl_texts})
     set(PACKAGE ${package})
     file(RELATIVE_PATH PACKAGE_DIR ${CMAKE_SOURCE_DIR} ${L_IDL_ROOT}/${package}/msg)
     configure_file(${idl_cmake_dir}/message_package.hpp.in ${generated_dir}/uampc/msgs/${package}.hpp @ONLY)

@@ -14,7 +14,20 @@ struct Registry {
   std::mutex mutex;
   // Every registration still loaded, oldest first; the oldest answers.
   std::map<std::string, std::vector<const MessageTypeInfo*>> by_ros_name;
+  // The same for IDL file texts, by path.
+  std::map<std::string, std::vector<const char*>> idl_by_path;
 };
+
+// Withdraws one registration (the others of the same entry stay) and the entry once none is left.
+template <typename Map, typename Value>
+void removeOne(Map& map, const std::string& key, Value value) {
+  auto it = map.find(key);
+  if (it == map.end()) return;
+  auto& values = it->second;
+  auto found = std::find(values.begin(), values.end(), value);
+  if (found != values.end()) values.erase(found);
+  if (values.empty()) map.erase(it);
+}
 
 // Never destroyed: libraries unregister from their static destructors, which may run after the
 // runtime's own at exit.
@@ -36,11 +49,19 @@ void registerMessageType(const MessageTypeInfo* info) {
 void unregisterMessageType(const MessageTypeInfo* info) {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
-  auto it = r.by_ros_name.find(info->ros_name);
-  if (it == r.by_ros_name.end()) return;
-  auto& infos = it->second;
-  infos.erase(std::remove(infos.begin(), infos.end(), info), infos.end());
-  if (infos.empty()) r.by_ros_name.erase(it);
+  removeOne(r.by_ros_name, info->ros_name, info);
+}
+
+void registerIdlFile(const char* path, const char* text) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  r.idl_by_path[path].push_back(text);
+}
+
+void unregisterIdlFile(const char* path, const char* text) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  removeOne(r.idl_by_path, path, text);
 }
 
 }  // namespace detail
@@ -50,6 +71,13 @@ const MessageTypeInfo* findMessageType(const std::string& ros_name) {
   std::lock_guard<std::mutex> lock(r.mutex);
   auto it = r.by_ros_name.find(ros_name);
   return it == r.by_ros_name.end() ? nullptr : it->second.front();
+}
+
+const char* findIdlFile(const std::string& path) {
+  Registry& r = registry();
+  std::lock_guard<std::mutex> lock(r.mutex);
+  auto it = r.idl_by_path.find(path);
+  return it == r.idl_by_path.end() ? nullptr : it->second.front();
 }
 
 std::vector<std::string> messageTypeNames() {
