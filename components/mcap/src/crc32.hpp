@@ -1,0 +1,25 @@
+// The CRC-32 the MCAP spec names for chunk, summary and data section checksums: ISO-HDLC / zlib
+// (reflected polynomial 0xEDB88320, initial value and final XOR 0xFFFFFFFF).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace uampc::mcap::detail {
+
+class Crc32 {
+ public:
+  void update(const void* data, std::size_t size);
+  std::uint32_t value() const { return ~state_; }
+
+ private:
+  std::uint32_t state_ = 0xFFFFFFFFu;
+};
+
+inline std::uint32_t crc32(const void* data, std::size_t size) {
+  Crc32 crc;
+  crc.update(data, size);
+  return crc.value();
+}
+
+}  // namespace uampc::mcap::detail
