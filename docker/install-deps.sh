@@ -24,15 +24,44 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} packages already installed"
-  exit 0
-fi
-
 SUDO=""
 [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+else
+  echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# ---- MCAP recordings (issue 13) ----
+# libzstd and liblz4 compress the chunks of uampc's MCAP files; node and npm run the independent
+# reader of its test (tests/mcap_js: Foxglove's @mcap/core and @foxglove/rosmsg2-serialization,
+# pinned by tests/mcap_js/package-lock.json). node and npm count as present whoever installed them:
+# a NodeSource nodejs bundles npm and conflicts with Debian's npm package.
+mcap_missing=()
+for p in libzstd-dev liblz4-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || mcap_missing+=("$p")
+done
+command -v node >/dev/null 2>&1 || mcap_missing+=(nodejs)
+command -v npm >/dev/null 2>&1 || mcap_missing+=(npm)
+if [ ${#mcap_missing[@]} -gt 0 ]; then
+  echo "install-deps: installing ${mcap_missing[*]}"
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${mcap_missing[@]}"
+fi
+mcap_js="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/mcap_js"
+if [ -f "$mcap_js/package-lock.json" ]; then
+  # npm ci starts from an empty node_modules; skip it when node_modules holds this very lockfile.
+  lock_sum="$(sha256sum "$mcap_js/package-lock.json" | cut -d' ' -f1)"
+  if [ "$(cat "$mcap_js/node_modules/.uampc-lock.sha256" 2>/dev/null)" = "$lock_sum" ]; then
+    echo "install-deps: tests/mcap_js already installed from its package-lock.json"
+  else
+    npm ci --prefix "$mcap_js" --no-audit --no-fund
+    echo "$lock_sum" >"$mcap_js/node_modules/.uampc-lock.sha256"
+  fi
+else
+  echo "install-deps: no tests/mcap_js beside this script; in the checkout run: npm ci --prefix tests/mcap_js"
+fi
 echo "install-deps: done"
