@@ -13,6 +13,7 @@
 #include "components_command.hpp"
 #include "experiment_command.hpp"
 #include "graph_command.hpp"
+#include "topic_command.hpp"
 #include "uampc/runtime/launcher.hpp"
 #include "version.hpp"
 
@@ -77,6 +78,7 @@ struct CommandLine {
   std::string graph_format = "mermaid";      // graph
   bool json = false;                         // components
   uampc::app::ExperimentOptions experiment;  // experiment
+  uampc::app::TopicOptions topic;            // topic
 };
 
 // A command: its subcommand in the app and what runs when it was given.
@@ -101,6 +103,7 @@ class UampcCli {
     addComponents();
     addRunProcess();
     addClock();
+    addTopic();
   }
 
   int run(int argc, char** argv) {
@@ -266,6 +269,18 @@ class UampcCli {
     addScene(sub);
     addOverrides(sub);
     commands_.push_back({sub, withOverrides([this] { return uampc::runClockCommand(options_.scene); })});
+  }
+
+  void addTopic() {
+    CLI::App* sub =
+        addCommand("topic", "uampc topic list|echo|hz|bw [TOPIC] [--domain N] ...",
+                   "Look at the topics of a running system, from DDS discovery (uampc's and any other vendor's):\n"
+                   "list them with their types, writers and readers; echo a topic's samples as YAML; measure its\n"
+                   "rate (hz) or bandwidth (bw). uampc topic list|echo|hz|bw --help describes each.");
+    uampc::app::addTopicSubcommands(*sub, options_.topic, [this](const std::string& name, const std::string& synopsis) {
+      formatter_->addSynopsis(name, synopsis);
+    });
+    commands_.push_back({sub, [this] { return uampc::app::topicCommand(options_.topic); }});
   }
 
   // The command on the command line, if CLI11 got as far as reading it.

@@ -6,7 +6,7 @@ namespace uampc {
 namespace {
 
 constexpr std::size_t kEncapsulationSize = 4;
-// Fast DDS writes no padding after the last field; other vendors pad the sample to a multiple of 4.
+// A payload travels padded to a multiple of 4 bytes (Fast DDS pads a 21-byte sample to 24).
 constexpr std::size_t kMostTrailingPadding = 3;
 
 std::string hex(unsigned value) {

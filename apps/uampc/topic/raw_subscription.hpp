@@ -1,0 +1,49 @@
+// A reader of one topic that keeps its samples as CDR bytes (SerializedTypeSupport), registered
+// under the DDS type name its writers use, so it reads any type, known to uampc or not.
+#pragma once
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+
+#include "topic_discovery.hpp"
+#include "uampc/runtime/serialized_message.hpp"
+
+namespace uampc::app {
+
+class RawSubscription {
+ public:
+  // Called on Fast DDS's thread for every sample, with the time it arrived.
+  using OnSample = std::function<void(SerializedMessage&& sample, std::chrono::steady_clock::time_point arrived)>;
+
+  // Reads `topic` as its first writer's type. QoS as discovered: reliable when every writer is
+  // (a reliable reader would not match a best-effort writer), transient-local when every writer is,
+  // so that a latched topic's kept samples arrive too. max_size_hint: the type's largest size when
+  // known (SerializedTypeSupport). Throws std::runtime_error when DDS refuses the reader.
+  RawSubscription(eprosima::fastdds::dds::DomainParticipant* participant, const DiscoveredTopic& topic,
+                  std::uint32_t max_size_hint, OnSample on_sample);
+  ~RawSubscription();
+  RawSubscription(const RawSubscription&) = delete;
+  RawSubscription& operator=(const RawSubscription&) = delete;
+
+ private:
+  class Listener : public eprosima::fastdds::dds::DataReaderListener {
+   public:
+    explicit Listener(OnSample on_sample) : on_sample_(std::move(on_sample)) {}
+    void on_data_available(eprosima::fastdds::dds::DataReader* reader) override;
+
+   private:
+    OnSample on_sample_;
+  };
+
+  eprosima::fastdds::dds::DomainParticipant* participant_;
+  Listener listener_;
+  eprosima::fastdds::dds::Topic* topic_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+};
+
+}  // namespace uampc::app

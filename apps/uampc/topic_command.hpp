@@ -1,0 +1,41 @@
+// `uampc topic list | echo TOPIC | hz TOPIC | bw TOPIC`: looking at a running system's topics from
+// DDS discovery, like `ros2 topic` (README "Looking at topics"). Works beside any DDS system on the
+// domain, uampc's or another vendor's; echo decodes the types registered in this uampc
+// (messageDefinition, cdr_decoder.hpp) and prints only the size of others.
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace uampc::app {
+
+enum class TopicAction { kList, kEcho, kHz, kBw };
+
+struct TopicOptions {
+  TopicAction action = TopicAction::kList;
+  std::string topic;     // echo, hz, bw: a ROS name ("/motor/state") or, without a leading '/', a DDS name
+  int domain_id = -1;    // -1: ROS_DOMAIN_ID if set, else 0
+  double wait_s = 2.0;   // list: how long discovery runs; echo, hz, bw: how long to wait for a writer
+  bool verbose = false;  // list: every writer and reader with its participant
+  int count = 0;         // echo: stop after this many samples; 0: until Ctrl-C
+  bool full = false;     // echo: print byte arrays whole
+  int window = 0;        // hz, bw: samples the figures are over; 0: the action's default
+};
+
+constexpr int kDefaultHzWindow = 10000;  // as ros2 topic hz
+constexpr int kDefaultBwWindow = 100;    // as ros2 topic bw
+
+// Exit codes: 0 done (also on Ctrl-C, after the last report), 1 no writer of the topic or a DDS
+// failure, 2 a bad ROS_DOMAIN_ID.
+int topicCommand(const TopicOptions& options);
+
+// Adds list, echo, hz and bw under `topic` (the `uampc topic` subcommand of main.cpp) with their
+// options, parsed into `options`; add_synopsis(name, synopsis) is told each one's synopsis line.
+void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
+                         const std::function<void(const std::string&, const std::string&)>& add_synopsis);
+
+}  // namespace uampc::app
