@@ -5,13 +5,45 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace uampc::mcap::detail {
 
 using Bytes = std::vector<std::uint8_t>;
+
+// An allocator whose resize() leaves new bytes uninitialised.
+template <typename T>
+struct NoInitAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = NoInitAllocator<U>;
+  };
+  NoInitAllocator() = default;
+  template <typename U>
+  NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A view of bytes someone else owns.
+struct ByteView {
+  const std::uint8_t* data = nullptr;
+  std::size_t size = 0;
+};
+
+// Bytes read from the file or decompressed: they are written right after the buffer is sized,
+// so zeroing it first (std::vector's resize) would cost as much again.
+using Buffer = std::vector<std::uint8_t, NoInitAllocator<std::uint8_t>>;
 
 // A record that does not decode. The reader adds the file name and the record's byte offset.
 class FormatError : public std::runtime_error {

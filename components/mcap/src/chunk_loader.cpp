@@ -1,6 +1,5 @@
 #include "chunk_loader.hpp"
 
-#include "compression.hpp"
 #include "crc32.hpp"
 
 namespace uampc::mcap::detail {
@@ -20,6 +19,12 @@ void checkDeclaredSizes(const ChunkRecord& chunk) {
     throw FormatError("chunk declares " + std::to_string(chunk.uncompressed_size) + " uncompressed bytes from " +
                       std::to_string(chunk.records_size) + " compressed, over " + std::to_string(kMaxCompressionRatio) +
                       " times as many: refused as damaged");
+  }
+}
+
+void checkRecordLength(std::uint64_t length) {
+  if (length > kMaxRecordLength) {
+    throw FormatError("a record of " + std::to_string(length) + " bytes, over the 1 GiB uampc reads at once");
   }
 }
 
@@ -44,11 +49,24 @@ void checkAgainstLocation(const ChunkRecord& chunk, const ChunkLocation& locatio
 
 }  // namespace
 
-Bytes decodeChunkRecords(const ChunkRecord& chunk) {
+ChunkRecords decodeChunkRecords(const ChunkRecord& chunk, const std::shared_ptr<const Buffer>& record,
+                                ChunkDecoder& decoder) {
   checkDeclaredSizes(chunk);
-  Bytes records = decompress(chunk.compression, chunk.records, chunk.records_size, chunk.uncompressed_size);
+  ChunkRecords records;
+  if (chunk.compression.empty()) {
+    if (chunk.records_size != chunk.uncompressed_size) {
+      throw FormatError("uncompressed chunk holds " + std::to_string(chunk.records_size) + " bytes but declares " +
+                        std::to_string(chunk.uncompressed_size));
+    }
+    records = {record, chunk.records, static_cast<std::size_t>(chunk.records_size)};
+  } else {
+    const std::shared_ptr<Buffer> decompressed = decoder.decompressed_buffers.get();
+    decoder.decompressor.decompress(chunk.compression, chunk.records, chunk.records_size, chunk.uncompressed_size,
+                                    *decompressed);
+    records = {decompressed, decompressed->data(), decompressed->size()};
+  }
   if (chunk.uncompressed_crc != 0) {
-    const std::uint32_t computed = crc32(records.data(), records.size());
+    const std::uint32_t computed = crc32(records.data, records.size);
     if (computed != chunk.uncompressed_crc) {
       throw FormatError("chunk CRC mismatch: its records checksum to " + std::to_string(computed) +
                         ", the chunk declares " + std::to_string(chunk.uncompressed_crc));
@@ -57,25 +75,25 @@ Bytes decodeChunkRecords(const ChunkRecord& chunk) {
   return records;
 }
 
-Bytes readRecord(const InputFile& file, std::uint64_t offset, std::uint64_t length) {
-  if (length > kMaxRecordLength) {
-    throw FormatError("a record of " + std::to_string(length) + " bytes, over the 1 GiB uampc reads at once");
-  }
+Buffer readRecord(const InputFile& file, std::uint64_t offset, std::uint64_t length) {
+  checkRecordLength(length);
   return file.read(offset, length);
 }
 
-Bytes loadChunk(const InputFile& file, const ChunkLocation& location) {
+ChunkRecords loadChunk(const InputFile& file, const ChunkLocation& location, ChunkDecoder& decoder) {
   try {
-    const Bytes record = readRecord(file, location.offset, location.length);
-    if (record.size() < kRecordPrefixSize) throw FormatError("chunk record shorter than its opcode and length");
-    if (record[0] != static_cast<std::uint8_t>(Opcode::kChunk)) {
-      throw FormatError("expected a Chunk record, found opcode " + std::to_string(record[0]));
+    checkRecordLength(location.length);
+    const std::shared_ptr<Buffer> record = decoder.read_buffers.get();
+    file.read(location.offset, location.length, *record);
+    if (record->size() < kRecordPrefixSize) throw FormatError("chunk record shorter than its opcode and length");
+    if ((*record)[0] != static_cast<std::uint8_t>(Opcode::kChunk)) {
+      throw FormatError("expected a Chunk record, found opcode " + std::to_string((*record)[0]));
     }
-    const auto declared = getLittleEndian<std::uint64_t>(record.data() + 1);
+    const auto declared = getLittleEndian<std::uint64_t>(record->data() + 1);
     expectEqual("record length", declared, location.length - kRecordPrefixSize);
-    const ChunkRecord chunk = decodeChunk(record.data() + kRecordPrefixSize, record.size() - kRecordPrefixSize);
+    const ChunkRecord chunk = decodeChunk(record->data() + kRecordPrefixSize, record->size() - kRecordPrefixSize);
     checkAgainstLocation(chunk, location);
-    return decodeChunkRecords(chunk);
+    return decodeChunkRecords(chunk, record, decoder);
   } catch (const FormatError& e) {
     throw McapError(recordError(file.path(), location.offset, e.what()));
   }

@@ -22,16 +22,16 @@ struct RecordPrefix {
 };
 
 RecordPrefix readPrefix(const InputFile& file, std::uint64_t offset) {
-  const Bytes prefix = file.read(offset, kRecordPrefixSize);
+  const Buffer prefix = file.read(offset, kRecordPrefixSize);
   return {prefix[0], getLittleEndian<std::uint64_t>(prefix.data() + 1)};
 }
 
-bool isMagic(const Bytes& bytes) { return std::equal(kMagic, kMagic + sizeof(kMagic), bytes.begin(), bytes.end()); }
+bool isMagic(const std::uint8_t* bytes) { return std::equal(kMagic, kMagic + sizeof(kMagic), bytes); }
 
 // Magic, then the Header record; returns the offset of the data section.
 std::uint64_t readMagicAndHeader(const InputFile& file, HeaderRecord& header) {
   if (file.size() == 0) throw McapError(file.path() + ": empty file, not an MCAP file");
-  if (file.size() < sizeof(kMagic) || !isMagic(file.read(0, sizeof(kMagic)))) {
+  if (file.size() < sizeof(kMagic) || !isMagic(file.read(0, sizeof(kMagic)).data())) {
     throw McapError(file.path() + ": not an MCAP file (it does not start with the MCAP magic bytes)");
   }
   const std::uint64_t at = sizeof(kMagic);
@@ -48,7 +48,7 @@ std::uint64_t readMagicAndHeader(const InputFile& file, HeaderRecord& header) {
         "the Header record declares " + std::to_string(prefix.length) + " bytes, more than the file holds after it"));
   }
   try {
-    const Bytes content = readRecord(file, at + kRecordPrefixSize, prefix.length);
+    const Buffer content = readRecord(file, at + kRecordPrefixSize, prefix.length);
     header = decodeHeader(content.data(), content.size());
   } catch (const FormatError& e) {
     throw McapError(recordError(file.path(), at, e.what()));
@@ -112,8 +112,8 @@ struct Summary {
 FooterRecord readFooter(const InputFile& file, std::uint64_t data_start) {
   if (file.size() < data_start + kFooterAndMagicSize) throw SummaryUnusable("the file ends before a footer");
   const std::uint64_t footer_offset = file.size() - kFooterAndMagicSize;
-  const Bytes tail = file.read(footer_offset, kFooterAndMagicSize);
-  if (!isMagic(Bytes(tail.end() - sizeof(kMagic), tail.end()))) {
+  const Buffer tail = file.read(footer_offset, kFooterAndMagicSize);
+  if (!isMagic(tail.data() + tail.size() - sizeof(kMagic))) {
     throw SummaryUnusable("no MCAP magic at its end (the writer did not finish)");
   }
   if (tail[0] != static_cast<std::uint8_t>(Opcode::kFooter) ||
@@ -151,7 +151,7 @@ Summary readSummaryRecords(const InputFile& file, std::uint64_t data_start, cons
     throw SummaryUnusable("its footer points outside the file");
   }
   // The CRC covers the summary and summary offsets up to the footer's own summary_crc field.
-  const Bytes summary = file.read(footer.summary_start, footer_offset + kRecordPrefixSize + 16 - footer.summary_start);
+  const Buffer summary = file.read(footer.summary_start, footer_offset + kRecordPrefixSize + 16 - footer.summary_start);
   if (footer.summary_crc != 0 && crc32(summary.data(), summary.size()) != footer.summary_crc) {
     throw SummaryUnusable("its summary does not match the footer's CRC");
   }
@@ -233,20 +233,21 @@ struct ScanState {
 
 // Decodes the whole chunk (so that its CRC is checked) and learns the schemas and channels it
 // defines. Nothing of it is kept if any of it is wrong.
-void scanChunk(const Bytes& record, std::uint64_t offset, ScanState& state) {
-  const ChunkRecord chunk = decodeChunk(record.data() + kRecordPrefixSize, record.size() - kRecordPrefixSize);
-  const Bytes records = decodeChunkRecords(chunk);
+void scanChunk(const std::shared_ptr<const Buffer>& record, std::uint64_t offset, ScanState& state,
+               ChunkDecoder& decoder) {
+  const ChunkRecord chunk = decodeChunk(record->data() + kRecordPrefixSize, record->size() - kRecordPrefixSize);
+  const ChunkRecords records = decodeChunkRecords(chunk, record, decoder);
   ScanState updated;
   updated.definitions = state.definitions;
   ChunkLocation location;
   location.offset = offset;
-  location.length = record.size();
+  location.length = record->size();
   location.start_time = chunk.message_start_time;
   location.end_time = chunk.message_end_time;
   location.compressed_size = chunk.records_size;
   location.uncompressed_size = chunk.uncompressed_size;
   location.compression = chunk.compression;
-  forEachRecord(records.data(), records.size(), [&](const RecordView& r) {
+  forEachRecord(records.data, records.size, [&](const RecordView& r) {
     switch (static_cast<Opcode>(r.opcode)) {
       case Opcode::kSchema:
         updated.definitions.add(decodeSchema(r.content, r.size));
@@ -274,14 +275,16 @@ void scanChunk(const Bytes& record, std::uint64_t offset, ScanState& state) {
 }
 
 // Acts on one complete record of the data section; returns false at its end (Data End).
-bool scanRecord(const InputFile& file, std::uint64_t at, const RecordPrefix& prefix, ScanState& state) {
+bool scanRecord(const InputFile& file, std::uint64_t at, const RecordPrefix& prefix, ScanState& state,
+                ChunkDecoder& decoder) {
   const auto opcode = static_cast<Opcode>(prefix.opcode);
   switch (opcode) {
     case Opcode::kDataEnd:
     case Opcode::kFooter:
       return false;
     case Opcode::kChunk:
-      scanChunk(readRecord(file, at, kRecordPrefixSize + prefix.length), at, state);
+      scanChunk(std::make_shared<const Buffer>(readRecord(file, at, kRecordPrefixSize + prefix.length)), at, state,
+                decoder);
       return true;
     case Opcode::kSchema:
     case Opcode::kChannel:
@@ -290,7 +293,7 @@ bool scanRecord(const InputFile& file, std::uint64_t at, const RecordPrefix& pre
     default:  // message indexes, attachments, metadata, opcodes newer than this reader
       return true;
   }
-  const Bytes record = readRecord(file, at, kRecordPrefixSize + prefix.length);
+  const Buffer record = readRecord(file, at, kRecordPrefixSize + prefix.length);
   const std::uint8_t* content = record.data() + kRecordPrefixSize;
   if (opcode == Opcode::kSchema) state.definitions.add(decodeSchema(content, prefix.length));
   if (opcode == Opcode::kChannel) state.definitions.add(decodeChannel(content, prefix.length));
@@ -307,6 +310,7 @@ bool scanRecord(const InputFile& file, std::uint64_t at, const RecordPrefix& pre
 // is cut off or damaged: what comes before it is kept, the rest is lost, and a warning says where.
 void scanDataSection(const InputFile& file, std::uint64_t data_start, FileIndex& index) {
   ScanState state;
+  ChunkDecoder decoder;
   const auto stop = [&](std::uint64_t at, const std::string& what) {
     index.warnings.push_back(
         recordError(file.path(), at,
@@ -326,7 +330,7 @@ void scanDataSection(const InputFile& file, std::uint64_t data_start, FileIndex&
       break;
     }
     try {
-      if (!scanRecord(file, at, prefix, state)) break;
+      if (!scanRecord(file, at, prefix, state, decoder)) break;
     } catch (const FormatError& e) {
       stop(at, std::string("damaged: ") + e.what());
       break;

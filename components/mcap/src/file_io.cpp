@@ -71,13 +71,19 @@ InputFile::~InputFile() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-Bytes InputFile::read(std::uint64_t offset, std::uint64_t size) const {
+Buffer InputFile::read(std::uint64_t offset, std::uint64_t size) const {
+  Buffer out;
+  read(offset, size, out);
+  return out;
+}
+
+void InputFile::read(std::uint64_t offset, std::uint64_t size, Buffer& out) const {
   if (offset > size_ || size > size_ - offset) {
     throw McapError(recordError(
         path_, offset,
         "reading " + std::to_string(size) + " bytes runs past the end of the " + std::to_string(size_) + "-byte file"));
   }
-  Bytes out(static_cast<std::size_t>(size));
+  out.resize(static_cast<std::size_t>(size));
   std::uint64_t done = 0;
   while (done < size) {
     const ssize_t n =
@@ -87,7 +93,6 @@ Bytes InputFile::read(std::uint64_t offset, std::uint64_t size) const {
     if (n == 0) throw McapError(recordError(path_, offset + done, "the file ends early (did it shrink?)"));
     done += static_cast<std::uint64_t>(n);
   }
-  return out;
 }
 
 }  // namespace uampc::mcap::detail

@@ -49,7 +49,9 @@ class InputFile {
   const std::string& path() const { return path_; }
   // The `size` bytes at `offset`; the caller checks that they lie inside the file (an McapError if
   // they do not: the file shrank while being read).
-  Bytes read(std::uint64_t offset, std::uint64_t size) const;
+  Buffer read(std::uint64_t offset, std::uint64_t size) const;
+  // The same into `out`, whose capacity is reused.
+  void read(std::uint64_t offset, std::uint64_t size, Buffer& out) const;
 
  private:
   std::string path_;

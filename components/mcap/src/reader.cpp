@@ -5,6 +5,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "buffer_pool.hpp"
 #include "chunk_loader.hpp"
 #include "file_index.hpp"
 #include "file_io.hpp"
@@ -18,10 +19,9 @@ using namespace detail;
 namespace {
 
 // Decoded chunks kept between calls of forEachMessage: a player reads a window at a time, and the
-// chunk at a window's edge is then decompressed once, not once per window.
-constexpr std::uint64_t kChunkCacheBytes = 64 * 1024 * 1024;
-
-using SharedBytes = std::shared_ptr<const Bytes>;
+// chunk at a window's edge is then decompressed once, not once per window (four chunks of the
+// default size).
+constexpr std::uint64_t kChunkCacheBytes = 16 * 1024 * 1024;
 
 // Where messages come from: a chunk, or one Message record outside any chunk.
 struct Source {
@@ -35,7 +35,7 @@ struct Source {
 // The wanted messages of one source in (log_time, file order), handed out one at a time; holds
 // the decoded bytes they point into.
 struct Cursor {
-  SharedBytes bytes;
+  std::shared_ptr<const Buffer> bytes;
   std::vector<MessageRecord> messages;
   std::size_t next = 0;
   std::uint64_t file_offset = 0;
@@ -139,15 +139,16 @@ class Reader::Impl {
     Cursor cursor;
     cursor.file_offset = source.file_offset;
     if (source.loose) {
-      auto record = std::make_shared<const Bytes>(readRecord(source.loose->offset, source.loose->length));
+      auto record = std::make_shared<const Buffer>(readRecord(source.loose->offset, source.loose->length));
       cursor.bytes = record;
       cursor.messages.push_back(
           decodeAt(record->data() + kRecordPrefixSize, record->size() - kRecordPrefixSize, source.loose->offset));
       return cursor;
     }
-    cursor.bytes = chunkRecords(*source.chunk);
+    const ChunkRecords records = chunkRecords(*source.chunk);
+    cursor.bytes = records.owner;
     try {
-      forEachRecord(cursor.bytes->data(), cursor.bytes->size(), [&](const RecordView& r) {
+      forEachRecord(records.data, records.size, [&](const RecordView& r) {
         if (r.opcode != static_cast<std::uint8_t>(Opcode::kMessage)) return;
         const MessageRecord m = decodeMessage(r.content, r.size);
         if (channel_by_id_.count(m.channel_id) == 0) {
@@ -167,7 +168,7 @@ class Reader::Impl {
     return cursor;
   }
 
-  Bytes readRecord(std::uint64_t offset, std::uint64_t length) const {
+  Buffer readRecord(std::uint64_t offset, std::uint64_t length) const {
     try {
       return detail::readRecord(file_, offset, length);
     } catch (const FormatError& e) {
@@ -183,24 +184,25 @@ class Reader::Impl {
     }
   }
 
-  SharedBytes chunkRecords(const ChunkLocation& chunk) {
-    for (const auto& [offset, bytes] : cache_) {
-      if (offset == chunk.offset) return bytes;
+  ChunkRecords chunkRecords(const ChunkLocation& chunk) {
+    for (const auto& [offset, records] : cache_) {
+      if (offset == chunk.offset) return records;
     }
-    auto bytes = std::make_shared<const Bytes>(loadChunk(file_, chunk));
-    cache_.emplace_back(chunk.offset, bytes);
-    cached_bytes_ += bytes->size();
+    const ChunkRecords records = loadChunk(file_, chunk, decoder_);
+    cache_.emplace_back(chunk.offset, records);
+    cached_bytes_ += records.owner->size();
     while (cached_bytes_ > kChunkCacheBytes && cache_.size() > 1) {
-      cached_bytes_ -= cache_.front().second->size();
+      cached_bytes_ -= cache_.front().second.owner->size();
       cache_.pop_front();
     }
-    return bytes;
+    return records;
   }
 
   InputFile file_;
   FileIndex index_;
   std::unordered_map<std::uint16_t, std::size_t> channel_by_id_;
-  std::deque<std::pair<std::uint64_t, SharedBytes>> cache_;  // oldest first
+  ChunkDecoder decoder_;  // before cache_, whose buffers go back to it when the reader is destroyed
+  std::deque<std::pair<std::uint64_t, ChunkRecords>> cache_;  // by chunk offset, oldest first
   std::uint64_t cached_bytes_ = 0;
 };
 

@@ -94,9 +94,9 @@ class Writer::Impl {
   void writeChunk() {
     if (chunk_.empty()) return;
     const Bytes& records = chunk_.records();
-    const Bytes* stored = &records;
+    ByteView stored;
     try {
-      stored = &compressor_.compress(records);
+      stored = compressor_.compress(records);
     } catch (const FormatError& e) {
       throw McapError(file_.path() + ": " + e.what());
     }
@@ -104,8 +104,8 @@ class Writer::Impl {
     // The reader refuses a chunk that declares more than kMaxCompressionRatio times its compressed
     // size (a decompression bomb, or a damaged size field); a chunk that compresses that far
     // (records of zeros) is stored uncompressed instead, so that every file we write is one we read.
-    if (stored != &records && stored->size() * kMaxCompressionRatio < records.size()) {
-      stored = &records;
+    if (stored.data != records.data() && stored.size * kMaxCompressionRatio < records.size()) {
+      stored = {records.data(), records.size()};
       compression.clear();
     }
     ChunkRecord chunk;
@@ -114,20 +114,20 @@ class Writer::Impl {
     chunk.uncompressed_size = records.size();
     chunk.uncompressed_crc = crc32(records.data(), records.size());
     chunk.compression = compression;
-    chunk.records_size = stored->size();
+    chunk.records_size = stored.size;
 
     ChunkIndexRecord index;
     index.message_start_time = chunk.message_start_time;
     index.message_end_time = chunk.message_end_time;
     index.chunk_start_offset = file_.bytesWritten();
     index.compression = compression;
-    index.compressed_size = stored->size();
+    index.compressed_size = stored.size;
     index.uncompressed_size = records.size();
 
     Bytes head;
     encodeChunkHead(head, chunk);
     file_.write(head);
-    file_.write(*stored);
+    file_.write(stored.data, stored.size);
     index.chunk_length = file_.bytesWritten() - index.chunk_start_offset;
 
     Bytes message_indexes;
