@@ -151,7 +151,12 @@ Summary readSummaryRecords(const InputFile& file, std::uint64_t data_start, cons
     throw SummaryUnusable("its footer points outside the file");
   }
   // The CRC covers the summary and summary offsets up to the footer's own summary_crc field.
-  const Buffer summary = file.read(footer.summary_start, footer_offset + kRecordPrefixSize + 16 - footer.summary_start);
+  Buffer summary;
+  try {
+    summary = readRecord(file, footer.summary_start, footer_offset + kRecordPrefixSize + 16 - footer.summary_start);
+  } catch (const FormatError& e) {
+    throw SummaryUnusable(std::string("its summary is too large to read (") + e.what() + ")");
+  }
   if (footer.summary_crc != 0 && crc32(summary.data(), summary.size()) != footer.summary_crc) {
     throw SummaryUnusable("its summary does not match the footer's CRC");
   }
