@@ -24,7 +24,7 @@ class ConstantSpeedController : public Component {
   void publish() {
     msg::MotorCommand command;
     command.header().stamp(toMsg(ctx_.now()));
-    command.header().frame_id("base");
+    command.header().frame_id("motor");  // the rotor's speed about the motor frame's z axis
     command.velocity(speed_);
     command_.publish(command);
   }

@@ -36,8 +36,8 @@ bool isFinitePose(const geometry_msgs::msg::Pose& pose) {
 nav_msgs::msg::Odometry toOdometryMessage(const BaseOdometry& odometry) {
   nav_msgs::msg::Odometry o;
   o.header().stamp(toMsg(odometry.stamp));
-  o.header().frame_id("map");
-  o.child_frame_id("base");
+  o.header().frame_id("odom");
+  o.child_frame_id("base_link");
   o.pose().pose(toPoseMessage(odometry.T_WB));
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j < 6; ++j) {

@@ -36,8 +36,8 @@ TEST(PoseMessages, OdometryMessageCarriesPoseTwistAndCovariancesRowMajor) {
   }
   const nav_msgs::msg::Odometry o = toOdometryMessage(odometry);
   EXPECT_EQ(fromMsg(o.header().stamp()), odometry.stamp);
-  EXPECT_EQ(o.header().frame_id(), "map");
-  EXPECT_EQ(o.child_frame_id(), "base");
+  EXPECT_EQ(o.header().frame_id(), "odom");
+  EXPECT_EQ(o.child_frame_id(), "base_link");
   EXPECT_TRUE(toIsometry(o.pose().pose()).isApprox(odometry.T_WB, 1e-12));
   EXPECT_EQ(o.twist().twist().linear().y(), 0.2);
   EXPECT_EQ(o.twist().twist().angular().z(), 0.6);

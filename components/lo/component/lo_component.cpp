@@ -238,11 +238,11 @@ class LoComponent : public Component {
     }
     const Time stamp = Time::fromSeconds(r.time);
     publishOdometry(r, stamp);
-    auto registered = pointcloud::makeXyzCloud(r.registered_points_W, "map");
+    auto registered = pointcloud::makeXyzCloud(r.registered_points_W, "odom");  // the LO's world frame
     registered.header().stamp(toMsg(stamp));
     registered_pub_.publish(registered);
     odometry_->localMap().pointsSince(r.time - window_, local_points_);
-    auto local_map = pointcloud::makeXyzCloud(local_points_, "map");
+    auto local_map = pointcloud::makeXyzCloud(local_points_, "odom");
     local_map.header().stamp(toMsg(stamp));
     local_map_pub_.publish(local_map);
     publishMetrics(r, stamp, seconds);

@@ -100,7 +100,8 @@ class MotorBridge : public Component {
     }
     sensor_msgs::msg::JointState state;
     state.header().stamp(toMsg(ctx_.now()));
-    state.header().frame_id("base");
+    // The encoder measures the rotor against the motor's fixed part (TF: motor -> rotor).
+    state.header().frame_id("motor");
     state.name({joint_name_});
     state.position({motor_.encoderTheta()});
     state.velocity({motor_.omega()});

@@ -154,7 +154,7 @@ class MpcComponent : public Component {
     }
     msg::MotorCommand command;
     command.header().stamp(toMsg(now));
-    command.header().frame_id("base");
+    command.header().frame_id("motor");  // the rotor's speed about the motor frame's z axis
     command.velocity(decision.omega);
     command_pub_.publish(command);
     publishProfile(decision, now);
@@ -165,7 +165,7 @@ class MpcComponent : public Component {
   void publishProfile(const mpc::UaMpcController::Decision& d, Time now) {
     msg::UncertaintyProfile profile;
     profile.header().stamp(toMsg(now));
-    profile.header().frame_id("base");
+    profile.header().frame_id("motor");  // U over encoder angles, measured in the motor frame
     profile.theta_start(d.sample_start);
     profile.delta_theta(d.sample_step);
     profile.samples(d.samples);
@@ -182,7 +182,7 @@ class MpcComponent : public Component {
     const std::vector<float>& depth = map.depthImage();
     sensor_msgs::msg::Image image;
     image.header().stamp(toMsg(now));
-    image.header().frame_id("base");
+    image.header().frame_id("base_link");  // azimuth and elevation about the base axes (Eq. 5)
     image.width(static_cast<std::uint32_t>(controller_.config().depth_map.width));
     image.height(static_cast<std::uint32_t>(controller_.config().depth_map.height));
     image.encoding("32FC1");

@@ -66,7 +66,7 @@ TEST(LoComponent, WaitsForEncoderStatesCoveringTheScanThenPublishesOneOdometry) 
   ASSERT_EQ(odometry.size(), 1u);
   const double last_point = 1.0 + 0.1f * 2999.0f / 3000.0f;
   EXPECT_NEAR(fromMsg(odometry[0].header().stamp()).seconds(), last_point, 1e-6);  // the scan's end
-  EXPECT_EQ(odometry[0].child_frame_id(), "base");
+  EXPECT_EQ(odometry[0].child_frame_id(), "base_link");
   EXPECT_EQ(odometry[0].pose().pose().position().x(), 0.0);  // identity: init_from_pose false
   EXPECT_EQ(ctx.publishedCount("registered"), 1u);
   EXPECT_EQ(ctx.publishedCount("metrics"), 1u);

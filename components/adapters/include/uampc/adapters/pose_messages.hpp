@@ -29,7 +29,8 @@ struct BaseOdometry {
   Matrix6d twist_covariance = Matrix6d::Zero();
 };
 
-// Frame ids "map" (header) and "base" (child); covariances row-major, as ROS stores them.
+// Frame ids "odom" (header) and "base_link" (child), REP-105's and the TF tree's (components/tf);
+// covariances row-major, as ROS stores them.
 nav_msgs::msg::Odometry toOdometryMessage(const BaseOdometry& odometry);
 
 // A pose covariance ordered (rotation, position), as our filters keep it, in ROS's order
