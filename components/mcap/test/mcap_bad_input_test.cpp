@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <typeinfo>
 
 #include "mcap_test_files.hpp"
 #include "uampc/mcap/mcap.hpp"
@@ -268,6 +269,36 @@ TEST(BadInput, DamagedSummaryIsNotTrusted) {
   EXPECT_NE(reader.warnings()[0].find(path + ": its summary does not match the footer's CRC"), std::string::npos)
       << reader.warnings()[0];
   EXPECT_TRUE(readAll(reader) == expected);
+}
+
+// Random damage (bytes overwritten anywhere, the file cut anywhere, with and without its footer)
+// is either read or refused with an McapError; never another exception, a crash or a hang.
+TEST(BadInput, RandomDamageIsReadOrRefusedWithAnMcapError) {
+  TempDir dir("random_damage");
+  const std::string original = dir.file("original.mcap");
+  const Bytes whole = smallFile(original, Compression::kLz4);
+  const std::string path = dir.file("damaged.mcap");
+  std::mt19937 rng(2024);
+  int refused = 0, read = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    Bytes bytes = whole;
+    const int damaged_bytes = 1 + static_cast<int>(rng() % 4);
+    for (int k = 0; k < damaged_bytes; ++k) bytes[rng() % bytes.size()] = static_cast<std::uint8_t>(rng());
+    if (trial % 2 == 1) bytes.resize(rng() % bytes.size());
+    writeBytes(path, bytes);
+    try {
+      Reader reader(path);
+      readAll(reader);
+      ++read;
+    } catch (const McapError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+      ++refused;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "trial " << trial << ": " << typeid(e).name() << ": " << e.what();
+    }
+  }
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(read, 0);
 }
 
 }  // namespace
