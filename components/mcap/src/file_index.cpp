@@ -192,7 +192,8 @@ void useSummary(const Summary& summary, std::uint64_t data_start, std::uint64_t 
                           " chunks but indexes " + std::to_string(summary.chunk_indexes.size()));
   }
   for (const ChunkIndexRecord& chunk : summary.chunk_indexes) {
-    const bool inside = chunk.chunk_start_offset >= data_start && chunk.chunk_length >= kRecordPrefixSize &&
+    const bool inside = chunk.chunk_start_offset >= data_start && chunk.chunk_start_offset <= summary_start &&
+                        chunk.chunk_length >= kRecordPrefixSize &&
                         chunk.chunk_length <= summary_start - chunk.chunk_start_offset;
     if (!inside) throw SummaryUnusable("a chunk index points outside the data section");
     for (const auto& entry : chunk.message_index_offsets) {
