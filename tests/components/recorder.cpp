@@ -1,12 +1,14 @@
 // Test component: records what arrives on its ports, as it arrives, to CSV files in the run's
 // output directory (<name>_motor_states.csv, _motor_commands.csv, _ground_truth.csv, _scans.csv,
-// _imu.csv),
+// _imu.csv, and one file per TF edge: _tf_<parent>_to_<child>.csv, _tf_static_<parent>_to_<child>.csv),
 // at full precision, so that tests can check the data and compare runs byte for byte.
 #include <cstdio>
+#include <map>
 #include <memory>
 
 #include "uampc/msgs/geometry_msgs.hpp"
 #include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/tf2_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
@@ -16,17 +18,21 @@ namespace uampc {
 class Recorder : public Component {
  public:
   static void describe(ComponentSpec& spec) {
-    spec.summary = "Test: records motor states, commands, ground truth, scans and IMU samples to CSV";
+    spec.summary = "Test: records motor states, commands, ground truth, scans, IMU samples and TF to CSV";
     spec.input<sensor_msgs::msg::JointState>("state", "/motor/state", QosPreset::kControl, "motor states");
     spec.input<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "motor commands");
     spec.input<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
                                                 "ground-truth poses");
     spec.input<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor, "LiDAR scans");
     spec.input<sensor_msgs::msg::Imu>("imu", "/lidar/imu", QosPreset::kSensor, "IMU samples");
-    spec.param("max_scans", 5, "scans recorded (the first ones)").atLeast(0);
+    spec.input<tf2_msgs::msg::TFMessage>("tf", "/tf", QosPreset::kSensor, "transforms");
+    spec.input<tf2_msgs::msg::TFMessage>("tf_static", "/tf_static", QosPreset::kLatched, "static transforms");
+    spec.param("max_scans", 5, "scans recorded (the first ones after skip_scans)").atLeast(0);
+    spec.param("skip_scans", 0, "scans skipped before recording starts").atLeast(0);
   }
 
-  explicit Recorder(Context& ctx) : ctx_(ctx), max_scans_(ctx.paramInt("max_scans")) {
+  explicit Recorder(Context& ctx)
+      : ctx_(ctx), max_scans_(ctx.paramInt("max_scans")), skip_scans_(ctx.paramInt("skip_scans")) {
     if (ctx.outputDirectory().empty()) throw std::runtime_error("recorder needs an output directory (--out)");
     states_ = open("motor_states.csv", "stamp,position,velocity\n");
     commands_ = open("motor_commands.csv", "received,stamp,velocity\n");
@@ -48,7 +54,8 @@ class Recorder : public Component {
                    fromMsg(m.header().stamp()).seconds(), p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
     });
     ctx.subscribe<sensor_msgs::msg::PointCloud2>("scan", [this](const sensor_msgs::msg::PointCloud2& m) {
-      if (scans_recorded_++ >= max_scans_) return;
+      const std::int64_t index = scans_seen_++;
+      if (index < skip_scans_ || index >= skip_scans_ + max_scans_) return;
       const auto time_field = pointcloud::findTimeField(m);
       const auto points = pointcloud::readCloud(m, &time_field);
       const double stamp = fromMsg(m.header().stamp()).seconds();
@@ -64,6 +71,9 @@ class Recorder : public Component {
       std::fprintf(imu_.get(), "%.9f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", fromMsg(m.header().stamp()).seconds(),
                    w.x(), w.y(), w.z(), a.x(), a.y(), a.z());
     });
+    ctx.subscribe<tf2_msgs::msg::TFMessage>("tf", [this](const tf2_msgs::msg::TFMessage& m) { recordTf("tf", m); });
+    ctx.subscribe<tf2_msgs::msg::TFMessage>("tf_static",
+                                            [this](const tf2_msgs::msg::TFMessage& m) { recordTf("tf_static", m); });
   }
 
  private:
@@ -76,14 +86,29 @@ class Recorder : public Component {
     return f;
   }
 
+  // One file per edge (parent -> child), opened at the edge's first transform.
+  void recordTf(const std::string& topic, const tf2_msgs::msg::TFMessage& m) {
+    for (const auto& t : m.transforms()) {
+      const std::string file = topic + "_" + t.header().frame_id() + "_to_" + t.child_frame_id() + ".csv";
+      auto it = tf_files_.find(file);
+      if (it == tf_files_.end()) it = tf_files_.emplace(file, open(file.c_str(), "stamp,x,y,z,qx,qy,qz,qw\n")).first;
+      const auto& p = t.transform().translation();
+      const auto& q = t.transform().rotation();
+      std::fprintf(it->second.get(), "%.9f,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                   fromMsg(t.header().stamp()).seconds(), p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
+    }
+  }
+
   Context& ctx_;
   std::int64_t max_scans_;
-  std::int64_t scans_recorded_ = 0;
+  std::int64_t skip_scans_;
+  std::int64_t scans_seen_ = 0;
   File states_{nullptr, &std::fclose};
   File commands_{nullptr, &std::fclose};
   File poses_{nullptr, &std::fclose};
   File scans_{nullptr, &std::fclose};
   File imu_{nullptr, &std::fclose};
+  std::map<std::string, File> tf_files_;  // by file name
 };
 
 }  // namespace uampc
