@@ -269,6 +269,18 @@ TEST(BadInput, DamagedSummaryIsNotTrusted) {
   EXPECT_NE(reader.warnings()[0].find(path + ": its summary does not match the footer's CRC"), std::string::npos)
       << reader.warnings()[0];
   EXPECT_TRUE(readAll(reader) == expected);
+
+  // Without a summary CRC (0), a chunk index pointing past the data section is caught by itself.
+  bytes = readBytes(path);
+  bytes[index.offset + 9 + 16] ^= 0x10;  // undo the damage
+  setU64(bytes, index.offset + 9 + 16, bytes.size() + 100);
+  setU32(bytes, bytes.size() - 8 - 4, 0);
+  writeBytes(path, bytes);
+  Reader unchecked(path);
+  EXPECT_TRUE(unchecked.recovered());
+  EXPECT_NE(unchecked.warnings().at(0).find("a chunk index points outside the data section"), std::string::npos)
+      << unchecked.warnings()[0];
+  EXPECT_TRUE(readAll(unchecked) == expected);
 }
 
 // Random damage (bytes overwritten anywhere, the file cut anywhere, with and without its footer)
