@@ -166,11 +166,18 @@ class UampcCli {
     CLI::App* sub =
         addCommand("launch", "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]",
                    "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
-                   "(seed, domain_id, ...). --out DIR collects the run's outputs. Ctrl-C stops everything.");
+                   "(seed, domain_id, ...). --out DIR collects the run's outputs, with DIR/scene.yaml (the\n"
+                   "resolved scene: launch it to run the same again) and DIR/run_info.json (scene, overrides,\n"
+                   "seed, versions, every parameter; also in DIR/metrics.json as \"run\"). Ctrl-C stops\n"
+                   "everything, while starting or running (exit code 130).");
     addScene(sub);
     addOverrides(sub);
     addOutput(sub);
-    commands_.push_back({sub, withOverrides([this] { return uampc::launch(options_.scene); })});
+    commands_.push_back({sub, withOverrides([this] {
+                           options_.scene.uampc_version = uampc::app::uampcVersion();  // for the run's record
+                           options_.scene.fastdds_version = uampc::app::fastDdsVersion();
+                           return uampc::launch(options_.scene);
+                         })});
   }
 
   void addValidate() {

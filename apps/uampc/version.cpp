@@ -7,6 +7,10 @@
 
 namespace uampc::app {
 
-std::string versionText() { return std::string("uampc ") + UAMPC_VERSION + "\nFast DDS " + FASTRTPS_VERSION_STR; }
+std::string uampcVersion() { return UAMPC_VERSION; }
+
+std::string fastDdsVersion() { return FASTRTPS_VERSION_STR; }
+
+std::string versionText() { return "uampc " + uampcVersion() + "\nFast DDS " + fastDdsVersion(); }
 
 }  // namespace uampc::app

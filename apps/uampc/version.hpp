@@ -5,7 +5,11 @@
 
 namespace uampc::app {
 
-// Two lines, "uampc <git describe at build time>" and "Fast DDS <version>", no final newline.
+// git describe of the source tree when uampc was built ("unknown" outside git).
+std::string uampcVersion();
+// The Fast DDS uampc was built with ("2.9.1").
+std::string fastDdsVersion();
+// Two lines, "uampc <uampcVersion()>" and "Fast DDS <fastDdsVersion()>", no final newline.
 std::string versionText();
 
 }  // namespace uampc::app

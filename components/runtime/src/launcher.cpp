@@ -14,6 +14,7 @@
 #include "lockstep_clock.hpp"
 #include "uampc/runtime/child_processes.hpp"
 #include "uampc/runtime/process_group.hpp"
+#include "uampc/runtime/run_record.hpp"
 
 namespace fs = std::filesystem;
 
@@ -36,6 +37,17 @@ void installSignalHandlers() {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 }
+
+// How a process ended when the user asked everything to stop: exit 0 (stopped by SIGTERM) or 130
+// (it got the terminal's SIGINT too), or killed by either signal before it had its handlers
+// installed (a process still starting). Anything else is a failure, stop or no stop.
+bool stoppedAsAsked(int status) {
+  if (WIFEXITED(status)) return WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 130;
+  return WIFSIGNALED(status) && (WTERMSIG(status) == SIGTERM || WTERMSIG(status) == SIGINT);
+}
+
+// 130 after Ctrl-C, as shells report a command that SIGINT ended; otherwise the command's code.
+int exitCodeAfter(int code) { return code == 0 && g_signal == SIGINT ? 130 : code; }
 
 std::string describeStatus(int status) {
   if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
@@ -87,7 +99,7 @@ class ProcessSupervisor {
     const auto exit = children_.pollExit();
     if (!exit) return {};
     const std::string& process = exit->name;
-    if (g_stop && WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0) return {};
+    if (g_stop && stoppedAsAsked(exit->status)) return {};
     const std::string what =
         "process '" + process + "' (pid " + std::to_string(exit->pid) + ") " + describeStatus(exit->status);
     if (scene_.on_crash == CrashPolicy::kRestart && !g_stop && restarts_[process] < scene_.max_restarts) {
@@ -114,7 +126,8 @@ class ProcessSupervisor {
         failed_ = true;
         break;
       }
-      if (!(WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0)) {
+      const bool clean = WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0;
+      if (!clean && !(g_stop && stoppedAsAsked(exit->status))) {
         std::cerr << "uampc: process '" << exit->name << "' " << describeStatus(exit->status) << " while stopping\n";
         failed_ = true;
       }
@@ -134,16 +147,30 @@ class ProcessSupervisor {
 
 }  // namespace
 
+// The run's record in its output directory (run_record.hpp); false, said, when it cannot be written.
+bool recordRun(const Scene& scene, const LaunchOptions& options) {
+  try {
+    fs::create_directories(options.output_directory);
+    writeRunRecord(scene, options);
+    return true;
+  } catch (const std::exception& e) {
+    std::cerr << "uampc: " << e.what() << "; nothing was started\n";
+    return false;
+  }
+}
+
 int launch(const LaunchOptions& options) {
+  // First: a Ctrl-C from here on ends the launch with 130, however far it got.
+  installSignalHandlers();
   ComponentCatalog catalog;
   bool ok = false;
   const Scene scene = loadOrReport(options, catalog, ok);
   // Only here, not in run-process and clock: launch starts those, and they would repeat them.
   for (const auto& w : scene.warnings) std::cerr << w << "\n";
   if (!ok) return 2;
-  if (!options.output_directory.empty()) fs::create_directories(options.output_directory);
+  if (!options.output_directory.empty() && !recordRun(scene, options)) return 1;
+  if (g_stop) return exitCodeAfter(0);  // stopped while loading: nothing to stop
 
-  installSignalHandlers();
   std::cerr << "uampc: scene '" << scene.name << "' (" << scene.components.size() << " components, "
             << scene.processes().size() << " process(es), "
             << (scene.clock.mode == ClockMode::kLockstep ? "lockstep" : "real time") << ", DDS domain "
@@ -154,7 +181,8 @@ int launch(const LaunchOptions& options) {
   std::string error;
   if (scene.clock.mode == ClockMode::kLockstep) {
     const ClockResult result = runLockstepClock(scene, g_stop, [&] { return supervisor.poll(); });
-    if (!result.ok) error = result.error;
+    // Stopped while the processes were starting is no failure: the user asked.
+    if (!result.ok && !g_stop) error = result.error;
     std::cerr << "uampc: " << result.sim_seconds << " s of sim time in " << result.wall_seconds << " s ("
               << (result.wall_seconds > 0 ? result.sim_seconds / result.wall_seconds : 0.0) << "x real time)\n";
   } else {
@@ -174,12 +202,12 @@ int launch(const LaunchOptions& options) {
     std::cerr << "uampc: run failed: " << error << "\n";
     return 1;
   }
-  if (supervisor.failed()) return 1;
+  // Ctrl-C wins over a process that then failed to stop cleanly (said above): the user ended it.
   if (g_signal == SIGINT) {
     std::cerr << "uampc: stopped by Ctrl-C\n";
     return 130;
   }
-  return 0;
+  return supervisor.failed() ? 1 : 0;
 }
 
 int runClockCommand(const LaunchOptions& options) {
@@ -193,8 +221,11 @@ int runClockCommand(const LaunchOptions& options) {
     return 2;
   }
   const ClockResult result = runLockstepClock(scene, g_stop, [] { return std::string(); });
-  if (!result.ok) std::cerr << "uampc: run failed: " << result.error << "\n";
-  return result.ok ? 0 : 1;
+  if (!result.ok && !g_stop) {
+    std::cerr << "uampc: run failed: " << result.error << "\n";
+    return 1;
+  }
+  return exitCodeAfter(0);
 }
 
 int runProcessCommand(const LaunchOptions& options, const std::string& process) {
@@ -209,7 +240,8 @@ int runProcessCommand(const LaunchOptions& options, const std::string& process) 
     std::cerr << "uampc: the scene has no process '" << process << "'\n";
     return 2;
   }
-  return runProcessGroup(scene, process, options.output_directory, g_stop);
+  // 130 on Ctrl-C, like launch: the launcher counts it as a clean stop when it was stopping too.
+  return exitCodeAfter(runProcessGroup(scene, process, options.output_directory, g_stop));
 }
 
 }  // namespace uampc

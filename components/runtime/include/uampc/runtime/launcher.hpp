@@ -13,9 +13,15 @@ struct LaunchOptions {
   std::string scene_path;
   std::vector<Override> overrides;
   std::string output_directory;  // empty: no output directory
+  // Recorded with the run (run_record.hpp); the uampc command fills them in from its version.
+  std::string uampc_version = "unknown";
+  std::string fastdds_version = "unknown";
 };
 
-// Exit codes: 0 success, 1 a process or component failed, 2 the scene is invalid, 130 Ctrl-C.
+// Exit codes: 0 success, 1 a process or component failed (or the run's record could not be
+// written), 2 the scene is invalid, 130 Ctrl-C (SIGINT), whether the processes were still starting
+// or already running. With an output directory, writes the run's record there before anything
+// starts (run_record.hpp).
 int launch(const LaunchOptions& options);
 
 // `uampc run-process`: one process group of a scene. The launcher starts one per group; for runs
