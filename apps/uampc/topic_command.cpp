@@ -86,9 +86,11 @@ std::string typesOf(const DiscoveredTopic& topic) {
 std::string endpointLine(const char* kind, const DiscoveredEndpoint& e,
                          const std::map<std::string, DiscoveredParticipant>& participants) {
   const auto p = participants.find(e.guid_prefix);
-  const std::string who = p == participants.end() ? "? " + e.guid_prefix
-                                                  : "'" + p->second.name + "' " + e.guid_prefix + "  vendor " +
-                                                        vendorText(p->second.vendor);
+  const std::string name = p == participants.end()  ? "(participant not discovered)"
+                           : p->second.name.empty() ? "(unnamed)"
+                                                    : "'" + p->second.name + "'";
+  const std::string vendor = p == participants.end() ? "" : "  vendor " + vendorText(p->second.vendor);
+  const std::string who = name + " " + e.guid_prefix + vendor;
   return std::string("    ") + kind + "  " + who + "  " + (e.reliable ? "reliable" : "best-effort") + ", " +
          (e.transient_local ? "transient-local" : "volatile") + "\n";
 }
@@ -325,8 +327,9 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
         ->check(CLI::Range(0, kMaxDomainId).description(""))
         ->type_name("N");
     sub->add_option("--wait", options.wait_s,
-                    action == TopicAction::kList ? "How long discovery runs before the list is printed (default 2 s)."
-                                                 : "How long to wait for a writer of TOPIC (default 2 s).")
+                    (action == TopicAction::kList ? "How long discovery runs before the list is printed"
+                                                  : "How long to wait for a writer of TOPIC") +
+                        std::string(" (default ") + secondsText(kDefaultWaitS) + " s).")
         ->check(CLI::Range(0.0, 3600.0).description(""))
         ->type_name("S");
     return sub;
