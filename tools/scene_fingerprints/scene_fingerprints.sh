@@ -6,7 +6,8 @@
 #
 # Each scene runs for SECONDS of simulated time with --out; every output file is hashed, except the
 # values of timings.csv (wall-clock processing times, the one part of a run that is not
-# deterministic): of it only the time, source and name columns are hashed. The runs use a DDS domain
+# deterministic): of it only the time, source and name columns are hashed, and of the run's record
+# only what does not change from run to run (see below). The runs use a DDS domain
 # of their own (UAMPC_FINGERPRINT_DOMAIN, default 150 + PID % 50), so that another run on the
 # machine cannot feed them.
 set -euo pipefail
@@ -27,6 +28,12 @@ for scene in config/scenes/*.yaml; do
   for file in "${files[@]}"; do
     case "$(basename "$file")" in
       timings.csv) hash="$(cut -d, -f1-3 "$file" | sha256sum | cut -c1-16)" ;;
+      # What the run was (start time, version, paths, domain): metrics.json's figures without its
+      # last key "run", printed as the evaluator printed them before it had one; the resolved
+      # scene without its domain; run_info.json not at all.
+      metrics.json) hash="$({ sed '/^  "run": {$/,$d' "$file" | sed '$ s/^  },$/  }/'; echo "}"; } | sha256sum | cut -c1-16)" ;;
+      scene.yaml) hash="$(grep -v '^domain_id: ' "$file" | sha256sum | cut -c1-16)" ;;
+      run_info.json) continue ;;
       *) hash="$(sha256sum "$file" | cut -c1-16)" ;;
     esac
     echo "$name/$(basename "$file") $hash"
