@@ -14,8 +14,8 @@ class App;
 namespace uampc::app {
 
 // How long to wait by default. A Fast DDS participant answers a new participant's announcement at
-// once, but on our machine that answer was missed in 17 of 53 starts of `uampc topic` beside a
-// running scene: the scene was then found only at its next periodic announcement (every 3 s),
+// once, but on our machine that answer was missed in 17 of 53 starts of this tool's discovery
+// beside a running scene: the scene was then found only at its next periodic announcement (every 3 s),
 // 0.8 to 2.9 s after the start. So the default spans a whole announcement period, not ros2's 2 s.
 constexpr double kDefaultWaitS = 3.5;
 constexpr int kDefaultHzWindow = 10000;  // as ros2 topic hz
