@@ -113,4 +113,4 @@ class Recorder : public Component {
 
 }  // namespace uampc
 
-UAMPC_REGISTER_COMPONENT(uampc::Recorder, "recorder")
+UAMPC_REGISTER_COMPONENT(uampc::Recorder, "csv_recorder")
