@@ -13,6 +13,9 @@
 #include "components_command.hpp"
 #include "experiment_command.hpp"
 #include "graph_command.hpp"
+#include "play_command.hpp"
+#include "record_command.hpp"
+#include "uampc/runtime/dds_names.hpp"
 #include "topic_command.hpp"
 #include "uampc/runtime/launcher.hpp"
 #include "version.hpp"
@@ -79,6 +82,8 @@ struct CommandLine {
   bool json = false;                         // components
   uampc::app::ExperimentOptions experiment;  // experiment
   uampc::app::TopicOptions topic;            // topic
+  uampc::app::PlayOptions play;              // play
+  uampc::app::RecordOptions record;          // record
 };
 
 // A command: its subcommand in the app and what runs when it was given.
@@ -104,6 +109,8 @@ class UampcCli {
     addRunProcess();
     addClock();
     addTopic();
+    addRecord();
+    addPlay();
   }
 
   int run(int argc, char** argv) {
@@ -288,6 +295,57 @@ class UampcCli {
       formatter_->addSynopsis(name, synopsis);
     });
     commands_.push_back({sub, [this] { return uampc::app::topicCommand(options_.topic); }});
+  }
+
+  void addRecord() {
+    uampc::app::RecordOptions& o = options_.record;
+    CLI::App* sub = addCommand(
+        "record",
+        "uampc record -o FILE.mcap [--domain N] [--compression zstd|lz4|none] [--chunk-size BYTES]\n"
+        "[--duration S] [TOPIC ...]",
+        "Record the topics of a running system (every ROS topic discovered on the domain, of uampc or any\n"
+        "other DDS vendor, by default) to an MCAP file as rosbag2 writes it (Foxglove, ros2 bag, uampc play).\n"
+        "Ctrl-C stops it and completes the file. Inside a scene, use the recorder component.");
+    sub->add_option("-o,--output", o.output, "The file to write.")->required()->type_name("FILE.mcap");
+    sub->add_option("TOPIC", o.topics, "Topics to record (default: all).")->type_name("");
+    sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
+        ->check(CLI::Range(0, uampc::kMaxDomainId))
+        ->type_name("N");
+    sub->add_option("--compression", o.compression, "Chunk compression: zstd (default), lz4 or none.")
+        ->check(CLI::IsMember({"zstd", "lz4", "none"}).description(""))
+        ->type_name("zstd|lz4|none");
+    sub->add_option("--chunk-size", o.chunk_size,
+                    "Bytes of samples per chunk (default 4 MiB); a killed recorder loses at most the last chunk.")
+        ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 30))
+        ->type_name("BYTES");
+    sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("S");
+    commands_.push_back({sub, [this] { return uampc::app::recordCommand(options_.record); }});
+  }
+
+  void addPlay() {
+    uampc::app::PlayOptions& o = options_.play;
+    CLI::App* sub = addCommand(
+        "play",
+        "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock]",
+        "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
+        "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
+        "use the player component instead (config/scenes/replay_lo.yaml).");
+    sub->add_option("FILE.mcap", o.file, "The recording.")->required()->type_name("");
+    sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
+        ->check(CLI::Range(0, uampc::kMaxDomainId))
+        ->type_name("N");
+    sub->add_option("--rate", o.rate, "Playback speed: 2 plays twice as fast (default 1).")
+        ->check(CLI::Range(0.01, 100.0))
+        ->type_name("R");
+    sub->add_option("--start", o.start_s, "Skip the recording's first S seconds.")
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("S");
+    sub->add_option("--topics", o.topics, "Play only these topics (default: all).")->type_name("TOPIC ...");
+    sub->add_flag("--loop", o.loop, "Start over at the end, until Ctrl-C.");
+    sub->add_flag("--clock", o.clock, "Publish /clock (100 Hz) with the recording's time, as ros2 bag play --clock.");
+    commands_.push_back({sub, [this] { return uampc::app::playCommand(options_.play); }});
   }
 
   // The command on the command line, if CLI11 got as far as reading it.

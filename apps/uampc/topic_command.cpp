@@ -229,7 +229,7 @@ int echo(TopicDiscovery& discovery, const DiscoveredTopic& topic, const TopicOpt
   SampleQueue queue;
   RawSubscription subscription(
       discovery.participant(), topic, decoding.size_hint,
-      [&queue](SerializedMessage&& sample, Clock::time_point) { queue.push(std::move(sample)); });
+      [&queue](SerializedMessage&& sample, const SampleTimes&) { queue.push(std::move(sample)); });
   int printed = 0;
   while (!g_signal) {
     for (const SerializedMessage& sample : queue.takeAll(std::chrono::milliseconds(100))) {
@@ -248,9 +248,9 @@ int measure(TopicDiscovery& discovery, const DiscoveredTopic& topic, const Topic
   std::mutex mutex;
   const Clock::time_point start = Clock::now();
   RawSubscription subscription(discovery.participant(), topic, decodingOf(topic.writers.front().type).size_hint,
-                               [&](SerializedMessage&& sample, Clock::time_point arrived) {
+                               [&](SerializedMessage&& sample, const SampleTimes& times) {
                                  std::lock_guard<std::mutex> lock(mutex);
-                                 statistics.add(std::chrono::duration<double>(arrived - start).count(),
+                                 statistics.add(std::chrono::duration<double>(times.arrived - start).count(),
                                                 sample.data.size());
                                });
   const auto report = [&] { std::cout << (hz ? statistics.hzReport() : statistics.bwReport()) << std::flush; };

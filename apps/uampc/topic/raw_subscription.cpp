@@ -63,7 +63,13 @@ void RawSubscription::Listener::on_data_available(DataReader* reader) {
   SerializedMessage sample;
   SampleInfo info;
   while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-    if (info.valid_data) on_sample_(std::move(sample), std::chrono::steady_clock::now());
+    if (info.valid_data) {
+      const auto nanoseconds = [](const eprosima::fastrtps::rtps::Time_t& t) {
+        return Time{static_cast<std::int64_t>(t.seconds()) * 1000000000 + t.nanosec()};
+      };
+      on_sample_(std::move(sample), {std::chrono::steady_clock::now(), nanoseconds(info.reception_timestamp),
+                                     nanoseconds(info.source_timestamp)});
+    }
     sample = SerializedMessage();
   }
 }

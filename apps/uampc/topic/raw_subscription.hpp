@@ -11,13 +11,21 @@
 
 #include "topic_discovery.hpp"
 #include "uampc/runtime/serialized_message.hpp"
+#include "uampc/runtime/time.hpp"
 
 namespace uampc::app {
 
+// When a sample was published and when it arrived.
+struct SampleTimes {
+  std::chrono::steady_clock::time_point arrived;  // for rates
+  Time received;                                  // wall clock at reception (Fast DDS's reception timestamp)
+  Time published;  // its writer's source timestamp (sim time for a lockstep scene's writers)
+};
+
 class RawSubscription {
  public:
-  // Called on Fast DDS's thread for every sample, with the time it arrived.
-  using OnSample = std::function<void(SerializedMessage&& sample, std::chrono::steady_clock::time_point arrived)>;
+  // Called on Fast DDS's thread for every sample.
+  using OnSample = std::function<void(SerializedMessage&& sample, const SampleTimes& times)>;
 
   // Reads `topic` as its first writer's type. QoS as discovered: reliable when every writer is
   // (a reliable reader would not match a best-effort writer), transient-local when every writer is,

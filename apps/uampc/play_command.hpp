@@ -1,0 +1,24 @@
+// `uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics T ...] [--loop] [--clock]`:
+// publishes a recording's samples with their recorded timing, in real time, beside a running
+// system (the player component does the same inside a scene, also in lockstep).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace uampc::app {
+
+struct PlayOptions {
+  std::string file;
+  int domain_id = -1;  // -1: ROS_DOMAIN_ID, else 0
+  double rate = 1.0;
+  double start_s = 0.0;
+  std::vector<std::string> topics;  // empty: all
+  bool loop = false;
+  bool clock = false;  // publish /clock with the recording's time
+};
+
+// Exit codes: 0 at the end of the recording, 1 for a bad recording or DDS failure, 130 on Ctrl-C.
+int playCommand(const PlayOptions& options);
+
+}  // namespace uampc::app

@@ -1,0 +1,24 @@
+// `uampc record -o FILE.mcap [--domain N] [TOPIC ...]`: records the topics of a running system
+// (every ROS topic it discovers, by default) to an MCAP file as rosbag2 writes it, beside any
+// system on the domain, uampc's or another vendor's. Inside a scene, use the recorder component.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace uampc::app {
+
+struct RecordOptions {
+  std::string output;
+  int domain_id = -1;               // -1: ROS_DOMAIN_ID, else 0
+  std::vector<std::string> topics;  // ROS names; empty: every ROS topic discovered
+  std::string compression = "zstd";
+  std::uint64_t chunk_size = 4 * 1024 * 1024;
+  double duration_s = 0.0;  // 0: until Ctrl-C
+};
+
+// Exit codes: 0 when stopped by Ctrl-C, SIGTERM or --duration (the file is complete), 1 on errors.
+int recordCommand(const RecordOptions& options);
+
+}  // namespace uampc::app
