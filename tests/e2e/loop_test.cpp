@@ -133,6 +133,8 @@ TEST(Loop, EveryShippedSceneStartsAndSteps) {
   // Without --out, as a user's first try would be; the MCD scenes read data/mcd.
   for (const auto& entry : std::filesystem::directory_iterator(sourcePath("config/scenes"))) {
     if (entry.path().extension() != ".yaml") continue;
+    // replay_lo needs a recording: record_replay_test runs it on one.
+    if (entry.path().filename() == "replay_lo.yaml") continue;
     const CommandResult r =
         runUampc("launch " + entry.path().string() + " --set domain_id=60 --set clock.duration=0.2");
     EXPECT_EQ(r.exit_code, 0) << entry.path() << "\n" << r.output;

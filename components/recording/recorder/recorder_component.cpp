@@ -19,7 +19,9 @@ class RecorderComponent : public Component {
   static void describe(ComponentSpec& spec) {
     spec.summary = "Records topics of the scene to an MCAP file (rosbag2's layout: Foxglove, ros2 bag, uampc play)";
     spec.stringListParam("topics", {}, "topics to record; empty: every topic the scene's components write");
-    spec.param("file", "recording.mcap", "the file; a relative path is taken from the run's output directory (--out)");
+    spec.param("file", "recording.mcap",
+               "the file; a relative path is taken from the run's output directory (--out), or from the current "
+               "directory without one (as ros2 bag record does)");
     spec.param("compression", "zstd", "chunk compression").oneOf({"zstd", "lz4", "none"});
     spec.param("chunk_size", 4 * 1024 * 1024, "bytes of samples per chunk (a killed recorder loses the last chunk)")
         .between(1024, 1 << 30);
@@ -77,12 +79,8 @@ class RecorderComponent : public Component {
   static std::string filePath(const Context& ctx) {
     const fs::path file = ctx.paramString("file");
     if (file.is_absolute()) return file.string();
-    if (ctx.outputDirectory().empty()) {
-      throw std::runtime_error("file '" + file.string() +
-                               "' is relative, and the run has no output directory: "
-                               "give --out DIR or an absolute file");
-    }
-    return (fs::path(ctx.outputDirectory()) / file).string();
+    const fs::path directory = ctx.outputDirectory().empty() ? fs::current_path() : fs::path(ctx.outputDirectory());
+    return (directory / file).lexically_normal().string();
   }
 
   Context& ctx_;

@@ -42,7 +42,13 @@ RecordingWriter::RecordingWriter(const std::string& path, const RecordingOptions
 std::size_t RecordingWriter::addTopic(const RecordedTopic& topic, bool* unknown_type) {
   auto schema = schema_by_type_.find(topic.type);
   if (schema == schema_by_type_.end()) {
-    const std::string definition = messageDefinition(topic.type);
+    std::string definition;
+    try {
+      definition = messageDefinition(topic.type);
+    } catch (const std::runtime_error&) {
+      // IDL outside the subset the definition parser reads (a user's union, say): the samples
+      // are kept all the same, as for a type not known at all.
+    }
     if (unknown_type) *unknown_type = definition.empty();
     schema = schema_by_type_.emplace(topic.type, writer_.addSchema(topic.type, kSchemaEncoding, definition)).first;
   } else if (unknown_type) {
