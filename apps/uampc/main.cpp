@@ -328,7 +328,7 @@ class UampcCli {
     uampc::app::PlayOptions& o = options_.play;
     CLI::App* sub = addCommand(
         "play",
-        "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock]",
+        "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] [--wait-for-readers]",
         "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
         "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
         "use the player component instead (config/scenes/replay_lo.yaml).");
@@ -345,6 +345,9 @@ class UampcCli {
     sub->add_option("--topics", o.topics, "Play only these topics (default: all).")->type_name("TOPIC ...");
     sub->add_flag("--loop", o.loop, "Start over at the end, until Ctrl-C.");
     sub->add_flag("--clock", o.clock, "Publish /clock (100 Hz) with the recording's time, as ros2 bag play --clock.");
+    sub->add_flag("--wait-for-readers", o.wait_for_readers,
+                  "Start only once every played topic has a reader (else after 0.5 s), so that no sample goes\n"
+                  "out before the system under test or a recorder hears it.");
     commands_.push_back({sub, [this] { return uampc::app::playCommand(options_.play); }});
   }
 

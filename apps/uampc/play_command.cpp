@@ -63,6 +63,27 @@ class Player {
     }
   }
 
+  // False when stopped by a signal first.
+  bool waitForReaders() const {
+    auto next_report = SteadyClock::now() + std::chrono::seconds(2);
+    for (;;) {
+      std::string missing;
+      for (std::size_t i = 0; i < writers_.size(); ++i) {
+        if (!writers_[i]) continue;
+        eprosima::fastdds::dds::PublicationMatchedStatus status;
+        writers_[i]->get_publication_matched_status(status);
+        if (status.current_count < 1) missing += " " + playback_.topics()[i].topic;
+      }
+      if (missing.empty()) return true;
+      if (g_signal) return false;
+      if (SteadyClock::now() > next_report) {
+        std::cerr << "uampc play: waiting for readers of" << missing << "\n";
+        next_report += std::chrono::seconds(5);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+
   // Plays once through; false when stopped by a signal.
   bool playOnce() {
     const auto started = SteadyClock::now();
@@ -145,8 +166,12 @@ int playCommand(const PlayOptions& options) {
               << playback.sampleCount() << " samples, " << (playback.end() - playback.start()).seconds()
               << " s, on domain " << domain << "\n";
     catchSignals();
-    // Give late readers a moment to match before the first samples go out, as ros2 bag play does.
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    if (options.wait_for_readers) {
+      if (!player.waitForReaders()) return 130;
+    } else {
+      // Give readers a moment to match before the first samples go out, as ros2 bag play does.
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    }
     do {
       if (!player.playOnce()) {
         player.printCosts();

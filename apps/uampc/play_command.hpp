@@ -1,4 +1,5 @@
-// `uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics T ...] [--loop] [--clock]`:
+// `uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics T ...] [--loop] [--clock]
+// [--wait-for-readers]`:
 // publishes a recording's samples with their recorded timing, in real time, beside a running
 // system (the player component does the same inside a scene, also in lockstep).
 #pragma once
@@ -15,7 +16,8 @@ struct PlayOptions {
   double start_s = 0.0;
   std::vector<std::string> topics;  // empty: all
   bool loop = false;
-  bool clock = false;  // publish /clock with the recording's time
+  bool clock = false;             // publish /clock with the recording's time
+  bool wait_for_readers = false;  // start once every topic has a reader (a recorder, the system under test)
 };
 
 // Exit codes: 0 at the end of the recording, 1 for a bad recording or DDS failure, 130 on Ctrl-C.

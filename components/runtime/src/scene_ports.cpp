@@ -150,6 +150,10 @@ void resolveScenePorts(Scene& scene, std::vector<std::string>& errors) {
     for (auto& c : scene.components) {
       const ScenePortResolver& resolve = c.library->spec().scenePortResolver();
       if (!resolve) continue;
+      // A parameter with an error has no value, and that error is reported already.
+      const auto& declared = c.library->spec().parameters();
+      if (!std::all_of(declared.begin(), declared.end(), [&](const auto& p) { return c.params.count(p.name); }))
+        continue;
       std::vector<PortSpec> decided;
       try {
         decided = resolve({c.params, writtenTopics(scene, &c)});
