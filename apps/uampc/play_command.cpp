@@ -1,7 +1,5 @@
 #include "play_command.hpp"
 
-#include <signal.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -9,6 +7,7 @@
 #include <iostream>
 #include <thread>
 
+#include "stop_signals.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/recording/playback.hpp"
 #include "uampc/runtime/dds_names.hpp"
@@ -21,16 +20,6 @@ namespace {
 
 using SteadyClock = std::chrono::steady_clock;
 using eprosima::fastdds::dds::DataWriter;
-
-std::atomic<int> g_signal{0};
-void onSignal(int signal) { g_signal = signal; }
-
-void catchSignals() {
-  struct sigaction action {};
-  action.sa_handler = onSignal;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
 
 constexpr double kClockRate = 100.0;  // Hz of /clock, as `ros2 bag play --clock` defaults to
 
@@ -75,7 +64,7 @@ class Player {
         if (status.current_count < 1) missing += " " + playback_.topics()[i].topic;
       }
       if (missing.empty()) return true;
-      if (g_signal) return false;
+      if (stopRequested()) return false;
       if (SteadyClock::now() > next_report) {
         std::cerr << "uampc play: waiting for readers of" << missing << "\n";
         next_report += std::chrono::seconds(5);
@@ -93,7 +82,7 @@ class Player {
     auto next_clock = started;
     recording::RecordedSample sample;
     while (!playback_.finished()) {
-      if (g_signal) return false;
+      if (stopRequested()) return false;
       const auto now = SteadyClock::now();
       const double elapsed_s = std::chrono::duration<double>(now - started).count() * options_.rate;
       const Time until = origin + Time::fromSeconds(elapsed_s);
@@ -165,7 +154,7 @@ int playCommand(const PlayOptions& options) {
     std::cerr << "uampc play: " << options.file << ": " << playback.topics().size() << " topics, "
               << playback.sampleCount() << " samples, " << (playback.end() - playback.start()).seconds()
               << " s, on domain " << domain << "\n";
-    catchSignals();
+    catchStopSignals();
     if (options.wait_for_readers) {
       if (!player.waitForReaders()) return 130;
     } else {

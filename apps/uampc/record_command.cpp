@@ -1,7 +1,5 @@
 #include "record_command.hpp"
 
-#include <signal.h>
-
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +11,7 @@
 #include <set>
 #include <thread>
 
+#include "stop_signals.hpp"
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
 #include "uampc/recording/recording_writer.hpp"
@@ -24,9 +23,6 @@ namespace uampc::app {
 namespace {
 
 using SteadyClock = std::chrono::steady_clock;
-
-std::atomic<int> g_signal{0};
-void onSignal(int signal) { g_signal = signal; }
 
 constexpr auto kPollPeriod = std::chrono::milliseconds(20);
 constexpr auto kProgressPeriod = std::chrono::seconds(5);
@@ -166,16 +162,13 @@ int recordCommand(const RecordOptions& options) {
       if (t.empty() || t.front() != '/') throw std::runtime_error("'" + t + "' is not a ROS topic name (/name/space)");
     }
     const int domain = options.domain_id >= 0 ? options.domain_id : rosDomainIdFromEnvironment().value_or(0);
-    struct sigaction action {};
-    action.sa_handler = onSignal;
-    sigaction(SIGINT, &action, nullptr);
-    sigaction(SIGTERM, &action, nullptr);
+    catchStopSignals();
     Recorder recorder(options, domain);
     std::cerr << "uampc record: writing " << options.output << " from domain " << domain << " (Ctrl-C stops)\n";
     const auto started = SteadyClock::now();
     auto next_progress = started + kProgressPeriod;
     auto elapsed = [&] { return std::chrono::duration<double>(SteadyClock::now() - started).count(); };
-    while (!g_signal && (options.duration_s <= 0 || elapsed() < options.duration_s)) {
+    while (!stopRequested() && (options.duration_s <= 0 || elapsed() < options.duration_s)) {
       recorder.subscribeNewTopics();
       recorder.writeArrived();
       if (SteadyClock::now() >= next_progress) {

@@ -1,7 +1,5 @@
 #include "topic_command.hpp"
 
-#include <signal.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
@@ -18,6 +16,7 @@
 #include <thread>
 #include <utility>
 
+#include "stop_signals.hpp"
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
 #include "topic/topic_statistics.hpp"
@@ -42,23 +41,13 @@ constexpr int kBadEnvironment = 2;
 constexpr auto kMoreWritersGrace = std::chrono::milliseconds(300);
 constexpr auto kReportPeriod = std::chrono::seconds(1);
 
-std::atomic<int> g_signal{0};
-void onSignal(int signal) { g_signal = signal; }
-
-void catchSignals() {
-  struct sigaction action {};
-  action.sa_handler = onSignal;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
 // Sleeps until `deadline`; false when a signal came first.
 bool sleepUntil(Clock::time_point deadline) {
   while (Clock::now() < deadline) {
-    if (g_signal) return false;
+    if (stopRequested()) return false;
     std::this_thread::sleep_for(std::min<Clock::duration>(deadline - Clock::now(), std::chrono::milliseconds(20)));
   }
-  return !g_signal;
+  return !stopRequested();
 }
 
 Clock::time_point after(double seconds) {
@@ -231,7 +220,7 @@ int echo(TopicDiscovery& discovery, const DiscoveredTopic& topic, const TopicOpt
       discovery.participant(), topic, decoding.size_hint,
       [&queue](SerializedMessage&& sample, const SampleTimes&) { queue.push(std::move(sample)); });
   int printed = 0;
-  while (!g_signal) {
+  while (!stopRequested()) {
     for (const SerializedMessage& sample : queue.takeAll(std::chrono::milliseconds(100))) {
       printSample(sample, decoding, options);
       if (options.count > 0 && ++printed >= options.count) return 0;
@@ -275,7 +264,7 @@ int oneTopic(const TopicOptions& options, int domain_id) {
   TopicDiscovery discovery(domain_id);
   const std::optional<DiscoveredTopic> topic =
       waitForWriter(discovery, ddsTopicFromUser(options.topic), options.wait_s);
-  if (g_signal) return 0;
+  if (stopRequested()) return 0;
   if (!topic) return noWriter(discovery, options, domain_id);
   std::set<std::string> types;
   for (const DiscoveredEndpoint& w : topic->writers) types.insert(w.type);
@@ -301,7 +290,7 @@ int topicCommand(const TopicOptions& options) {
       return kBadEnvironment;
     }
   }
-  catchSignals();
+  catchStopSignals();
   try {
     return options.action == TopicAction::kList ? list(options, domain_id) : oneTopic(options, domain_id);
   } catch (const std::runtime_error& e) {

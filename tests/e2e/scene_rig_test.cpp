@@ -26,8 +26,9 @@ TEST(SceneRig, ASetRigTiltReachesEveryComponentThatUsesTheRig) {
   ComponentCatalog catalog = installedComponents();
   const Scene scene = loadScene(sourcePath("config/scenes/default.yaml"), {parseOverride("rig.tilt_deg=45")}, catalog);
   const auto tilts = valuesOf(scene, "tilt_deg");
-  // raycaster, lo, mpc and evaluator describe the same rig.
-  EXPECT_EQ(tilts.size(), 4u);
+  // raycaster, lo, mpc, evaluator and tf_broadcaster describe the same rig.
+  EXPECT_EQ(tilts.size(), 5u);
+  EXPECT_TRUE(tilts.count("tf"));
   for (const auto& [instance, value] : tilts) EXPECT_EQ(std::get<double>(value), 45.0) << instance;
   EXPECT_EQ(std::get<double>(scene.rig.at("tilt_deg")), 45.0);
 }
