@@ -1,7 +1,5 @@
 #include "experiment_command.hpp"
 
-#include <signal.h>
-
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +11,7 @@
 #include "report_page.hpp"
 #include "results_table.hpp"
 #include "run_results.hpp"
+#include "stop_signals.hpp"
 #include "uampc/runtime/scene.hpp"
 
 namespace fs = std::filesystem;
@@ -20,10 +19,6 @@ namespace fs = std::filesystem;
 namespace uampc::app {
 
 namespace {
-
-std::atomic<bool> g_interrupted{false};
-
-void onInterrupt(int) { g_interrupted = true; }
 
 // Every scene with every controller's overrides, validated as `uampc launch` will, before the
 // first run starts: a typo in a controller's override should cost seconds, not an hour of runs.
@@ -93,11 +88,7 @@ int experimentCommand(const ExperimentOptions& options) {
   }
 
   fs::create_directories(options.output_directory);
-  struct sigaction action {};
-  action.sa_handler = onInterrupt;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  catchStopSignals();
   std::cerr << "uampc experiment " << experiment.name << ": " << plan.size() << " runs (" << experiment.scenes.size()
             << " scenes x " << experiment.controllers.size() << " controllers x " << experiment.seeds.size()
             << " seeds), " << options.jobs << " at a time on DDS domains " << options.domain_base << ".."
@@ -107,7 +98,7 @@ int experimentCommand(const ExperimentOptions& options) {
   runner.output_directory = options.output_directory;
   runner.jobs = options.jobs;
   runner.domain_base = options.domain_base;
-  runner.interrupted = &g_interrupted;
+  runner.interrupted = &stopFlag();
   const std::vector<RunResult> results = runAll(experiment, plan, runner);
 
   const ResultsTable table = summarize(experiment, results);
@@ -128,7 +119,7 @@ int experimentCommand(const ExperimentOptions& options) {
             << (out / "results.json").string() << "; report " << (out / "report" / "index.html").string() << " ("
             << report.figures << " figures)\n";
   if (failed) std::cerr << "uampc experiment: " << failed << " run(s) failed; run again to retry them\n";
-  if (g_interrupted) return 130;
+  if (stopRequested()) return 130;
   return failed ? 1 : 0;
 }
 

@@ -206,6 +206,7 @@ class Scheduler {
         continue;
       }
       const auto found = running_.find(exit->pid);
+      if (found == running_.end()) continue;  // not a run (the pool only holds runs; kept safe)
       const Running done = found->second;
       running_.erase(found);
       collect(done, exit->status);

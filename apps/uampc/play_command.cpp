@@ -44,7 +44,7 @@ class Player {
       }
       const std::string dds_type = ddsTypeName(topic.type);
       writers_.push_back(dds.createWriter(
-          topic.topic, topic.type, [dds_type] { return new SerializedTypeSupport(dds_type, 1024); }, topic.qos));
+          topic.topic, topic.type, [dds_type] { return SerializedTypeSupport::forDdsType(dds_type); }, topic.qos));
     }
     if (options.clock) {
       clock_writer_ = dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
@@ -77,6 +77,7 @@ class Player {
   bool playOnce() {
     const auto started = SteadyClock::now();
     const Time origin = playback_.start() + Time::fromSeconds(options_.start_s);
+    playback_.seek(origin);  // from the start, or past what --start skips without reading it
     const double length_s = (playback_.end() - origin).seconds();
     auto next_progress = started;
     auto next_clock = started;
@@ -166,7 +167,6 @@ int playCommand(const PlayOptions& options) {
         player.printCosts();
         return 130;
       }
-      playback.rewind();
     } while (options.loop);
     player.printCosts();
     return 0;

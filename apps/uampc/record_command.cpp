@@ -34,13 +34,6 @@ QosPreset presetOf(const DiscoveredEndpoint& writer) {
   return writer.reliable ? QosPreset::kControl : QosPreset::kSensor;
 }
 
-std::uint32_t sizeHint(const std::string& ros_type) {
-  const MessageTypeInfo* known = findMessageType(ros_type);
-  if (!known) return 1024;
-  std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support(known->make_type_support());
-  return support->m_typeSize;
-}
-
 // Samples arrive on Fast DDS's threads; the file is written from the main thread only.
 struct Arrival {
   std::size_t topic;
@@ -76,12 +69,11 @@ class Recorder {
         std::cerr << "uampc record: " << name << ": type " << type << " is not known to uampc: recorded without "
                   << "its definition (tools that decode will not know how)\n";
       }
-      subscriptions_.push_back(
-          std::make_unique<RawSubscription>(discovery_.participant(), topic, sizeHint(type),
-                                            [this, index](SerializedMessage&& sample, const SampleTimes& t) {
-                                              std::lock_guard<std::mutex> lock(mutex_);
-                                              arrivals_.push_back({index, t, std::move(sample)});
-                                            }));
+      subscriptions_.push_back(std::make_unique<RawSubscription>(
+          discovery_.participant(), topic, [this, index](SerializedMessage&& sample, const SampleTimes& t) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            arrivals_.push_back({index, t, std::move(sample)});
+          }));
       std::cerr << "uampc record: recording " << name << " (" << type << ")\n";
     }
   }

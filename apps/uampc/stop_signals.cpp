@@ -2,8 +2,6 @@
 
 #include <signal.h>
 
-#include <atomic>
-
 namespace uampc::app {
 
 namespace {
@@ -14,10 +12,12 @@ void onSignal(int) { g_stop = true; }
 void catchStopSignals() {
   struct sigaction action {};
   action.sa_handler = onSignal;
+  sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 }
 
 bool stopRequested() { return g_stop; }
+const std::atomic<bool>& stopFlag() { return g_stop; }
 
 }  // namespace uampc::app

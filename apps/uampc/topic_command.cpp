@@ -151,17 +151,12 @@ int noWriter(const TopicDiscovery& discovery, const TopicOptions& options, int d
 // How samples of a DDS type are decoded: by the structure of its IDL when this uampc has it.
 struct Decoding {
   std::optional<MessageStructure> structure;
-  std::uint32_t size_hint = 1024;
   std::string why_not;  // when there is no structure
 };
 
 Decoding decodingOf(const std::string& dds_type) {
   Decoding d;
   const std::string ros_type = rosTypeName(dds_type);
-  if (const MessageTypeInfo* info = ros_type.empty() ? nullptr : findMessageType(ros_type)) {
-    std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support(info->make_type_support());
-    d.size_hint = support->m_typeSize;
-  }
   try {
     if (!ros_type.empty()) d.structure = findMessageStructure(ros_type);
     if (!d.structure) d.why_not = "no message library loaded by uampc has it";
@@ -217,7 +212,7 @@ int echo(TopicDiscovery& discovery, const DiscoveredTopic& topic, const TopicOpt
   }
   SampleQueue queue;
   RawSubscription subscription(
-      discovery.participant(), topic, decoding.size_hint,
+      discovery.participant(), topic,
       [&queue](SerializedMessage&& sample, const SampleTimes&) { queue.push(std::move(sample)); });
   int printed = 0;
   while (!stopRequested()) {
@@ -236,12 +231,11 @@ int measure(TopicDiscovery& discovery, const DiscoveredTopic& topic, const Topic
   TopicStatistics statistics(static_cast<std::size_t>(window));
   std::mutex mutex;
   const Clock::time_point start = Clock::now();
-  RawSubscription subscription(discovery.participant(), topic, decodingOf(topic.writers.front().type).size_hint,
-                               [&](SerializedMessage&& sample, const SampleTimes& times) {
-                                 std::lock_guard<std::mutex> lock(mutex);
-                                 statistics.add(std::chrono::duration<double>(times.arrived - start).count(),
-                                                sample.data.size());
-                               });
+  RawSubscription subscription(
+      discovery.participant(), topic, [&](SerializedMessage&& sample, const SampleTimes& times) {
+        std::lock_guard<std::mutex> lock(mutex);
+        statistics.add(std::chrono::duration<double>(times.arrived - start).count(), sample.data.size());
+      });
   const auto report = [&] { std::cout << (hz ? statistics.hzReport() : statistics.bwReport()) << std::flush; };
   std::size_t reported = 0;
   for (Clock::time_point next = start + kReportPeriod;; next += kReportPeriod) {

@@ -31,7 +31,12 @@ for scene in config/scenes/*.yaml; do
       # What the run was (start time, version, paths, domain): metrics.json's figures without its
       # last key "run", printed as the evaluator printed them before it had one; the resolved
       # scene without its domain; run_info.json not at all.
-      metrics.json) hash="$({ sed '/^  "run": {$/,$d' "$file" | sed '$ s/^  },$/  }/'; echo "}"; } | sha256sum | cut -c1-16)" ;;
+      metrics.json)
+        if grep -q '^  "run": {$' "$file"; then
+          hash="$({ sed '/^  "run": {$/,$d' "$file" | sed '$ s/^  },$/  }/'; echo "}"; } | sha256sum | cut -c1-16)"
+        else
+          hash="$(sha256sum "$file" | cut -c1-16)"  # no run record (the evaluator said why)
+        fi ;;
       scene.yaml) hash="$(grep -v '^domain_id: ' "$file" | sha256sum | cut -c1-16)" ;;
       run_info.json) continue ;;
       *) hash="$(sha256sum "$file" | cut -c1-16)" ;;

@@ -36,11 +36,10 @@ DataReaderQos readerQos(Subscriber* subscriber, const DiscoveredTopic& topic) {
 
 }  // namespace
 
-RawSubscription::RawSubscription(DomainParticipant* participant, const DiscoveredTopic& topic,
-                                 std::uint32_t max_size_hint, OnSample on_sample)
+RawSubscription::RawSubscription(DomainParticipant* participant, const DiscoveredTopic& topic, OnSample on_sample)
     : participant_(participant), listener_(std::move(on_sample)) {
   const std::string& type = topic.writers.at(0).type;
-  TypeSupport support(new SerializedTypeSupport(type, max_size_hint));
+  TypeSupport support(SerializedTypeSupport::forDdsType(type));
   if (support.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
     throw std::runtime_error("cannot register DDS type " + type);
   }

@@ -29,10 +29,9 @@ class RawSubscription {
 
   // Reads `topic` as its first writer's type. QoS as discovered: reliable when every writer is
   // (a reliable reader would not match a best-effort writer), transient-local when every writer is,
-  // so that a latched topic's kept samples arrive too. max_size_hint: the type's largest size when
-  // known (SerializedTypeSupport). Throws std::runtime_error when DDS refuses the reader.
+  // so that a latched topic's kept samples arrive too. Throws std::runtime_error when DDS refuses the reader.
   RawSubscription(eprosima::fastdds::dds::DomainParticipant* participant, const DiscoveredTopic& topic,
-                  std::uint32_t max_size_hint, OnSample on_sample);
+                  OnSample on_sample);
   ~RawSubscription();
   RawSubscription(const RawSubscription&) = delete;
   RawSubscription& operator=(const RawSubscription&) = delete;

@@ -18,11 +18,6 @@ using namespace detail;
 
 namespace {
 
-// Decoded chunks kept between calls of forEachMessage: a player reads a window at a time, and the
-// chunk at a window's edge is then decompressed once, not once per window (four chunks of the
-// default size).
-constexpr std::uint64_t kChunkCacheBytes = 16 * 1024 * 1024;
-
 // Where messages come from: a chunk, or one Message record outside any chunk.
 struct Source {
   std::uint64_t start_time = 0;
@@ -56,6 +51,19 @@ struct LaterFirst {
 
 }  // namespace
 
+// A k-way merge of the sources by log_time: a source is opened when the earliest message not yet
+// handed out is no earlier than the source's start, so only chunks overlapping in time are in
+// memory.
+struct MessageStream::Merge {
+  std::set<std::uint16_t> wanted;
+  std::uint64_t start_ns = 0;
+  std::vector<Source> sources;
+  std::size_t next_source = 0;
+  std::deque<Cursor> cursors;
+  std::priority_queue<Cursor*, std::vector<Cursor*>, LaterFirst> heap;
+  Cursor* handed_out = nullptr;  // its current message was handed out last; moved on at the next call
+};
+
 class Reader::Impl {
  public:
   explicit Impl(const std::string& path) : file_(path), index_(indexFile(file_)) {
@@ -70,39 +78,41 @@ class Reader::Impl {
     return found == index_.channels.end() ? nullptr : &*found;
   }
 
-  // A k-way merge of the sources by log_time: a source is opened when the earliest message not yet
-  // visited is no earlier than the source's start, so only chunks overlapping in time are in memory.
-  void forEachMessage(const std::vector<std::string>& topics, std::uint64_t start_ns,
-                      const std::function<bool(const MessageView&)>& visit) {
-    const std::set<std::uint16_t> wanted = wantedChannels(topics);
-    const std::vector<Source> sources = sourcesFor(wanted, start_ns);
-    std::deque<Cursor> cursors;
-    std::priority_queue<Cursor*, std::vector<Cursor*>, LaterFirst> heap;
-    std::size_t next_source = 0;
-    while (true) {
-      while (next_source < sources.size() &&
-             (heap.empty() || sources[next_source].start_time <= heap.top()->current().log_time)) {
-        cursors.push_back(open(sources[next_source++], wanted, start_ns));
-        if (cursors.back().messages.empty()) {
-          cursors.pop_back();
-        } else {
-          heap.push(&cursors.back());
-        }
-      }
-      if (heap.empty()) return;
-      Cursor* cursor = heap.top();
-      heap.pop();
-      const MessageRecord& m = cursor->current();
-      const MessageView view{
-          &index_.channels[channel_by_id_.at(m.channel_id)], m.sequence, m.log_time, m.publish_time, m.data, m.size};
-      if (!visit(view)) return;
-      if (++cursor->next < cursor->messages.size()) {
-        heap.push(cursor);
+  std::unique_ptr<MessageStream::Merge> startMerge(const std::vector<std::string>& topics,
+                                                   std::uint64_t start_ns) const {
+    auto merge = std::make_unique<MessageStream::Merge>();
+    merge->wanted = wantedChannels(topics);
+    merge->start_ns = start_ns;
+    merge->sources = sourcesFor(merge->wanted, start_ns);
+    return merge;
+  }
+
+  bool next(MessageStream::Merge& m, MessageView& view) {
+    if (Cursor* done = m.handed_out) {
+      m.handed_out = nullptr;
+      if (++done->next < done->messages.size()) {
+        m.heap.push(done);
       } else {
-        cursor->bytes.reset();  // its buffer is not needed any more
-        cursor->messages.clear();
+        done->bytes.reset();  // its buffer is not needed any more
+        done->messages.clear();
       }
     }
+    while (m.next_source < m.sources.size() &&
+           (m.heap.empty() || m.sources[m.next_source].start_time <= m.heap.top()->current().log_time)) {
+      m.cursors.push_back(open(m.sources[m.next_source++], m.wanted, m.start_ns));
+      if (m.cursors.back().messages.empty()) {
+        m.cursors.pop_back();
+      } else {
+        m.heap.push(&m.cursors.back());
+      }
+    }
+    if (m.heap.empty()) return false;
+    Cursor* cursor = m.heap.top();
+    m.heap.pop();
+    m.handed_out = cursor;
+    const MessageRecord& r = cursor->current();
+    view = {&index_.channels[channel_by_id_.at(r.channel_id)], r.sequence, r.log_time, r.publish_time, r.data, r.size};
+    return true;
   }
 
  private:
@@ -184,26 +194,12 @@ class Reader::Impl {
     }
   }
 
-  ChunkRecords chunkRecords(const ChunkLocation& chunk) {
-    for (const auto& [offset, records] : cache_) {
-      if (offset == chunk.offset) return records;
-    }
-    const ChunkRecords records = loadChunk(file_, chunk, decoder_);
-    cache_.emplace_back(chunk.offset, records);
-    cached_bytes_ += records.owner->size();
-    while (cached_bytes_ > kChunkCacheBytes && cache_.size() > 1) {
-      cached_bytes_ -= cache_.front().second.owner->size();
-      cache_.pop_front();
-    }
-    return records;
-  }
+  ChunkRecords chunkRecords(const ChunkLocation& chunk) { return loadChunk(file_, chunk, decoder_); }
 
   InputFile file_;
   FileIndex index_;
   std::unordered_map<std::uint16_t, std::size_t> channel_by_id_;
-  ChunkDecoder decoder_;  // before cache_, whose buffers go back to it when the reader is destroyed
-  std::deque<std::pair<std::uint64_t, ChunkRecords>> cache_;  // by chunk offset, oldest first
-  std::uint64_t cached_bytes_ = 0;
+  ChunkDecoder decoder_;
 };
 
 Reader::Reader(const std::string& path) : impl_(std::make_unique<Impl>(path)) {}
@@ -222,7 +218,23 @@ const std::vector<std::string>& Reader::warnings() const { return impl_->index()
 
 void Reader::forEachMessage(const std::vector<std::string>& topics, std::uint64_t start_ns,
                             const std::function<bool(const MessageView&)>& visit) {
-  impl_->forEachMessage(topics, start_ns, visit);
+  MessageStream stream = messages(topics, start_ns);
+  MessageView view{};
+  while (stream.next(view)) {
+    if (!visit(view)) return;
+  }
 }
+
+MessageStream Reader::messages(const std::vector<std::string>& topics, std::uint64_t start_ns) {
+  return MessageStream(*impl_, impl_->startMerge(topics, start_ns));
+}
+
+MessageStream::MessageStream(Reader::Impl& reader, std::unique_ptr<Merge> merge)
+    : reader_(&reader), merge_(std::move(merge)) {}
+MessageStream::~MessageStream() = default;
+MessageStream::MessageStream(MessageStream&&) noexcept = default;
+MessageStream& MessageStream::operator=(MessageStream&&) noexcept = default;
+
+bool MessageStream::next(MessageView& message) { return reader_->next(*merge_, message); }
 
 }  // namespace uampc::mcap

@@ -61,6 +61,7 @@ class PlayerComponent : public Component {
       const bool same_time_line = ctx_.lockstep() && playback_.clock() == recording::RecordingClock::kLockstep;
       origin_clock_ = same_time_line ? Time{0} : ctx_.now();
       origin_recording_ = same_time_line ? skip_ : playback_.start() + skip_;
+      if (skip_.ns > 0) playback_.seek(origin_recording_);  // never read what is skipped
     }
     const Time until = recordingTime(ctx_.now());
     recording::RecordedSample sample;
@@ -70,9 +71,9 @@ class PlayerComponent : public Component {
     }
     if (playback_.finished() && loop_) {
       // The next pass starts where the clock is now, one pass later on the recording's time line.
-      playback_.rewind();
       origin_clock_ = ctx_.now();
       origin_recording_ = playback_.start() + skip_;
+      playback_.seek(origin_recording_);
     } else if (playback_.finished() && !reported_end_) {
       reported_end_ = true;
       ctx_.log().info("the recording has ended");

@@ -42,8 +42,13 @@ void applyPreset(Qos& qos, QosPreset preset, bool lockstep) {
 
 }  // namespace
 
-DdsNode::DdsNode(int domain_id, const std::string& profile_file, bool lockstep,
-                 const std::string& participant_name)
+DataWriterQos writerQosOf(QosPreset preset, bool lockstep) {
+  DataWriterQos qos = DATAWRITER_QOS_DEFAULT;
+  applyPreset(qos, preset, lockstep);
+  return qos;
+}
+
+DdsNode::DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name)
     : lockstep_(lockstep) {
   auto* factory = DomainParticipantFactory::get_instance();
   if (!profile_file.empty() && factory->load_XML_profiles_file(profile_file) != ReturnCode_t::RETCODE_OK) {
@@ -68,8 +73,8 @@ Topic* DdsNode::topic(const std::string& ros_topic, const std::string& type_name
                       const TypeSupportMaker& type_support) {
   if (auto it = topics_.find(ros_topic); it != topics_.end()) {
     if (topic_types_[ros_topic] != type_name) {
-      throw std::runtime_error("topic " + ros_topic + " is used with two types: " + topic_types_[ros_topic] +
-                               " and " + type_name);
+      throw std::runtime_error("topic " + ros_topic + " is used with two types: " + topic_types_[ros_topic] + " and " +
+                               type_name);
     }
     return it->second;
   }

@@ -18,7 +18,7 @@ class Lexer {
  public:
   Lexer(const std::string& text, const std::string& file) : text_(text), file_(file) {
     while (skipSpaceAndComments()) {
-      if (atLineStart() && text_[pos_] == '#') {
+      if (text_[pos_] == '#' && atLineStart()) {
         directive();
       } else {
         tokens_.push_back(token());

@@ -148,7 +148,7 @@ class ProcessSupervisor {
 }  // namespace
 
 // The run's record in its output directory (run_record.hpp); false, said, when it cannot be written.
-bool recordRun(const Scene& scene, const LaunchOptions& options) {
+static bool recordRun(const Scene& scene, const LaunchOptions& options) {
   try {
     fs::create_directories(options.output_directory);
     writeRunRecord(scene, options);

@@ -94,7 +94,7 @@ std::string typeText(const FieldType& type, FieldDefinition::Collection collecti
   std::string text;
   switch (type.kind) {
     case FieldType::Kind::kPrimitive:
-      text = rosTypeName(type.primitive);
+      text = msgPrimitiveName(type.primitive);
       break;
     case FieldType::Kind::kString:
       text = type.string_bound ? "string<=" + std::to_string(type.string_bound) : "string";

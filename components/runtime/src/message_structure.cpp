@@ -2,7 +2,7 @@
 
 namespace uampc {
 
-const char* rosTypeName(PrimitiveType type) {
+const char* msgPrimitiveName(PrimitiveType type) {
   switch (type) {
     case PrimitiveType::kBool:
       return "bool";

@@ -4,14 +4,14 @@
 #include <condition_variable>
 #include <deque>
 #include <map>
-#include <set>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <thread>
 
-#include "uampc/runtime/dds_node.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
+#include "uampc/runtime/dds_node.hpp"
 #include "wakeup.hpp"
 
 namespace uampc {
@@ -22,8 +22,7 @@ using SteadyClock = std::chrono::steady_clock;
 namespace {
 
 Time wallNow() {
-  return Time{std::chrono::duration_cast<std::chrono::nanoseconds>(
-                  std::chrono::system_clock::now().time_since_epoch())
+  return Time{std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
                   .count()};
 }
 
@@ -84,7 +83,8 @@ class DdsWriter : public detail::Writer {
     if (state_.lockstep && !state_.started && qos_ != QosPreset::kLatched) {
       // Before the run starts, readers in other processes may not be matched yet and the sample
       // would be lost. Latched samples are kept for them, so those may be written.
-      throw std::logic_error("publishing on " + topic_ + " before the run started; publish from a timer or a "
+      throw std::logic_error("publishing on " + topic_ +
+                             " before the run started; publish from a timer or a "
                              "callback, or declare the port latched");
     }
     auto* data = const_cast<void*>(sample);  // Fast DDS takes void* but does not modify it
@@ -99,8 +99,7 @@ class DdsWriter : public detail::Writer {
       rc = writer_->write(data) ? ReturnCode_t::RETCODE_OK : ReturnCode_t::RETCODE_ERROR;
     }
     if (rc != ReturnCode_t::RETCODE_OK) {
-      throw std::runtime_error("publishing on " + topic_ + " failed (DDS return code " +
-                               std::to_string(rc()) + ")");
+      throw std::runtime_error("publishing on " + topic_ + " failed (DDS return code " + std::to_string(rc()) + ")");
     }
     ++written_;
   }
@@ -120,8 +119,8 @@ class DdsWriter : public detail::Writer {
 class ContextImpl : public Context {
  public:
   // serialized_dds: the participant of the process's serialized ports, made on first use.
-  ContextImpl(const Scene& scene, const ComponentInstance& instance, const std::string& output_directory,
-              DdsNode& dds, std::function<DdsNode&()> serialized_dds, ProcessState& state,
+  ContextImpl(const Scene& scene, const ComponentInstance& instance, const std::string& output_directory, DdsNode& dds,
+              std::function<DdsNode&()> serialized_dds, ProcessState& state,
               std::vector<std::shared_ptr<DdsWriter>>& writers)
       : scene_(scene),
         instance_(instance),
@@ -246,14 +245,8 @@ class ContextImpl : public Context {
     state_.readers.push_back(std::move(r));
   }
 
-  // The real type's maximum size, when this process knows the type, sizes Fast DDS's buffers.
   static TypeSupportMaker serializedTypeSupport(const PortSpec& spec) {
-    std::uint32_t size_hint = 1024;
-    if (const MessageTypeInfo* known = findMessageType(spec.type_name)) {
-      std::unique_ptr<TopicDataType> real(known->make_type_support());
-      size_hint = real->m_typeSize;
-    }
-    return [name = ddsTypeName(spec.type_name), size_hint] { return new SerializedTypeSupport(name, size_hint); };
+    return [name = ddsTypeName(spec.type_name)] { return SerializedTypeSupport::forDdsType(name); };
   }
 
   const PortSpec& checkPort(const std::string& port, PortDirection direction, const char* type_name) const {
@@ -463,8 +456,8 @@ class ProcessRunner {
       if (missing.empty()) return true;
       if (stop) return false;
       if (SteadyClock::now() > deadline) {
-        log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(), " s; still missing:",
-                   missing);
+        log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(),
+                   " s; still missing:", missing);
         return false;
       }
       if (SteadyClock::now() > next_report) {
@@ -538,20 +531,21 @@ class ProcessRunner {
     clock_reader_ = std::make_unique<ReaderPort>();
     clock_reader_->topic = kClockTopic;
     clock_reader_->type = TypeSupport(detail::makeTypeSupport<rosgraph_msgs::msg::Clock>());
-    clock_reader_->reader = dds_.createReader(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
-                                              QosPreset::kControl, &state_.wakeup);
+    clock_reader_->reader =
+        dds_.createReader(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                          &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl, &state_.wakeup);
     ack_writer_ = std::make_unique<DdsWriter>(
-        dds_, dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+        dds_,
+        dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                           &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
         kStepAckTopic, QosPreset::kControl, state_);
     // Every process reads every acknowledgement: they say how many samples to wait for.
     ack_reader_ = std::make_unique<ReaderPort>();
     ack_reader_->topic = kStepAckTopic;
     ack_reader_->type = TypeSupport(detail::makeTypeSupport<uampc::msg::StepAck>());
-    ack_reader_->reader = dds_.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
-                                            &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl,
-                                            &state_.wakeup);
+    ack_reader_->reader =
+        dds_.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &state_.wakeup);
     if (!waitForMatches(stop)) return stop ? 0 : 1;
     state_.started = true;
     sendAck(-1, Time{0});  // ready
@@ -582,7 +576,8 @@ class ProcessRunner {
       for (const auto& t : state_.timers) {
         if (t.next.ns >= 0 && t.next < next) next = t.next;
       }
-      if (next > state_.now) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::nanoseconds((next - state_.now).ns));
+      if (next > state_.now)
+        state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::nanoseconds((next - state_.now).ns));
       state_.now = wallNow();
       if (!deliverInputs(nullptr) || !fireTimers()) return 1;
     }

@@ -1,6 +1,10 @@
 #include "uampc/runtime/serialized_message.hpp"
 
 #include <cstring>
+#include <memory>
+
+#include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/message_type.hpp"
 
 namespace uampc {
 
@@ -17,6 +21,15 @@ SerializedTypeSupport::SerializedTypeSupport(const std::string& dds_type_name, s
   m_isGetKeyDefined = false;  // ROS 2 types have no keys
   auto_fill_type_object(false);
   auto_fill_type_information(false);
+}
+
+SerializedTypeSupport* SerializedTypeSupport::forDdsType(const std::string& dds_type_name) {
+  const std::string ros_type = rosTypeName(dds_type_name);
+  if (const MessageTypeInfo* known = ros_type.empty() ? nullptr : findMessageType(ros_type)) {
+    const std::unique_ptr<TopicDataType> real(known->make_type_support());
+    return new SerializedTypeSupport(dds_type_name, real->m_typeSize);
+  }
+  return new SerializedTypeSupport(dds_type_name);
 }
 
 bool SerializedTypeSupport::serialize(void* data, SerializedPayload_t* payload) {

@@ -1,6 +1,7 @@
 #include "uampc/runtime/yaml_printer.hpp"
 
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -9,29 +10,30 @@
 namespace uampc {
 namespace {
 
-// The fewest significant digits that read back as the same value, in the form PyYAML (and so
-// `ros2 topic echo`) writes floats: always with a '.', "1.0e-05" rather than "1e-05".
+// The shortest text that reads back as the same value, in the form PyYAML (and so `ros2 topic
+// echo`) writes floats: Python's repr (positional for exponents -4 to 15, else scientific), always
+// with a '.': "100.0", "1.0e-05", "1.0e+16".
+template <typename Float>
+std::string shortestFloat(Float value) {
+  char text[64];
+  const auto scientific = std::to_chars(text, text + sizeof text, value, std::chars_format::scientific);
+  std::string result(text, scientific.ptr);
+  const int exponent = std::stoi(result.substr(result.find('e') + 1));
+  if (exponent >= -4 && exponent < 16) {
+    const auto fixed = std::to_chars(text, text + sizeof text, value, std::chars_format::fixed);
+    result.assign(text, fixed.ptr);
+  }
+  if (result.find('.') == std::string::npos) {
+    const auto e = result.find('e');
+    result.insert(e == std::string::npos ? result.size() : e, ".0");
+  }
+  return result;
+}
+
 std::string shortestFloat(double value, bool single_precision) {
   if (std::isnan(value)) return ".nan";
   if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
-  char text[40];
-  const int most_digits = single_precision ? 9 : 17;
-  for (int digits = 1; digits <= most_digits; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    const bool same = single_precision ? std::strtof(text, nullptr) == static_cast<float>(value)
-                                       : std::strtod(text, nullptr) == value;
-    if (same) break;
-  }
-  std::string result = text;
-  if (result.find('.') == std::string::npos) {
-    const auto exponent = result.find('e');
-    if (exponent == std::string::npos) {
-      result += ".0";
-    } else {
-      result.insert(exponent, ".0");
-    }
-  }
-  return result;
+  return single_precision ? shortestFloat(static_cast<float>(value)) : shortestFloat(value);
 }
 
 bool isByteType(PrimitiveType type) {

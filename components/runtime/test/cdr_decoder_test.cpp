@@ -329,6 +329,17 @@ TEST(YamlPrinter, NestedStructsIndentedAndSequencesOfPrimitivesInFlowStyle) {
             "effort: [0.3333333333333333, 1.0e-05]\n");
 }
 
+TEST(YamlPrinter, FloatsAreWrittenAsPythonsReprWrites) {
+  // Positional from 1e-4 to below 1e16, else scientific; always with a '.' (PyYAML).
+  const std::vector<std::pair<double, std::string>> cases = {{100.0, "100.0"},  {1500.0, "1500.0"}, {0.0001, "0.0001"},
+                                                             {1e-5, "1.0e-05"}, {1e16, "1.0e+16"},  {-2.5, "-2.5"}};
+  for (const auto& [value, text] : cases) {
+    std_msgs::msg::Float64 m;
+    m.data(value);
+    EXPECT_EQ(toYaml(decode("std_msgs/msg/Float64", serialized(m))), "data: " + text + "\n") << value;
+  }
+}
+
 TEST(YamlPrinter, SequencesOfStructsAsItemsAndLongByteArraysElided) {
   const DecodedValue v = decode("sensor_msgs/msg/PointCloud2", serialized(pointCloud(kLongestBytesShown + 1)));
   const std::string expected_start =

@@ -7,9 +7,9 @@ namespace uampc::recording {
 
 namespace {
 
-// How far ahead of what is due the file is read, in log time: one window's samples are held in
-// memory (about 10 scans of a Mid-360 a second), and a sample received up to this long after it
-// was published still goes out in order.
+// How far ahead of what is due the file is read, in log time: about a second of samples is held in
+// memory (10 scans of a Mid-360), and a sample received up to this long after it was published
+// still goes out in order.
 const Time kReadWindow = Time::fromSeconds(1.0);
 
 std::string join(const std::vector<std::string>& names) {
@@ -58,27 +58,30 @@ Playback::Playback(const std::string& path, const std::vector<std::string>& topi
   sample_count_ = reader_->messageCount();
   // The start is the first sample's due time; a lockstep recording's samples are due when they
   // were published, before they were logged (latched ones at 0).
-  read_to_ = first_log;
-  readAhead(first_log);
+  seek(first_log);
+  readAhead(first_log + kReadWindow);
   start_ = first_log;
   for (const auto& sample : pending_) start_ = std::min(start_, sample.time);
 }
 
 void Playback::readAhead(Time until) {
-  while (read_to_ <= until && read_to_ <= end_) {
-    const Time window_end = read_to_ + kReadWindow;
-    reader_->forEachMessage(topic_names_, static_cast<std::uint64_t>(read_to_.ns), [&](const mcap::MessageView& m) {
-      if (static_cast<std::int64_t>(m.log_time) >= window_end.ns) return false;
-      const auto topic = topic_by_channel_.find(m.channel->id);
-      if (topic == topic_by_channel_.end()) return true;
-      RecordedSample sample;
-      sample.topic = topic->second;
-      sample.time = Time{static_cast<std::int64_t>(clock_ == RecordingClock::kLockstep ? m.publish_time : m.log_time)};
-      sample.data.data.assign(m.data, m.data + m.size);
-      pending_.push_back(std::move(sample));
-      return true;
-    });
-    read_to_ = window_end;
+  mcap::MessageView m{};
+  while (!exhausted_ && read_to_ <= until) {
+    if (!stream_->next(m)) {
+      exhausted_ = true;
+      return;
+    }
+    const auto topic = topic_by_channel_.find(m.channel->id);
+    if (topic == topic_by_channel_.end()) continue;
+    RecordedSample sample;
+    sample.topic = topic->second;
+    sample.time = Time{static_cast<std::int64_t>(clock_ == RecordingClock::kLockstep ? m.publish_time : m.log_time)};
+    sample.data.data.assign(m.data, m.data + m.size);
+    read_to_ = Time{static_cast<std::int64_t>(m.log_time)};
+    // Due times may be out of log order (a lockstep sample delivered late); ties keep file order.
+    const auto at = std::upper_bound(pending_.begin(), pending_.end(), sample.time,
+                                     [](Time t, const RecordedSample& s) { return t < s.time; });
+    pending_.insert(at, std::move(sample));
   }
 }
 
@@ -90,9 +93,11 @@ bool Playback::next(Time until, RecordedSample& sample) {
   return true;
 }
 
-void Playback::rewind() {
+void Playback::seek(Time time) {
   pending_.clear();
-  read_to_ = Time{static_cast<std::int64_t>(reader_->startTime())};
+  exhausted_ = false;
+  read_to_ = time;
+  stream_.emplace(reader_->messages(topic_names_, static_cast<std::uint64_t>(std::max<std::int64_t>(time.ns, 0))));
 }
 
 }  // namespace uampc::recording

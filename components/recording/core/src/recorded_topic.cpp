@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "uampc/runtime/dds_node.hpp"
+
 namespace uampc::recording {
 
 namespace {
@@ -10,28 +12,18 @@ constexpr char kQosKey[] = "uampc_qos";
 constexpr char kClockKey[] = "uampc_clock";
 constexpr char kRosbagQosKey[] = "offered_qos_profiles";
 
-// rosbag2's (Humble) YAML for one offered QoS profile, enums as rmw numbers: history 1 keep last,
-// 2 keep all; reliability 1 reliable, 2 best effort; durability 1 transient local, 2 volatile;
-// liveliness 1 automatic; durations "infinite" as rosbag2 writes them.
-std::string rosbagQosProfile(QosPreset qos, RecordingClock clock) {
-  const bool lockstep = clock == RecordingClock::kLockstep;
-  int history = 1, depth = 10, reliability = 1, durability = 2;
-  switch (qos) {
-    case QosPreset::kSensor:
-      depth = 5;
-      reliability = lockstep ? 1 : 2;
-      history = lockstep ? 2 : 1;
-      break;
-    case QosPreset::kControl:
-      history = lockstep ? 2 : 1;
-      break;
-    case QosPreset::kLatched:
-      depth = 100;
-      durability = 1;
-      break;
-  }
+// rosbag2's (Humble) YAML for one offered QoS profile, of the QoS the runtime gives the preset
+// (dds_node.hpp): enums as rmw numbers (history 1 keep last, 2 keep all; reliability 1 reliable,
+// 2 best effort; durability 1 transient local, 2 volatile; liveliness 1 automatic), durations
+// "infinite" as rosbag2 writes them.
+std::string rosbagQosProfile(QosPreset preset, RecordingClock clock) {
+  using namespace eprosima::fastdds::dds;
+  const DataWriterQos qos = writerQosOf(preset, clock == RecordingClock::kLockstep);
+  const int history = qos.history().kind == KEEP_ALL_HISTORY_QOS ? 2 : 1;
+  const int reliability = qos.reliability().kind == RELIABLE_RELIABILITY_QOS ? 1 : 2;
+  const int durability = qos.durability().kind == TRANSIENT_LOCAL_DURABILITY_QOS ? 1 : 2;
   const std::string infinite = "{sec: 2147483647, nsec: 4294967295}";
-  return "- history: " + std::to_string(history) + "\n  depth: " + std::to_string(depth) +
+  return "- history: " + std::to_string(history) + "\n  depth: " + std::to_string(qos.history().depth) +
          "\n  reliability: " + std::to_string(reliability) + "\n  durability: " + std::to_string(durability) +
          "\n  deadline: " + infinite + "\n  lifespan: " + infinite +
          "\n  liveliness: 1\n  liveliness_lease_duration: " + infinite + "\n  avoid_ros_namespace_conventions: false";

@@ -45,7 +45,8 @@ struct Channel {
   std::map<std::string, std::string> metadata;
 };
 
-// A message as forEachMessage hands it out: `data` is valid during the visit only.
+// A message as forEachMessage and MessageStream hand it out: `data` is valid during the visit
+// (until the stream's next call) only.
 struct MessageView {
   const Channel* channel;
   std::uint32_t sequence;
@@ -86,6 +87,8 @@ class Writer {
 // killed before close(), a damaged summary) by scanning the data section, keeping every complete
 // chunk whose CRC is right up to the first truncated or corrupt record (recovered(), warnings()).
 // Throws McapError("FILE: record at byte OFFSET: what is wrong") on bad input.
+class MessageStream;
+
 class Reader {
  public:
   explicit Reader(const std::string& path);
@@ -110,10 +113,30 @@ class Reader {
   // start_ns. `visit` returns false to stop.
   void forEachMessage(const std::vector<std::string>& topics, std::uint64_t start_ns,
                       const std::function<bool(const MessageView&)>& visit);
+  // The same messages, pulled one at a time: a player goes through a long file once, holding only
+  // the chunks that overlap in time. The stream uses this reader, which must outlive it.
+  MessageStream messages(const std::vector<std::string>& topics, std::uint64_t start_ns);
 
  private:
+  friend class MessageStream;
   class Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+class MessageStream {
+ public:
+  ~MessageStream();
+  MessageStream(MessageStream&&) noexcept;
+  MessageStream& operator=(MessageStream&&) noexcept;
+  // The next message, false at the end. Throws McapError for a damaged chunk on the way.
+  bool next(MessageView& message);
+
+ private:
+  friend class Reader;
+  struct Merge;
+  MessageStream(Reader::Impl& reader, std::unique_ptr<Merge> merge);
+  Reader::Impl* reader_;
+  std::unique_ptr<Merge> merge_;
 };
 
 }  // namespace uampc::mcap

@@ -6,6 +6,7 @@
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
@@ -21,6 +22,10 @@
 #include "uampc/runtime/qos.hpp"
 
 namespace uampc {
+
+// The writer QoS a preset means (docs/design.md section 4): in lockstep every stream is reliable
+// and keeps every sample. Readers get the same reliability, durability and history.
+eprosima::fastdds::dds::DataWriterQos writerQosOf(QosPreset preset, bool lockstep);
 
 // Makes a new type support; DdsNode registers it once per type.
 using TypeSupportMaker = std::function<eprosima::fastdds::dds::TopicDataType*()>;

@@ -29,7 +29,7 @@ enum class PrimitiveType {
 };
 
 // How a .msg file names the type: "bool", "byte", "float64", ...
-const char* rosTypeName(PrimitiveType type);
+const char* msgPrimitiveName(PrimitiveType type);
 // Bytes in CDR, which is also its alignment.
 std::size_t cdrSize(PrimitiveType type);
 

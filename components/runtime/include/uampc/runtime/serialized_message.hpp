@@ -24,6 +24,9 @@ class SerializedTypeSupport : public eprosima::fastdds::dds::TopicDataType {
   // max_serialized_size: a hint for Fast DDS's preallocation (the real type support's m_typeSize
   // when known); larger samples are still carried.
   explicit SerializedTypeSupport(const std::string& dds_type_name, std::uint32_t max_serialized_size = 1024);
+  // Sized like the real type's support when this process has the type registered, else with the
+  // default hint: what every serialized reader and writer of uampc uses.
+  static SerializedTypeSupport* forDdsType(const std::string& dds_type_name);
 
   bool serialize(void* data, eprosima::fastrtps::rtps::SerializedPayload_t* payload) override;
   bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override;

@@ -1,11 +1,12 @@
 // Reads a recording back for a player (the player component and `uampc play`): which topics it
-// has, and its samples in time order, a window at a time so that a long recording is never held
-// in memory.
+// has, and its samples in time order, pulled from one pass over the file (mcap::MessageStream) a
+// little ahead of what is due, so that a long recording is never held in memory.
 #pragma once
 
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,10 @@ class Playback {
 
   // The next sample due at or before `until`, in time order; false when none is (yet).
   bool next(Time until, RecordedSample& sample);
-  bool finished() const { return read_to_ > end_ && pending_.empty(); }
-  // Plays again from the start (for --loop).
-  void rewind();
+  bool finished() const { return exhausted_ && pending_.empty(); }
+  // Goes to the samples logged at or after `time` (a player's start, or the start again for a
+  // loop), without reading those before.
+  void seek(Time time);
 
  private:
   void readAhead(Time until);
@@ -58,8 +60,10 @@ class Playback {
   Time start_, end_;
   std::uint64_t sample_count_ = 0;
   std::vector<std::string> warnings_;
-  Time read_to_;  // log times before this are read into pending_
-  std::deque<RecordedSample> pending_;
+  std::optional<mcap::MessageStream> stream_;
+  bool exhausted_ = false;
+  Time read_to_;                        // the log time of the last sample read into pending_
+  std::deque<RecordedSample> pending_;  // by due time, ties in file order
 };
 
 }  // namespace uampc::recording
