@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/time_series.hpp"
 
@@ -52,10 +53,10 @@ TEST(LoDrift, UnderOnePercentOfDistanceOver300MetresOnARichCampusAtConstantSpeed
   const std::string out = freshDirectory("lo_drift");
   // 3 m/s for 105 s: 300 m along the campus streets, every block rich in geometry (the poor
   // blocks are where UA-MPC matters; constant speed is known to struggle there).
-  const PairedRun run = runCampus(out,
-                                  "--set domain_id=59 --set clock.duration=105 --set world.path_speed=3.0 "
-                                  "--set world.campus_poor_rows=0 --set controller.mode=constant "
-                                  "--set controller.constant_speed=3.6");
+  const PairedRun run = runCampus(out, domainOverride(DomainBlock::kLoDrift, 0) +
+                                           " --set clock.duration=105 --set world.path_speed=3.0 "
+                                           "--set world.campus_poor_rows=0 --set controller.mode=constant "
+                                           "--set controller.constant_speed=3.6");
   const auto& truth = run.truth;
   ASSERT_GT(truth.size(), 1000u);
   double distance = 0, worst_ratio = 0;
@@ -73,10 +74,10 @@ TEST(LoDrift, UnderOnePercentOfDistanceOver300MetresOnARichCampusAtConstantSpeed
 // it is lost, and reports the degenerate directions it crosses on /lo/metrics.
 TEST(LoDrift, LidarInertialHoldsThroughThePoorRowAndReportsItDegenerate) {
   const std::string out = freshDirectory("lo_poor_row");
-  const PairedRun run = runCampus(out,
-                                  "--set domain_id=63 --set clock.duration=70 --set world.path_speed=3.0 "
-                                  "--set lidar.imu=true --set lo.use_imu=true --set controller.mode=constant "
-                                  "--set controller.constant_speed=3.6");
+  const PairedRun run = runCampus(out, domainOverride(DomainBlock::kLoDrift, 1) +
+                                           " --set clock.duration=70 --set world.path_speed=3.0 "
+                                           "--set lidar.imu=true --set lo.use_imu=true --set controller.mode=constant "
+                                           "--set controller.constant_speed=3.6");
   ASSERT_GT(run.truth.size(), 600u);
   double worst = 0.0;
   for (std::size_t i = 0; i < run.truth.size(); ++i) worst = std::max(worst, positionError(run, i));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/run_files/csv.hpp"
 
 namespace uampc::test {
@@ -24,7 +25,8 @@ std::string runScene(const std::string& scene, const std::string& name, int doma
 constexpr double kResolution = 0.0015339807878856412;  // as in the test scenes
 
 TEST(Lockstep, ThetaIsTheIntegralOfTheCommandWithinEncoderResolutionOver60Seconds) {
-  const std::string out = runScene("motor_constant_speed.yaml", "lockstep_theta", 11);
+  const std::string out =
+      runScene("motor_constant_speed.yaml", "lockstep_theta", testDomain(DomainBlock::kLockstep, 0));
   const auto states = run_files::readCsv(out + "/recorder_motor_states.csv").rows;
   const auto commands = run_files::readCsv(out + "/recorder_motor_commands.csv").rows;
   ASSERT_GE(states.size(), 12000u);  // 200 Hz for 60 s
@@ -49,9 +51,12 @@ TEST(Lockstep, ThetaIsTheIntegralOfTheCommandWithinEncoderResolutionOver60Second
 }
 
 TEST(Lockstep, SameSceneTwiceAndSplitOverTwoProcessesGiveIdenticalOutputs) {
-  const std::string first = runScene("motor_constant_speed.yaml", "lockstep_run1", 12);
-  const std::string second = runScene("motor_constant_speed.yaml", "lockstep_run2", 13);
-  const std::string split = runScene("motor_two_processes.yaml", "lockstep_split", 14);
+  const std::string first =
+      runScene("motor_constant_speed.yaml", "lockstep_run1", testDomain(DomainBlock::kLockstep, 1));
+  const std::string second =
+      runScene("motor_constant_speed.yaml", "lockstep_run2", testDomain(DomainBlock::kLockstep, 2));
+  const std::string split =
+      runScene("motor_two_processes.yaml", "lockstep_split", testDomain(DomainBlock::kLockstep, 3));
   for (const char* file : {"/recorder_motor_states.csv", "/recorder_motor_commands.csv"}) {
     const std::string a = readFile(first + file);
     EXPECT_GT(a.size(), 1000u);
@@ -63,8 +68,9 @@ TEST(Lockstep, SameSceneTwiceAndSplitOverTwoProcessesGiveIdenticalOutputs) {
 TEST(Lockstep, OverridesApplyAndShowInTheOutput) {
   // A different commanded speed must show in the output: the comparison above is not vacuous.
   const std::string out = freshDirectory("lockstep_override");
-  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_constant_speed.yaml") + " --out " + out +
-                                   " --set domain_id=15 --set controller.speed=1.8 --set clock.duration=2");
+  const CommandResult r =
+      runUampc("launch " + sourcePath("tests/scenes/motor_constant_speed.yaml") + " --out " + out +
+               domainOverride(DomainBlock::kLockstep, 4) + " --set controller.speed=1.8 --set clock.duration=2");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto states = run_files::readCsv(out + "/recorder_motor_states.csv").rows;
   ASSERT_FALSE(states.empty());
@@ -74,8 +80,8 @@ TEST(Lockstep, OverridesApplyAndShowInTheOutput) {
 
 TEST(Lockstep, MotorFallsBackToTheSafeSpeedWhenCommandsStopAndSaysSo) {
   const std::string out = freshDirectory("lockstep_fallback");
-  const CommandResult r =
-      runUampc("launch " + sourcePath("tests/scenes/motor_fallback.yaml") + " --out " + out + " --set domain_id=16");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_fallback.yaml") + " --out " + out +
+                                   domainOverride(DomainBlock::kLockstep, 5));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("falling back to the safe speed 1 rad/s"), std::string::npos) << r.output;
   const auto states = run_files::readCsv(out + "/recorder_motor_states.csv").rows;
@@ -93,15 +99,17 @@ TEST(Lockstep, MotorFallsBackToTheSafeSpeedWhenCommandsStopAndSaysSo) {
 
 TEST(Lockstep, ScenesSplitOverProcessesWorkWithTheLargeDataDdsProfile) {
   const std::string out = freshDirectory("lockstep_profile");
-  const CommandResult r = runUampc(
-      "launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + out +
-      " --set domain_id=17 --set clock.duration=2 --set dds_profile=" + sourcePath("config/dds/large_data.xml"));
+  const CommandResult r =
+      runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + out +
+               domainOverride(DomainBlock::kLockstep, 6) +
+               " --set clock.duration=2 --set dds_profile=" + sourcePath("config/dds/large_data.xml"));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_GT(run_files::readCsv(out + "/recorder_motor_states.csv").rows.size(), 300u);
   const std::string broken = freshDirectory("lockstep_profile_broken") + "/broken.xml";
   std::ofstream(broken) << "<dds><profiles><participant";
-  const CommandResult bad = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") +
-                                     " --set domain_id=18 --set clock.duration=2 --set dds_profile=" + broken);
+  const CommandResult bad =
+      runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") +
+               domainOverride(DomainBlock::kLockstep, 7) + " --set clock.duration=2 --set dds_profile=" + broken);
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("broken.xml: Fast DDS could not load this XML profile file"), std::string::npos)
       << bad.output;

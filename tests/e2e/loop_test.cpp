@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/run_files/json_text.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/time_series.hpp"
@@ -25,9 +26,12 @@ std::string runLoop(const std::string& scene, const std::string& name, int domai
 
 TEST(Loop, IdenticalOutputsTwiceAndSplitOverThreeProcesses) {
   const std::string duration = "--set clock.duration=4";
-  const std::string a = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_a", 51, duration);
-  const std::string b = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_b", 52, duration);
-  const std::string split = runLoop("tests/scenes/loop_split.yaml", "loop_split", 53, duration);
+  const std::string a =
+      runLoop("config/scenes/campus_ua_mpc.yaml", "loop_a", testDomain(DomainBlock::kLoop, 0), duration);
+  const std::string b =
+      runLoop("config/scenes/campus_ua_mpc.yaml", "loop_b", testDomain(DomainBlock::kLoop, 1), duration);
+  const std::string split =
+      runLoop("tests/scenes/loop_split.yaml", "loop_split", testDomain(DomainBlock::kLoop, 2), duration);
   // timings.csv holds measured computation times: the one output that is not deterministic.
   // metrics.json's "run" says where each run came from (scene, domain, time): the rest must match.
   const auto contentOf = [](const std::string& path) {
@@ -47,14 +51,16 @@ TEST(Loop, IdenticalOutputsTwiceAndSplitOverThreeProcesses) {
 TEST(Loop, ControllerModesCommandWhatTheySay) {
   const std::string base = "--set clock.duration=3 ";
   for (const auto& [mode, speed] : std::vector<std::pair<std::string, double>>{{"constant", 1.8}, {"zero", 0.0}}) {
-    const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_" + mode, 54,
-                                    base + "--set controller.mode=" + mode + " --set controller.constant_speed=1.8");
+    const std::string out =
+        runLoop("config/scenes/campus_ua_mpc.yaml", "loop_" + mode, testDomain(DomainBlock::kLoop, 3),
+                base + "--set controller.mode=" + mode + " --set controller.constant_speed=1.8");
     const auto motor = run_files::readRows<run_files::MotorRow>(out + "/" + run_files::kMotorFile);
     ASSERT_GT(motor.size(), 400u);
     EXPECT_NEAR(motor.back().omega, speed, 1e-6) << mode;  // after the motor's lag
     EXPECT_NEAR(motor.back().command, speed, 1e-12) << mode;
   }
-  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_ua_mpc", 55, base);
+  const std::string out =
+      runLoop("config/scenes/campus_ua_mpc.yaml", "loop_ua_mpc", testDomain(DomainBlock::kLoop, 4), base);
   const auto motor = run_files::readRows<run_files::MotorRow>(out + "/" + run_files::kMotorFile);
   double lo = 1e9, hi = -1e9;
   for (const auto& row : motor) {
@@ -72,7 +78,7 @@ TEST(Loop, ControllerModesCommandWhatTheySay) {
 }
 
 TEST(Loop, EvaluatorWritesEveryFileAndTheLoStaysOnTrack) {
-  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_eval", 56,
+  const std::string out = runLoop("config/scenes/campus_ua_mpc.yaml", "loop_eval", testDomain(DomainBlock::kLoop, 5),
                                   "--set clock.duration=10 --set evaluator.panorama_period=4");
   for (const char* file :
        {"metrics.json", "estimate.tum", "ground_truth.tum", "ate.csv", "cmplt_windows.csv",
@@ -102,7 +108,8 @@ TEST(Loop, EvaluatorWritesEveryFileAndTheLoStaysOnTrack) {
 
 TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {
   const std::string out = freshDirectory("lo_bad_no_time");
-  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/lo_bad_scans.yaml") + " --set domain_id=57");
+  const CommandResult r =
+      runUampc("launch " + sourcePath("tests/scenes/lo_bad_scans.yaml") + domainOverride(DomainBlock::kLoop, 6));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   const std::string needle = "cannot use scans on /lidar/points: no per-point time field";
   const auto first = r.output.find(needle);
@@ -118,7 +125,7 @@ TEST(Loop, ScansWithoutTimeFieldAreReportedOnceNotPerMessage) {
 TEST(Loop, EvaluatorSkipsPointsWithNonFiniteTimes) {
   const std::string out = freshDirectory("evaluator_bad_scans");
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/evaluator_bad_scans.yaml") + " --out " + out +
-                                   " --set domain_id=61");
+                                   domainOverride(DomainBlock::kLoop, 9));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string metrics = readFile(out + "/metrics.json");
   const auto gt = metrics.find("\"cmplt_ground_truth\"");
@@ -135,8 +142,8 @@ TEST(Loop, EveryShippedSceneStartsAndSteps) {
     if (entry.path().extension() != ".yaml") continue;
     // replay_lo needs a recording: record_replay_test runs it on one.
     if (entry.path().filename() == "replay_lo.yaml") continue;
-    const CommandResult r =
-        runUampc("launch " + entry.path().string() + " --set domain_id=60 --set clock.duration=0.2");
+    const CommandResult r = runUampc("launch " + entry.path().string() + domainOverride(DomainBlock::kLoop, 8) +
+                                     " --set clock.duration=0.2");
     EXPECT_EQ(r.exit_code, 0) << entry.path() << "\n" << r.output;
   }
 }
@@ -145,7 +152,7 @@ TEST(Loop, MalformedPanoramasAreReportedOnceAndNotSaved) {
   for (const char* mode : {"wrong_encoding", "short_data"}) {
     const std::string out = freshDirectory(std::string("bad_panorama_") + mode);
     const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/evaluator_bad_panorama.yaml") + " --out " +
-                                     out + " --set domain_id=60 --set controller.mode=" + mode);
+                                     out + domainOverride(DomainBlock::kLoop, 8) + " --set controller.mode=" + mode);
     EXPECT_EQ(r.exit_code, 0) << mode << "\n" << r.output;
     const std::string needle = "ignoring panoramas on /mpc/panorama: expected little-endian 32FC1";
     const auto first = r.output.find(needle);
@@ -157,7 +164,7 @@ TEST(Loop, MalformedPanoramasAreReportedOnceAndNotSaved) {
 
 TEST(Loop, DeclaredPortNeverOpenedIsAnErrorNotAStall) {
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/evaluator_bad_panorama.yaml") +
-                                   " --set domain_id=60 --set controller.mode=never_opened");
+                                   domainOverride(DomainBlock::kLoop, 8) + " --set controller.mode=never_opened");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("component 'controller' (bad_panorama_publisher) declares port 'panorama' but did not "
                           "open it in its constructor"),
@@ -169,7 +176,7 @@ TEST(Loop, DeclaredPortNeverOpenedIsAnErrorNotAStall) {
 TEST(Loop, NanPointsAndEmptyScansAreSurvived) {
   for (const char* mode : {"nan_points", "empty"}) {
     const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/lo_bad_scans.yaml") +
-                                     " --set domain_id=58 --set driver.mode=" + mode);
+                                     domainOverride(DomainBlock::kLoop, 7) + " --set driver.mode=" + mode);
     EXPECT_EQ(r.exit_code, 0) << mode << "\n" << r.output;
     if (std::string(mode) == "nan_points") {
       EXPECT_NE(r.output.find("contain non-finite points; they are dropped"), std::string::npos) << r.output;

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/mcap/mcap.hpp"
 
 namespace uampc::test {
@@ -36,7 +37,7 @@ class RecordReplay : public ::testing::Test {
   static void SetUpTestSuite() {
     run_ = freshDirectory("record_default");
     const CommandResult r = runUampc("launch " + sourcePath("config/scenes/record_default.yaml") + " --out " + run_ +
-                                     " --set domain_id=81 --set clock.duration=4");
+                                     domainOverride(DomainBlock::kRecordReplay, 0) + " --set clock.duration=4");
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   static std::string recording() { return run_ + "/recording.mcap"; }
@@ -84,7 +85,8 @@ TEST_F(RecordReplay, FoxglovesReaderDecodesEveryRecordedMessage) {
 TEST_F(RecordReplay, ReplayingTheRecordingIntoTheLoGivesTheRecordedOdometry) {
   const std::string replay = freshDirectory("replay_lo");
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/replay_lo_recorded.yaml") + " --out " + replay +
-                                   " --set domain_id=82 --set clock.duration=4 --set player.file=" + recording());
+                                   domainOverride(DomainBlock::kRecordReplay, 1) +
+                                   " --set clock.duration=4 --set player.file=" + recording());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto live = samplesByTopic(recording());
   const auto replayed = samplesByTopic(replay + "/replay.mcap");
@@ -118,12 +120,14 @@ TEST_F(RecordReplay, PlayAndRecordCommandsCarryEverySampleOverDds) {
   const std::string out = freshDirectory("play_record");
   const std::string copy = out + "/copy.mcap";
   // The recorder first; play waits until it hears every topic, and the recorder stops at Ctrl-C.
-  const CommandResult r =
-      runShell(binaryPath("bin/uampc") + " record --domain 83 -o " + copy + " /motor/state /tf_static /lo/odometry > " +
-               out + "/record.log 2>&1 & rec=$!; " + binaryPath("bin/uampc") + " play " + recording() +
-               " --domain 83 --wait-for-readers --topics /motor/state /tf_static /lo/odometry; played=$?; sleep 1; "
-               "kill -INT $rec; wait $rec; recorded=$?; cat " +
-               out + "/record.log; echo \"played=$played recorded=$recorded\"");
+  const CommandResult r = runShell(
+      binaryPath("bin/uampc") + " record --domain " + std::to_string(testDomain(DomainBlock::kRecordReplay, 2)) +
+      " -o " + copy + " /motor/state /tf_static /lo/odometry > " + out + "/record.log 2>&1 & rec=$!; " +
+      binaryPath("bin/uampc") + " play " + recording() + " --domain " +
+      std::to_string(testDomain(DomainBlock::kRecordReplay, 2)) +
+      " --wait-for-readers --topics /motor/state /tf_static /lo/odometry; played=$?; sleep 1; "
+      "kill -INT $rec; wait $rec; recorded=$?; cat " +
+      out + "/record.log; echo \"played=$played recorded=$recorded\"");
   ASSERT_NE(r.output.find("played=0 recorded=0"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("publish ms mean / max"), std::string::npos) << r.output;  // play reports its costs
   const auto original = samplesByTopic(recording());
@@ -145,7 +149,8 @@ TEST_F(RecordReplay, ARecorderKilledMidRunLeavesItsCompleteChunksReadable) {
   // (sh's kill takes -PID as the group; clock.duration bounds the run if the kill went wrong).
   const CommandResult r = runShell(
       "setsid " + binaryPath("bin/uampc") + " launch " + sourcePath("config/scenes/record_default.yaml") + " --out " +
-      out + " --set domain_id=84 --set clock.duration=60 --set recorder.chunk_size=262144 > " + out +
+      out + domainOverride(DomainBlock::kRecordReplay, 3) +
+      " --set clock.duration=60 --set recorder.chunk_size=262144 > " + out +
       "/run.log 2>&1 & pid=$!; for i in $(seq 600); do [ $(stat -c %s " + file +
       " 2>/dev/null || echo 0) -gt 15000000 ] && break; sleep 0.1; done; kill -KILL -$pid; wait $pid; echo killed");
   ASSERT_NE(r.output.find("killed"), std::string::npos) << r.output;
@@ -153,8 +158,9 @@ TEST_F(RecordReplay, ARecorderKilledMidRunLeavesItsCompleteChunksReadable) {
   EXPECT_TRUE(reader.recovered());
   EXPECT_GT(reader.messageCount(), 100u);  // 15 MB: past the world's mesh, into the scans
   // The player plays what was saved, saying the file was damaged.
-  const CommandResult replay = runUampc("launch " + sourcePath("config/scenes/replay_lo.yaml") +
-                                        " --set domain_id=85 --set clock.duration=1 --set player.file=" + file);
+  const CommandResult replay =
+      runUampc("launch " + sourcePath("config/scenes/replay_lo.yaml") + domainOverride(DomainBlock::kRecordReplay, 4) +
+               " --set clock.duration=1 --set player.file=" + file);
   EXPECT_EQ(replay.exit_code, 0) << replay.output;
   EXPECT_NE(replay.output.find("WARN"), std::string::npos) << replay.output;
 }

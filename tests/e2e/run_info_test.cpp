@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/run_files/json_text.hpp"
 #include "uampc/run_files/metrics_file.hpp"
 #include "uampc/run_files/run_directory.hpp"
@@ -130,7 +131,9 @@ components:
 struct RecordedRun {
   std::string directory;
   std::string scene = sourcePath("config/scenes/campus_ua_mpc.yaml");
-  std::vector<std::string> overrides = {"clock.duration=2", "domain_id=63", "seed=7", "controller.alpha=500"};
+  std::vector<std::string> overrides = {"clock.duration=2",
+                                        "domain_id=" + std::to_string(testDomain(DomainBlock::kRunInfo, 0)), "seed=7",
+                                        "controller.alpha=500"};
 };
 
 const RecordedRun& recordedRun() {
@@ -173,7 +176,7 @@ TEST(RunRecord, MetricsSayWhichSceneSeedParametersAndVersionsMadeTheRun) {
   EXPECT_EQ(info.scene_source, run.scene);
   EXPECT_EQ(info.overrides, run.overrides);
   EXPECT_EQ(info.seed, 7u);  // the --set seed, not the scene file's 1
-  EXPECT_EQ(info.domain_id, 63);
+  EXPECT_EQ(info.domain_id, testDomain(DomainBlock::kRunInfo, 0));
   const auto [uampc_version, fastdds_version] = versions();
   EXPECT_FALSE(info.uampc_version.empty());
   EXPECT_EQ(info.uampc_version, uampc_version);
@@ -278,8 +281,9 @@ bool logHas(const std::string& log, const std::string& text) {
 TEST(CtrlC, WhileTheProcessesAreStartingExits130) {
   const std::string dir = freshDirectory("ctrl_c_starting");
   const std::string gate = dir + "/gate", log = dir + "/launch.log";
-  const pid_t pid =
-      startLaunch(sourcePath("tests/scenes/start_gate.yaml") + " --set domain_id=64 --set gate.file=" + gate, log);
+  const pid_t pid = startLaunch(sourcePath("tests/scenes/start_gate.yaml") + domainOverride(DomainBlock::kRunInfo, 1) +
+                                    " --set gate.file=" + gate,
+                                log);
   // Process 'main' cannot finish starting while 'gated' waits for the gate; it says so after 2 s.
   ASSERT_TRUE(waitFor([&] { return logHas(log, "starting: waiting for"); }, std::chrono::seconds(30))) << readFile(log);
   kill(-pid, SIGINT);             // Ctrl-C in a terminal: to the launcher and its processes
@@ -295,9 +299,9 @@ TEST(CtrlC, WhileALockstepRunRunsExits130) {
   const std::string dir = freshDirectory("ctrl_c_running");
   const std::string gate = dir + "/gate", log = dir + "/launch.log", progress = dir + "/progress.json";
   std::ofstream(gate) << "open";
-  const pid_t pid =
-      startLaunch(sourcePath("tests/scenes/start_gate.yaml") + " --set domain_id=65 --set gate.file=" + gate, log,
-                  std::string(run_files::kProgressFileVariable) + "=" + progress);
+  const pid_t pid = startLaunch(sourcePath("tests/scenes/start_gate.yaml") + domainOverride(DomainBlock::kRunInfo, 2) +
+                                    " --set gate.file=" + gate,
+                                log, std::string(run_files::kProgressFileVariable) + "=" + progress);
   ASSERT_TRUE(waitFor(
       [&] {
         const auto p = run_files::readRunProgress(progress);

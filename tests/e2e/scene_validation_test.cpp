@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/runtime/component.hpp"
 
 namespace uampc::test {
@@ -175,7 +176,7 @@ TEST(SceneValidation, SilentPortsAreWarningsOneLinePerTopicWithASuggestion) {
   const std::string motor_only = writeScene(
       dir, "motor_only.yaml",
       "clock: {duration: 0.01}\ncomponents:\n  motor:\n    type: motor_bridge\n    topics: {state: /motor/stat}\n");
-  const CommandResult launch = runUampc("launch " + motor_only);
+  const CommandResult launch = runUampc("launch " + motor_only + domainOverride(DomainBlock::kSceneValidation, 0));
   EXPECT_EQ(launch.exit_code, 0) << launch.output;
   EXPECT_NE(launch.output.find(motor_only + ":5:21: warning: nobody in the scene reads /motor/stat, written by "
                                             "motor.state"),

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
 #include "uampc/run_files/csv.hpp"
@@ -23,8 +24,8 @@ double distanceToCorridor(const Eigen::Vector3d& p) {
 
 TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
   const std::string out = freshDirectory("simulator_corridor");
-  const CommandResult r =
-      runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out + " --set domain_id=41");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out +
+                                   domainOverride(DomainBlock::kSimulator, 0));
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
   std::vector<world::TimedPose> poses;
@@ -69,7 +70,7 @@ TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
 TEST(Simulator, ImuSamplesComeInOrderAndSeeTheMotorAndGravity) {
   const std::string out = freshDirectory("simulator_imu");
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out +
-                                   " --set domain_id=43 --set lidar.imu=true");
+                                   domainOverride(DomainBlock::kSimulator, 2) + " --set lidar.imu=true");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto rows = run_files::readCsv(out + "/recorder_imu.csv").rows;
   ASSERT_GT(rows.size(), 120u);  // 0.7 s at 200 Hz, less the start and the last steps
@@ -99,13 +100,13 @@ TEST(Simulator, CorruptMapsAndTrajectoriesStopTheRunNamingTheFile) {
   const std::string bad_tum = dir + "/bad.tum";
   std::ofstream(bad_tum) << "0 0 0 1 0 0 0 1\n1 1 0 1 0 0\n";
   const std::string scene = sourcePath("tests/scenes/bad_map.yaml");
-  CommandResult r = runUampc("launch " + scene + " --set domain_id=42 --set world.map_file=" + corrupt_pcd +
-                             " --set world.trajectory_file=" + good_tum);
+  CommandResult r = runUampc("launch " + scene + domainOverride(DomainBlock::kSimulator, 1) +
+                             " --set world.map_file=" + corrupt_pcd + " --set world.trajectory_file=" + good_tum);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("component 'world' (map_provider) could not start: " + corrupt_pcd), std::string::npos)
       << r.output;
-  r = runUampc("launch " + scene +
-               " --set domain_id=42 --set world.world=campus --set world.trajectory_file=" + bad_tum);
+  r = runUampc("launch " + scene + domainOverride(DomainBlock::kSimulator, 1) +
+               " --set world.world=campus --set world.trajectory_file=" + bad_tum);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find(bad_tum + ":2:"), std::string::npos) << r.output;
 }

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 
 namespace uampc::test {
 namespace {
@@ -18,14 +19,14 @@ CommandResult runFault(const std::string& mode, int domain) {
 }
 
 TEST(Supervision, AThrowingComponentStopsTheRunWithItsNameAndTime) {
-  const CommandResult r = runFault("throw", 21);
+  const CommandResult r = runFault("throw", testDomain(DomainBlock::kSupervision, 0));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("component 'fault' failed in a timer at t=0.1"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("injected failure"), std::string::npos) << r.output;
 }
 
 TEST(Supervision, ACrashedProcessIsReportedWithNameAndSignal) {
-  const CommandResult r = runFault("abort", 22);
+  const CommandResult r = runFault("abort", testDomain(DomainBlock::kSupervision, 1));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("process 'faulty'"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("killed by signal 6 (Aborted)"), std::string::npos) << r.output;
@@ -33,14 +34,15 @@ TEST(Supervision, ACrashedProcessIsReportedWithNameAndSignal) {
 
 TEST(Supervision, AHungComponentTimesOutInsteadOfHangingTheRun) {
   const auto start = std::chrono::steady_clock::now();
-  const CommandResult r = runFault("hang", 23);
+  const CommandResult r = runFault("hang", testDomain(DomainBlock::kSupervision, 2));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("no acknowledgement of the step from process(es) faulty"), std::string::npos) << r.output;
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
 }
 
 TEST(Supervision, RealTimeRestartPolicyRestartsThenGivesUp) {
-  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/fault_restart.yaml") + " --set domain_id=24");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/fault_restart.yaml") +
+                                   domainOverride(DomainBlock::kSupervision, 3));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("exited with status 3; restarting it (1 of 2)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("restarting it (2 of 2)"), std::string::npos) << r.output;
@@ -54,7 +56,7 @@ TEST(Supervision, CtrlCStopsEveryProcessCleanly) {
   if (pid == 0) {
     const std::string cmd = "exec env UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
                             binaryPath("bin/uampc") + " launch " + sourcePath("tests/scenes/realtime_idle.yaml") +
-                            " --set domain_id=25 > " + log + " 2>&1";
+                            domainOverride(DomainBlock::kSupervision, 4) + " > " + log + " 2>&1";
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }

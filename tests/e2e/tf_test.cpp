@@ -23,6 +23,7 @@
 #include <set>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "uampc/raycaster/ray_cast_scene.hpp"
 #include "uampc/run_files/csv.hpp"
 #include "uampc/world/world_source.hpp"
@@ -162,8 +163,8 @@ raycaster::RayCastScene campusWorld() {
 
 TEST(Tf, RecordedScansPlacedThroughRecordedTfLandOnTheWorldsSurfaces) {
   const std::string out = freshDirectory("tf_campus");
-  const CommandResult r =
-      runUampc("launch " + sourcePath("tests/scenes/tf_campus.yaml") + " --out " + out + " --set domain_id=62");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/tf_campus.yaml") + " --out " + out +
+                                   domainOverride(DomainBlock::kTf, 0));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const RecordedRun run(out);
   std::set<double> stamps;

@@ -24,6 +24,7 @@
 #include <thread>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 #include "topic/topic_statistics.hpp"
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/msgs/std_msgs.hpp"
@@ -36,7 +37,7 @@ namespace {
 
 using namespace eprosima::fastdds::dds;
 
-constexpr int kDomain = 71;
+constexpr int kDomain = testDomain(DomainBlock::kTopicCommand, 0);
 constexpr double kRateHz = 20.0;
 const std::string kDomainOption = " --domain " + std::to_string(kDomain);
 

@@ -6,12 +6,13 @@
 #include <unistd.h>
 
 #include "command_runner.hpp"
+#include "test_domains.hpp"
 
 namespace uampc::test {
 namespace {
 
 TEST(WireFormat, CycloneDdsDecodesOurPointCloud2AndOdometry) {
-  constexpr int kDomain = 31;
+  constexpr int kDomain = testDomain(DomainBlock::kWireFormat, 0);
   const pid_t publisher = fork();
   ASSERT_GE(publisher, 0);
   if (publisher == 0) {

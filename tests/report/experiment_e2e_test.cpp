@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "../e2e/command_runner.hpp"
+#include "../e2e/test_domains.hpp"
 
 namespace uampc::test {
 namespace {
@@ -34,7 +35,8 @@ TEST(ExperimentEndToEnd, RunsTheMatrixWritesTheReportAndResumes) {
                                    "  - {name: zero, overrides: [controller.mode=zero]}\n"
                                    "compare: {baseline: zero}\n";
   const std::string out = dir + "/out";
-  const std::string command = "experiment " + experiment + " --out " + out + " --jobs 2 --domain-base 110";
+  const std::string command = "experiment " + experiment + " --out " + out + " --jobs 2 --domain-base " +
+                              std::to_string(testDomain(DomainBlock::kExperimentE2e, 0));
 
   const CommandResult first = runUampc(command);
   ASSERT_EQ(first.exit_code, 0) << first.output;
