@@ -51,17 +51,21 @@ if [ ${#mcap_missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${mcap_missing[@]}"
 fi
-mcap_js="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/mcap_js"
-if [ -f "$mcap_js/package-lock.json" ]; then
-  # npm ci starts from an empty node_modules; skip it when node_modules holds this very lockfile.
-  lock_sum="$(sha256sum "$mcap_js/package-lock.json" | cut -d' ' -f1)"
-  if [ "$(cat "$mcap_js/node_modules/.uampc-lock.sha256" 2>/dev/null)" = "$lock_sum" ]; then
-    echo "install-deps: tests/mcap_js already installed from its package-lock.json"
+# tests/ci_lint checks the CI files with GitHub's workflow parser and GitLab's CI schema (issue 15),
+# pinned the same way by its package-lock.json.
+checkout="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+for npm_dir in tests/mcap_js tests/ci_lint; do
+  if [ -f "$checkout/$npm_dir/package-lock.json" ]; then
+    # npm ci starts from an empty node_modules; skip it when node_modules holds this very lockfile.
+    lock_sum="$(sha256sum "$checkout/$npm_dir/package-lock.json" | cut -d' ' -f1)"
+    if [ "$(cat "$checkout/$npm_dir/node_modules/.uampc-lock.sha256" 2>/dev/null)" = "$lock_sum" ]; then
+      echo "install-deps: $npm_dir already installed from its package-lock.json"
+    else
+      npm ci --prefix "$checkout/$npm_dir" --no-audit --no-fund
+      echo "$lock_sum" >"$checkout/$npm_dir/node_modules/.uampc-lock.sha256"
+    fi
   else
-    npm ci --prefix "$mcap_js" --no-audit --no-fund
-    echo "$lock_sum" >"$mcap_js/node_modules/.uampc-lock.sha256"
+    echo "install-deps: no $npm_dir beside this script; in the checkout run: npm ci --prefix $npm_dir"
   fi
-else
-  echo "install-deps: no tests/mcap_js beside this script; in the checkout run: npm ci --prefix tests/mcap_js"
-fi
+done
 echo "install-deps: done"
