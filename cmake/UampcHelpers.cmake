@@ -17,7 +17,11 @@ endfunction()
 
 # uampc_add_benchmark(NAME name SOURCES a.cpp ... [LIBS lib ...])
 # A Google Benchmark executable; benchmarks measure, they are never part of the test suite.
+# Not in sanitizer builds (UAMPC_SANITIZE): their timings would mean nothing, and they cost build time.
 function(uampc_add_benchmark)
+  if(UAMPC_SANITIZE)
+    return()
+  endif()
   cmake_parse_arguments(B "" "NAME" "SOURCES;LIBS" ${ARGN})
   add_executable(${B_NAME} ${B_SOURCES})
   target_link_libraries(${B_NAME} PRIVATE ${B_LIBS} benchmark::benchmark)
