@@ -23,6 +23,7 @@ enum class DomainBlock {
   kTopicCommand,
   kExperimentE2e,
   kSceneValidation,
+  kDdsProfile,
 };
 
 inline constexpr int kDomainsPerTest = 12;

@@ -40,6 +40,23 @@ void applyPreset(Qos& qos, QosPreset preset, bool lockstep) {
   }
 }
 
+// The participant QoS of the profile file's default participant profile (is_default_profile="true"),
+// or Fast DDS's defaults without a file. Fast DDS 2.9 computes its default participant QoS once,
+// when the factory first loads its own default profiles; a file loaded later only changes it after
+// set_default_participant_qos(PARTICIPANT_QOS_DEFAULT), which re-reads the XML defaults. Without that
+// the file's transports, segment sizes and security properties were silently ignored.
+DomainParticipantQos participantQosFrom(const std::string& profile_file) {
+  auto* factory = DomainParticipantFactory::get_instance();
+  factory->load_profiles();
+  if (!profile_file.empty()) {
+    if (factory->load_XML_profiles_file(profile_file) != ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error(profile_file + ": Fast DDS could not load this XML profile file");
+    }
+    factory->set_default_participant_qos(PARTICIPANT_QOS_DEFAULT);
+  }
+  return factory->get_default_participant_qos();
+}
+
 }  // namespace
 
 DataWriterQos writerQosOf(QosPreset preset, bool lockstep) {
@@ -51,13 +68,16 @@ DataWriterQos writerQosOf(QosPreset preset, bool lockstep) {
 DdsNode::DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name)
     : lockstep_(lockstep) {
   auto* factory = DomainParticipantFactory::get_instance();
-  if (!profile_file.empty() && factory->load_XML_profiles_file(profile_file) != ReturnCode_t::RETCODE_OK) {
-    throw std::runtime_error(profile_file + ": Fast DDS could not load this XML profile file");
-  }
-  DomainParticipantQos qos = factory->get_default_participant_qos();
+  DomainParticipantQos qos = participantQosFrom(profile_file);
   qos.name(participant_name);
   participant_ = factory->create_participant(domain_id, qos);
-  if (!participant_) throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id));
+  if (!participant_) {
+    throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id) +
+                             (profile_file.empty() ? std::string()
+                                                   : " with the profile " + profile_file +
+                                                         " (its transports or security files; Fast DDS's log above "
+                                                         "says which)"));
+  }
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
   if (!publisher_ || !subscriber_) throw std::runtime_error("cannot create a DDS publisher or subscriber");
