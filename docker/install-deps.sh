@@ -17,6 +17,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev cyclonedds-dev cyclonedds-tools
   # the experiment report is checked in headless Chromium; xmllint checks its SVG figures
   chromium libxml2-utils
+  # fuzzing (tests/fuzz, the fuzz preset): clang 14 and its libFuzzer, ASan and UBSan runtimes
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# A short run of every fuzz target over its committed corpus (CI, from .ci/run; README "Fuzzing").
+# Builds the `fuzz` preset (build-fuzz/, only the fuzz targets and what they load), then runs each
+# target for FUZZ_SECONDS (default 20) or FUZZ_RUNS inputs, whichever ends first, starting from a
+# copy of tests/fuzz/<name>/corpus (the committed seeds are not changed; new inputs are thrown
+# away). Exits non-zero at the first crash, leak, timeout or out-of-memory; the input that did it
+# is left in build-fuzz/fuzz/artifacts/<name>/.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+seconds="${FUZZ_SECONDS:-20}"
+runs="${FUZZ_RUNS:-1000000000}"
+lock=(flock /tmp/uampc-build.lock)
+command -v flock >/dev/null 2>&1 || lock=()
+
+cd "$root"
+"${lock[@]}" cmake --preset fuzz >/dev/null
+"${lock[@]}" cmake --build --preset fuzz
+
+# name max_len dictionary
+targets=(
+  "scene_yaml 8192 scene_yaml/scene.dict"
+  "experiment_yaml 4096 experiment_yaml/experiment.dict"
+  "set_override 1024 set_override/set.dict"
+  "trajectory 8192 -"
+  "pcd 4096 pcd/pcd.dict"
+  "ply 4096 ply/ply.dict"
+  "pointcloud2 4096 -"
+  "panorama 16384 -"
+  "mcap 16384 mcap/mcap.dict"
+  "idl 4096 idl/idl.dict"
+)
+bin="$root/build-fuzz/fuzz"
+work="$(mktemp -d "${TMPDIR:-/tmp}/uampc-fuzz-run.XXXXXX")"
+trap 'rm -rf "$work"' EXIT
+start=$(date +%s)
+for entry in "${targets[@]}"; do
+  read -r name max_len dict <<<"$entry"
+  mkdir -p "$work/$name" "$bin/artifacts/$name"
+  cp "$here/$name/corpus/"* "$work/$name/"
+  options=(-rss_limit_mb=2048 -max_len="$max_len" -timeout=10 -max_total_time="$seconds" -runs="$runs"
+           -print_final_stats=1 -artifact_prefix="$bin/artifacts/$name/")
+  [ "$dict" != "-" ] && options+=(-dict="$here/$dict")
+  echo "fuzz: $name (${seconds} s)"
+  if ! "$bin/fuzz_$name" "${options[@]}" "$work/$name" >"$work/$name.log" 2>&1; then
+    tail -n 60 "$work/$name.log"
+    echo "fuzz: $name FAILED; the input is in $bin/artifacts/$name/"
+    exit 1
+  fi
+  grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss_mb" "$work/$name.log" | tr '\n' ' '
+  echo
+done
+echo "fuzz: all ${#targets[@]} targets clean in $(( $(date +%s) - start )) s"
