@@ -13,6 +13,8 @@ packages=(
   libeigen3-dev libpcl-dev libceres-dev liboctomap-dev libembree-dev
   # configuration, JSON files, the command line
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  # DDS Security: `uampc security init` runs openssl; the runtime checks certificates with libcrypto
+  openssl libssl-dev
   # tests and benchmarks; Cyclone DDS proves our wire format to another vendor
   libgtest-dev libgmock-dev libbenchmark-dev cyclonedds-dev cyclonedds-tools
   # the experiment report is checked in headless Chromium; xmllint checks its SVG figures

@@ -15,6 +15,7 @@
 #include "graph_command.hpp"
 #include "play_command.hpp"
 #include "record_command.hpp"
+#include "security_command.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "topic_command.hpp"
 #include "uampc/runtime/launcher.hpp"
@@ -84,6 +85,7 @@ struct CommandLine {
   uampc::app::TopicOptions topic;            // topic
   uampc::app::PlayOptions play;              // play
   uampc::app::RecordOptions record;          // record
+  uampc::app::SecurityInitOptions security;  // security init
 };
 
 // A command: its subcommand in the app and what runs when it was given.
@@ -111,6 +113,7 @@ class UampcCli {
     addTopic();
     addRecord();
     addPlay();
+    addSecurity();
   }
 
   int run(int argc, char** argv) {
@@ -349,6 +352,29 @@ class UampcCli {
                   "Start only once every played topic has a reader (else after 0.5 s), so that no sample goes\n"
                   "out before the system under test or a recorder hears it.");
     commands_.push_back({sub, [this] { return uampc::app::playCommand(options_.play); }});
+  }
+
+  void addSecurity() {
+    uampc::app::SecurityInitOptions& o = options_.security;
+    CLI::App* sub =
+        addCommand("security", "uampc security init DIR --scene SCENE.yaml [--days N]",
+                   "DDS Security (authentication, encryption, permissions) for a scene's runs. 'init' makes\n"
+                   "DIR with openssl: a CA, an identity per process of the scene and one for the launcher,\n"
+                   "the governance and, per identity, permissions for exactly the topics its components read\n"
+                   "and write, signed by the CA. Then run the scene with security: {directory: DIR}.");
+    sub->require_subcommand(1);
+    CLI::App* init = sub->add_subcommand("init", "Make the security directory DIR for a scene.");
+    formatter_->addSynopsis("init", "uampc security init DIR --scene SCENE.yaml [--days N]");
+    init->add_option("DIR", o.directory, "The directory to make (must not hold one already).")
+        ->required()
+        ->type_name("");
+    init->add_option("--scene", o.scene_path, "The scene whose processes and topics are granted.")
+        ->required()
+        ->type_name("SCENE.yaml");
+    init->add_option("--days", o.days, "Validity of the certificates and permissions, days (default 365).")
+        ->check(CLI::Range(1, 36500))
+        ->type_name("N");
+    commands_.push_back({sub, [this] { return uampc::app::securityInitCommand(options_.security); }});
   }
 
   // The command on the command line, if CLI11 got as far as reading it.

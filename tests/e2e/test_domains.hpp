@@ -24,6 +24,7 @@ enum class DomainBlock {
   kExperimentE2e,
   kSceneValidation,
   kDdsProfile,
+  kSecurity,
 };
 
 inline constexpr int kDomainsPerTest = 12;

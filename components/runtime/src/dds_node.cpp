@@ -65,11 +65,13 @@ DataWriterQos writerQosOf(QosPreset preset, bool lockstep) {
   return qos;
 }
 
-DdsNode::DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name)
-    : lockstep_(lockstep) {
+DdsNode::DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name,
+                 const DdsIdentity& identity)
+    : lockstep_(lockstep), permissions_(identity.permissions) {
   auto* factory = DomainParticipantFactory::get_instance();
   DomainParticipantQos qos = participantQosFrom(profile_file);
   qos.name(participant_name);
+  applyDdsSecurity(qos, identity);
   participant_ = factory->create_participant(domain_id, qos);
   if (!participant_) {
     throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id) +
@@ -127,7 +129,7 @@ DataWriter* DdsNode::createWriter(const std::string& ros_topic, const std::strin
     qos.reliable_writer_qos().times.heartbeatPeriod = eprosima::fastrtps::Duration_t(0, 100000000);
   }
   DataWriter* writer = publisher_->create_datawriter(t, qos);
-  if (!writer) throw std::runtime_error("cannot create a DDS writer on " + ros_topic);
+  if (!writer) throw std::runtime_error("cannot create a DDS writer on " + ros_topic + permissionsHint());
   return writer;
 }
 
@@ -138,8 +140,16 @@ DataReader* DdsNode::createReader(const std::string& ros_topic, const std::strin
   DataReaderQos qos = subscriber_->get_default_datareader_qos();
   applyPreset(qos, preset, lockstep_);
   DataReader* reader = subscriber_->create_datareader(t, qos, listener, StatusMask::data_available());
-  if (!reader) throw std::runtime_error("cannot create a DDS reader on " + ros_topic);
+  if (!reader) throw std::runtime_error("cannot create a DDS reader on " + ros_topic + permissionsHint());
   return reader;
+}
+
+// Under DDS Security, Fast DDS refuses a writer or reader the permissions do not grant, and says
+// nothing more.
+std::string DdsNode::permissionsHint() const {
+  if (permissions_.empty()) return {};
+  return " (DDS Security: not permitted by " + permissions_ +
+         "? `uampc security init` grants each process the topics the scene gives it)";
 }
 
 void DdsNode::deleteWriter(DataWriter* writer) { publisher_->delete_datawriter(writer); }

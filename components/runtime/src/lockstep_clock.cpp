@@ -76,10 +76,11 @@ class Progress {
 
 }  // namespace
 
-ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
-                             const std::function<std::string()>& check_processes) {
+static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
+                                     const std::function<std::string()>& check_processes) {
   ClockResult result;
-  DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock");
+  DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock",
+              securityIdentity(scene.security_directory, kLauncherIdentity));
   Wakeup listener;
   DataWriter* clock_writer = dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
                                               &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
@@ -175,6 +176,20 @@ ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
   dds.deleteWriter(clock_writer);
   dds.deleteReader(ack_reader);
   return result;
+}
+
+// A participant Fast DDS refuses (DDS Security's certificates, a profile's transports) is a failed
+// run with its reason, not an exception out of the launcher.
+ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
+                             const std::function<std::string()>& check_processes) {
+  try {
+    return runClockUnguarded(scene, stop, check_processes);
+  } catch (const std::exception& e) {
+    ClockResult result;
+    result.ok = false;
+    result.error = std::string("the lockstep clock: ") + e.what();
+    return result;
+  }
 }
 
 }  // namespace uampc

@@ -281,7 +281,8 @@ class ProcessRunner {
       : scene_(scene),
         process_(std::move(process)),
         output_directory_(std::move(output_directory)),
-        dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_),
+        dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_,
+             securityIdentity(scene.security_directory, process_)),
         log_(process_, [this] { return state_.now.seconds(); }) {
     state_.lockstep = scene.clock.mode == ClockMode::kLockstep;
     state_.step = scene.clock.step;
@@ -338,7 +339,8 @@ class ProcessRunner {
   DdsNode& serializedDds() {
     if (!serialized_dds_) {
       serialized_dds_ = std::make_unique<DdsNode>(scene_.domain_id, scene_.dds_profile, state_.lockstep,
-                                                  "uampc/" + process_ + "/serialized");
+                                                  "uampc/" + process_ + "/serialized",
+                                                  securityIdentity(scene_.security_directory, process_));
     }
     return *serialized_dds_;
   }

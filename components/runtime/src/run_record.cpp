@@ -114,6 +114,10 @@ std::string resolvedSceneYaml(const Scene& scene) {
   out << YAML::Key << "domain_id" << YAML::Value << scene.domain_id;
   out << YAML::Key << "seed" << YAML::Value << scene.seed;
   if (!scene.dds_profile.empty()) out << YAML::Key << "dds_profile" << YAML::Value << scene.dds_profile;
+  if (!scene.security_directory.empty()) {
+    out << YAML::Key << "security" << YAML::Value << YAML::BeginMap << YAML::Key << "directory" << YAML::Value
+        << scene.security_directory << YAML::EndMap;
+  }
   out << YAML::Key << "on_crash" << YAML::Value << (scene.on_crash == CrashPolicy::kRestart ? "restart" : "stop");
   out << YAML::Key << "max_restarts" << YAML::Value << scene.max_restarts;
   emitClock(out, scene.clock);

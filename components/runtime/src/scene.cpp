@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/edit_distance.hpp"
 #include "scene_document.hpp"
 #include "scene_ports.hpp"
@@ -92,6 +93,7 @@ class SceneValidator {
       : file_(std::move(file)), document_(document), catalog_(catalog) {}
 
   Scene validate(YAML::Node root, const std::vector<Override>& overrides);
+  bool check_security_ = true;  // false: security.directory is only read (`uampc security init` makes it)
 
  private:
   SourceLocation at(const YAML::Node& node) const {
@@ -128,6 +130,7 @@ class SceneValidator {
   void applyOverrides(YAML::Node& root, const std::vector<Override>& overrides);
   void readTopLevel(const YAML::Node& root, Scene& scene);
   void readClock(const YAML::Node& node, Scene& scene);
+  void readSecurity(const YAML::Node& node, Scene& scene);
   void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
   void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec, Scene& scene);
   std::optional<ParameterValue> readValue(const YAML::Node& node, const ParameterSpec& spec, const std::string& owner);
@@ -194,8 +197,8 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
     override_nodes_.emplace_back(value, o.text);
     override_keys_.emplace_back(o.path.back(), o.text);
     // Top-level keys and clock.* apply directly; anything else is component.parameter.
-    static const std::set<std::string> top_level = {"name",     "domain_id",    "seed",
-                                                    "on_crash", "max_restarts", "dds_profile"};
+    static const std::set<std::string> top_level = {"name",         "domain_id",   "seed",    "on_crash",
+                                                    "max_restarts", "dds_profile", "security"};
     if (o.path.size() == 1 && top_level.count(o.path[0])) {
       root[o.path[0]] = value;
     } else if (o.path.size() == 2 && o.path[0] == "clock") {
@@ -231,7 +234,8 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
   }
   applyOverrides(root, overrides);
   checkKeys(root,
-            {"name", "domain_id", "dds_profile", "seed", "clock", "on_crash", "max_restarts", "rig", "components"},
+            {"name", "domain_id", "dds_profile", "security", "seed", "clock", "on_crash", "max_restarts", "rig",
+             "components"},
             "the scene");
   readRigNode(root);
   readTopLevel(root, scene);
@@ -252,6 +256,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     // add confusing messages.
     if (errors_.size() == errors_before) checkConnections(scene, topic_locations_, errors_);
   }
+  if (root["security"]) readSecurity(root["security"], scene);
   if (scene.clock.mode == ClockMode::kLockstep && scene.on_crash == CrashPolicy::kRestart) {
     error(root["on_crash"],
           "on_crash: restart needs clock.mode realtime: a restarted process cannot rejoin "
@@ -308,6 +313,45 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
       if (!fs::is_regular_file(scene.dds_profile)) {
         error(root["dds_profile"], "dds_profile: file not found: " + scene.dds_profile);
       }
+    }
+  }
+}
+
+// security: {directory: DIR}, checked once the processes are known: every identity the run
+// needs (each process's, the launcher's clock in lockstep) must be there and valid.
+void SceneValidator::readSecurity(const YAML::Node& node, Scene& scene) {
+  if (!node.IsMap()) {
+    error(node, "'security' must be a mapping: security: {directory: DIR} (made by `uampc security init DIR`)");
+    return;
+  }
+  checkKeys(node, {"directory"}, "security");
+  if (!node["directory"]) {
+    error(node, "security: 'directory' is missing (what `uampc security init DIR --scene SCENE.yaml` made)");
+    return;
+  }
+  const auto directory = scalar<std::string>(node["directory"], "security.directory");
+  if (!directory) return;
+  scene.security_directory = resolvePath(*directory, directoryOf(node["directory"]));
+  if (!check_security_) return;
+  if (!fs::is_directory(scene.security_directory)) {
+    error(node["directory"], "security.directory: not a directory: " + scene.security_directory +
+                                 " (make it with `uampc security init DIR --scene SCENE.yaml`)");
+    return;
+  }
+  std::vector<std::string> identities = scene.processes();
+  if (scene.clock.mode == ClockMode::kLockstep) identities.push_back(kLauncherIdentity);
+  std::set<std::string> said;  // the CA and the governance are every identity's: say their problems once
+  for (const auto& name : identities) {
+    if (!fs::is_directory(identityFolder(scene.security_directory, name))) {
+      error(node["directory"],
+            "security: no identity for " +
+                (name == kLauncherIdentity ? std::string("the launcher's clock") : "process '" + name + "'") + " (" +
+                identityFolder(scene.security_directory, name) +
+                "); make the directory again with `uampc security init DIR --scene` this scene");
+      continue;
+    }
+    for (const auto& problem : checkSecurityIdentity(securityIdentity(scene.security_directory, name))) {
+      if (said.insert(problem).second) error(node["directory"], "security: identity '" + name + "': " + problem);
     }
   }
 }
@@ -622,11 +666,14 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
 
 }  // namespace
 
-Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog) {
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog,
+                bool check_security) {
   const std::string file = fs::absolute(path).lexically_normal().string();
   if (!fs::is_regular_file(file)) throw SceneError({path + ": error: scene file not found"});
   const SceneDocument document = SceneDocument::load(file);
-  return SceneValidator(file, document, catalog).validate(document.root, overrides);
+  SceneValidator validator(file, document, catalog);
+  validator.check_security_ = check_security;
+  return validator.validate(document.root, overrides);
 }
 
 }  // namespace uampc

@@ -19,6 +19,7 @@
 
 #include "uampc/runtime/component.hpp"
 #include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/qos.hpp"
 
 namespace uampc {
@@ -33,7 +34,9 @@ using TypeSupportMaker = std::function<eprosima::fastdds::dds::TopicDataType*()>
 class DdsNode {
  public:
   // profile_file: Fast DDS XML profiles loaded before the participant is made (may be empty).
-  DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name);
+  // identity: the DDS Security files it authenticates with (dds_security.hpp); none: security off.
+  DdsNode(int domain_id, const std::string& profile_file, bool lockstep, const std::string& participant_name,
+          const DdsIdentity& identity = {});
   ~DdsNode();
   DdsNode(const DdsNode&) = delete;
   DdsNode& operator=(const DdsNode&) = delete;
@@ -52,7 +55,10 @@ class DdsNode {
   eprosima::fastdds::dds::Topic* topic(const std::string& ros_topic, const std::string& type_name,
                                        const TypeSupportMaker& type_support);
 
+  std::string permissionsHint() const;
+
   bool lockstep_;
+  std::string permissions_;  // the permissions document under DDS Security, for messages
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

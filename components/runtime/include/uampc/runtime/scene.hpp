@@ -65,6 +65,9 @@ struct Scene {
   std::string name;
   int domain_id = 0;
   std::string dds_profile;  // absolute path of a Fast DDS XML profile file, or empty
+  // DDS Security (security: {directory: DIR}): the absolute path of what `uampc security init`
+  // wrote, or empty when the run is not secured (dds_security.hpp).
+  std::string security_directory;
   std::uint64_t seed = 1;
   ClockSettings clock;
   CrashPolicy on_crash = CrashPolicy::kStop;
@@ -93,8 +96,9 @@ struct Override {
 Override parseOverride(const std::string& text);  // throws SceneError on bad syntax
 
 // Reads the scene at `path` with the scenes it extends (`extends:`), applies the overrides and
-// validates it all; throws SceneError with every error found.
-Scene loadScene(const std::string& path, const std::vector<Override>& overrides,
-                ComponentCatalog& catalog);
+// validates it all; throws SceneError with every error found. check_security false: the security
+// directory is not checked (`uampc security init` reads the scene to make it).
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog,
+                bool check_security = true);
 
 }  // namespace uampc

@@ -1,0 +1,281 @@
+// DDS Security end to end (issue 15, item 4): `uampc security init` makes a CA, identities and
+// signed documents for tests/scenes/security_loop.yaml; its secured run gives the same outputs as
+// the plain one; a stranger on the domain (a plain Fast DDS participant in this process) neither
+// reads its scans nor moves its motor; a process whose permissions do not grant /motor/command
+// cannot write it; missing, expired and mismatched files are refused by name, without a hang.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "command_runner.hpp"
+#include "test_domains.hpp"
+#include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
+#include "uampc/runtime/dds_node.hpp"
+#include "uampc/runtime/dds_security.hpp"
+
+namespace fs = std::filesystem;
+
+namespace uampc::test {
+namespace {
+
+using namespace eprosima::fastdds::dds;
+
+const std::string kScene = "tests/scenes/security_loop.yaml";
+const char* const kOutputs[] = {"/recorder_motor_states.csv", "/recorder_motor_commands.csv", "/recorder_scans.csv"};
+
+int domain(int index) { return testDomain(DomainBlock::kSecurity, index); }
+
+// The security directory of security_loop.yaml, made once for every test.
+const std::string& keys() {
+  static const std::string dir = [] {
+    const std::string parent = freshDirectory("security_keys");
+    const std::string d = parent + "/keys";
+    const CommandResult r = runUampc("security init " + d + " --scene " + sourcePath(kScene));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return d;
+  }();
+  return dir;
+}
+
+std::string securedBy(const std::string& dir) { return " --set 'security={directory: " + dir + "}'"; }
+
+// Counts the samples of one topic it receives.
+class CountingListener : public DataReaderListener {
+ public:
+  void on_data_available(DataReader* reader) override {
+    SampleInfo info;
+    sensor_msgs::msg::PointCloud2 scan;
+    while (reader->take_next_sample(&scan, &info) == ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) ++count;
+    }
+  }
+  std::atomic<int> count{0};
+};
+
+// A participant without identity on the run's domain: it reads /lidar/points and, when asked,
+// commands the motor at -20 rad/s every 5 ms, stamped 0 so that a lockstep reader would take it.
+class Stranger {
+ public:
+  Stranger(int domain_id, bool command) : node_(domain_id, "", true, "stranger") {
+    node_.createReader("/lidar/points", MessageType<sensor_msgs::msg::PointCloud2>::kRosName,
+                       &detail::makeTypeSupport<sensor_msgs::msg::PointCloud2>, QosPreset::kSensor, &scans_);
+    if (!command) return;
+    writer_ = node_.createWriter("/motor/command", MessageType<msg::MotorCommand>::kRosName,
+                                 &detail::makeTypeSupport<msg::MotorCommand>, QosPreset::kControl);
+    thread_ = std::thread([this] {
+      msg::MotorCommand command;
+      command.velocity(-20.0);
+      while (!stop_) {
+        if (writer_->write_w_timestamp(&command, eprosima::fastrtps::rtps::c_InstanceHandle_Unknown,
+                                       eprosima::fastrtps::Time_t(0, 0)) == ReturnCode_t::RETCODE_OK) {
+          ++commands_sent;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    });
+  }
+  ~Stranger() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+  }
+  int scansReceived() const { return scans_.count; }
+  int commandReaders() const {
+    PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return status.total_count;
+  }
+  std::atomic<int> commands_sent{0};
+
+ private:
+  CountingListener scans_;
+  DdsNode node_;
+  DataWriter* writer_ = nullptr;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+std::string launch(const std::string& name, int domain_id, const std::string& extra, int expected_exit = 0) {
+  const std::string out = freshDirectory(name);
+  const CommandResult r = runUampc("launch " + sourcePath(kScene) + " --out " + out +
+                                   " --set domain_id=" + std::to_string(domain_id) + extra);
+  EXPECT_EQ(r.exit_code, expected_exit) << r.output;
+  return out;
+}
+
+TEST(Security, InitMakesOneIdentityPerProcessAndTheLauncherGrantingOnlyTheirTopics) {
+  const fs::path dir(keys());
+  for (const char* file : {"ca.cert.pem", "ca.key.pem", "governance.p7s", "processes/sim/cert.pem",
+                           "processes/sim/key.pem", "processes/control/permissions.p7s", "launcher/permissions.p7s"}) {
+    EXPECT_TRUE(fs::is_regular_file(dir / file)) << file;
+  }
+  // Only 'control' writes the motor's command, only 'sim' reads it.
+  const std::string control = readFile((dir / "processes/control/permissions.xml").string());
+  const std::string sim = readFile((dir / "processes/sim/permissions.xml").string());
+  auto section = [](const std::string& xml, const std::string& tag) {
+    const auto begin = xml.find("<" + tag + ">");
+    return begin == std::string::npos ? std::string() : xml.substr(begin, xml.find("</" + tag + ">") - begin);
+  };
+  EXPECT_NE(section(control, "publish").find("rt/motor/command"), std::string::npos);
+  EXPECT_EQ(section(control, "subscribe").find("rt/motor/command"), std::string::npos);
+  EXPECT_EQ(section(sim, "publish").find("rt/motor/command"), std::string::npos);
+  EXPECT_NE(section(sim, "subscribe").find("rt/motor/command"), std::string::npos);
+  // The private keys are the owner's only.
+  EXPECT_EQ(fs::status(dir / "ca.key.pem").permissions() & fs::perms::group_read, fs::perms::none);
+  // A second init into the same directory is refused rather than mixing two CAs.
+  const CommandResult again = runUampc("security init " + keys() + " --scene " + sourcePath(kScene));
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_NE(again.output.find("already holds"), std::string::npos) << again.output;
+}
+
+TEST(Security, SecuredRunGivesIdenticalOutputsAndAStrangerNeitherReadsNorCommands) {
+  // Without security the stranger reads the scans, and its commands move the motor: the two
+  // checks below can fail.
+  std::string plain;
+  {
+    Stranger reader(domain(0), false);
+    plain = launch("security_plain", domain(0), "");
+    EXPECT_GT(reader.scansReceived(), 0) << "the stranger should read an unsecured run's scans";
+  }
+  std::string commanded;
+  {
+    Stranger commander(domain(1), true);
+    commanded = launch("security_plain_commanded", domain(1), "");
+    EXPECT_GT(commander.commandReaders(), 0);
+  }
+  EXPECT_NE(readFile(plain + kOutputs[0]), readFile(commanded + kOutputs[0]))
+      << "the stranger's commands should change an unsecured run's motor";
+
+  Stranger stranger(domain(2), true);
+  const std::string secured = launch("security_secured", domain(2), securedBy(keys()));
+  EXPECT_EQ(stranger.scansReceived(), 0);
+  EXPECT_EQ(stranger.commandReaders(), 0) << "no secured participant may match the stranger's writer";
+  EXPECT_GT(stranger.commands_sent, 100);
+  for (const char* file : kOutputs) {
+    const std::string a = readFile(plain + file);
+    EXPECT_GT(a.size(), 100u) << file;
+    EXPECT_EQ(a, readFile(secured + file)) << file << " differs between the plain and the secured run";
+  }
+  // The resolved scene keeps the security, so that it runs the same again.
+  EXPECT_NE(readFile(secured + "/scene.yaml").find("security:"), std::string::npos);
+}
+
+TEST(Security, AProcessNotPermittedToWriteTheMotorCommandCannotWriteIt) {
+  // In this process: 'sim' may read /motor/command, not write it; 'control' may write it.
+  {
+    DdsNode sim(domain(3), "", true, "intruder", securityIdentity(keys(), "sim"));
+    EXPECT_NO_THROW(sim.createReader("/motor/command", MessageType<msg::MotorCommand>::kRosName,
+                                     &detail::makeTypeSupport<msg::MotorCommand>, QosPreset::kControl, nullptr));
+    try {
+      sim.createWriter("/motor/command", MessageType<msg::MotorCommand>::kRosName,
+                       &detail::makeTypeSupport<msg::MotorCommand>, QosPreset::kControl);
+      ADD_FAILURE() << "'sim' may not write /motor/command";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("not permitted by"), std::string::npos) << e.what();
+    }
+    DdsNode control(domain(3), "", true, "controller", securityIdentity(keys(), "control"));
+    EXPECT_NO_THROW(control.createWriter("/motor/command", MessageType<msg::MotorCommand>::kRosName,
+                                         &detail::makeTypeSupport<msg::MotorCommand>, QosPreset::kControl));
+  }
+  // A real run whose controller sits in 'sim': refused at the start, naming the topic.
+  const std::string out = freshDirectory("security_moved");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/security_loop_moved.yaml") + " --out " + out +
+                                   " --set domain_id=" + std::to_string(domain(4)) + securedBy(keys()));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot create a DDS writer on /motor/command (DDS Security: not permitted by " + keys() +
+                          "/processes/sim/permissions.p7s"),
+            std::string::npos)
+      << r.output;
+}
+
+// A copy of the keys with one change, and a scene naming it, so that errors have a scene line.
+struct BrokenKeys {
+  explicit BrokenKeys(const std::string& name) {
+    root = freshDirectory(name);
+    dir = root + "/keys";
+    fs::copy(keys(), dir, fs::copy_options::recursive);
+    scene = root + "/scene.yaml";
+    std::ofstream(scene) << "extends: " << sourcePath(kScene) << "\nsecurity:\n  directory: keys\n";
+  }
+  CommandResult validate() const { return runUampc("validate " + scene); }
+  std::string root, dir, scene;
+};
+
+void openssl(const std::string& args, const std::string& dir) {
+  const CommandResult r = runShell("cd " + dir + " && openssl " + args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+}
+
+TEST(Security, MissingExpiredAndMismatchedFilesAreRefusedByNameAtTheSceneLine) {
+  {
+    BrokenKeys k("security_missing");
+    fs::remove(k.dir + "/processes/control/cert.pem");
+    const CommandResult r = k.validate();
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(k.scene + ":3:14: error: security: identity 'control': " + k.dir +
+                            "/processes/control/cert.pem: file not found"),
+              std::string::npos)
+        << r.output;
+  }
+  {
+    BrokenKeys k("security_expired");
+    openssl(
+        "req -new -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -keyout processes/control/key.pem "
+        "-out x.csr -subj /O=uampc/CN=control",
+        k.dir);
+    openssl(
+        "x509 -req -in x.csr -CA ca.cert.pem -CAkey ca.key.pem -set_serial 99 -days -1 "
+        "-out processes/control/cert.pem",
+        k.dir);
+    const CommandResult r = k.validate();
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(k.dir + "/processes/control/cert.pem: certificate has expired"), std::string::npos)
+        << r.output;
+  }
+  {
+    // Another init's identity (another CA of the same name: its signature fails), and the key of
+    // another certificate.
+    BrokenKeys k("security_mismatched");
+    const std::string other = k.root + "/other";
+    ASSERT_EQ(runUampc("security init " + other + " --scene " + sourcePath(kScene)).exit_code, 0);
+    fs::copy_file(other + "/processes/control/cert.pem", k.dir + "/processes/control/cert.pem",
+                  fs::copy_options::overwrite_existing);
+    fs::copy_file(k.dir + "/processes/control/key.pem", k.dir + "/processes/sim/key.pem",
+                  fs::copy_options::overwrite_existing);
+    fs::copy_file(other + "/processes/sim/permissions.p7s", k.dir + "/launcher/permissions.p7s",
+                  fs::copy_options::overwrite_existing);
+    const CommandResult r = k.validate();
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(k.dir + "/processes/control/cert.pem: certificate signature failure"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(k.dir + "/processes/sim/key.pem: this key does not belong to the certificate"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(k.dir + "/launcher/permissions.p7s: its signature is not the CA's"), std::string::npos)
+        << r.output;
+  }
+  {
+    // Signed by the CA and valid, but another identity's permissions: only Fast DDS sees it, and
+    // the run fails at its start instead of waiting for a process that never comes.
+    BrokenKeys k("security_swapped");
+    fs::copy_file(k.dir + "/processes/sim/permissions.p7s", k.dir + "/processes/control/permissions.p7s",
+                  fs::copy_options::overwrite_existing);
+    const CommandResult r = runUampc("launch " + k.scene + " --set domain_id=" + std::to_string(domain(5)));
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("cannot create a DDS participant"), std::string::npos) << r.output;
+  }
+  {
+    BrokenKeys k("security_no_directory");
+    fs::remove_all(k.dir);
+    const CommandResult r = k.validate();
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("security.directory: not a directory: " + k.dir), std::string::npos) << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace uampc::test
