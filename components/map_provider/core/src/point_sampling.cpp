@@ -8,8 +8,7 @@
 
 namespace uampc::world {
 
-std::vector<Eigen::Vector3f> sampleSurface(const TriangleMesh& mesh, double density_per_m2,
-                                           std::uint64_t seed) {
+std::vector<Eigen::Vector3f> sampleSurface(const TriangleMesh& mesh, double density_per_m2, std::uint64_t seed) {
   SeededRandom random(seed);
   std::vector<Eigen::Vector3f> points;
   points.reserve(static_cast<std::size_t>(std::max(0.0, mesh.area() * density_per_m2 * 1.01)));
@@ -31,20 +30,22 @@ std::vector<Eigen::Vector3f> sampleSurface(const TriangleMesh& mesh, double dens
   return points;
 }
 
-std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>& points,
-                                             double voxel_size) {
+std::vector<Eigen::Vector3f> voxelDownsample(const std::vector<Eigen::Vector3f>& points, double voxel_size) {
   if (!(voxel_size > 0.0)) return points;
   struct Cell {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     int count = 0;
   };
+  // 21 bits per axis: unique for +-1e6 voxels each way. A point farther out (a corrupt map's
+  // 1e33 m) goes to the outermost voxel of its side: converting its index to an integer unclamped
+  // is undefined (on x86 every such point landed in the origin's voxel).
+  auto index_of = [&](float coordinate) {
+    constexpr double kLimit = 1 << 20;
+    return static_cast<std::int64_t>(std::clamp(std::floor(coordinate / voxel_size), -kLimit, kLimit - 1));
+  };
   auto key = [&](const Eigen::Vector3f& p) {
-    const auto ix = static_cast<std::int64_t>(std::floor(p.x() / voxel_size));
-    const auto iy = static_cast<std::int64_t>(std::floor(p.y() / voxel_size));
-    const auto iz = static_cast<std::int64_t>(std::floor(p.z() / voxel_size));
-    // 21 bits per axis: unique for +-1e6 voxels each way.
-    return static_cast<std::uint64_t>((ix & 0x1FFFFF) | ((iy & 0x1FFFFF) << 21) |
-                                      ((iz & 0x1FFFFF) << 42));
+    const std::int64_t ix = index_of(p.x()), iy = index_of(p.y()), iz = index_of(p.z());
+    return static_cast<std::uint64_t>((ix & 0x1FFFFF) | ((iy & 0x1FFFFF) << 21) | ((iz & 0x1FFFFF) << 42));
   };
   std::unordered_map<std::uint64_t, std::size_t> index;
   std::vector<Cell> cells;

@@ -399,5 +399,16 @@ TEST(VoxelDownsample, CentroidPerVoxelInFirstSeenOrder) {
   EXPECT_EQ(voxelDownsample(points, 0.0).size(), 4u);
 }
 
+// Found by tests/fuzz/pcd: a PCD map point at 8e33 m made the voxel index overflow its integer
+// (undefined; on x86 it landed in the origin's voxel and was averaged with the points there).
+TEST(VoxelDownsample, PointsBeyondTheIndexRangeKeepAVoxelOfTheirOwn) {
+  const std::vector<Eigen::Vector3f> points = {{0.1f, 0.1f, 0.1f}, {8.06895e33f, 0, 0}, {-1e30f, 0, 0}};
+  const auto out = voxelDownsample(points, 0.5);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_EQ(out[0], points[0]);
+  EXPECT_EQ(out[1], points[1]);
+  EXPECT_EQ(out[2], points[2]);
+}
+
 }  // namespace
 }  // namespace uampc::world
