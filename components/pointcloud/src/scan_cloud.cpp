@@ -1,5 +1,6 @@
 #include "uampc/pointcloud/scan_cloud.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -32,10 +33,18 @@ void setLayout(sensor_msgs::msg::PointCloud2& cloud, std::size_t count, std::uin
 
 std::size_t sizeOf(std::uint8_t datatype) {
   switch (datatype) {
-    case 1: case 2: return 1;
-    case 3: case 4: return 2;
-    case 5: case 6: case 7: return 4;
-    case 8: return 8;
+    case 1:
+    case 2:
+      return 1;
+    case 3:
+    case 4:
+      return 2;
+    case 5:
+    case 6:
+    case 7:
+      return 4;
+    case 8:
+      return 8;
   }
   return 0;
 }
@@ -89,8 +98,12 @@ TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud) {
     const auto* f = find(cloud, name);
     if (!f) continue;
     switch (f->datatype()) {
-      case kFloat32: case kFloat64: return {name, f->offset(), f->datatype(), 1.0};
-      case kUint32: case kInt32: return {name, f->offset(), f->datatype(), 1e-9};
+      case kFloat32:
+      case kFloat64:
+        return {name, f->offset(), f->datatype(), 1.0};
+      case kUint32:
+      case kInt32:
+        return {name, f->offset(), f->datatype(), 1e-9};
       default:
         throw std::runtime_error(std::string("per-point time field '") + name + "' has PointField datatype " +
                                  std::to_string(f->datatype()) +
@@ -99,8 +112,8 @@ TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud) {
   }
   std::string present;
   for (const auto& f : cloud.fields()) present += (present.empty() ? "" : ", ") + f.name();
-  throw std::runtime_error("no per-point time field (looked for t, time, timestamp, offset_time; the cloud has: " +
-                           present + ")");
+  throw std::runtime_error(
+      "no per-point time field (looked for t, time, timestamp, offset_time; the cloud has: " + present + ")");
 }
 
 ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField* time_field) {
@@ -143,19 +156,29 @@ ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField
   const std::uint8_t* base = cloud.data().data();
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t* p = base + i * step;
-    out.positions[i] = {readAs<float>(p + fx->offset()), readAs<float>(p + fy->offset()), readAs<float>(p + fz->offset())};
+    out.positions[i] = {readAs<float>(p + fx->offset()), readAs<float>(p + fy->offset()),
+                        readAs<float>(p + fz->offset())};
     if (fi) out.intensities[i] = readAs<float>(p + fi->offset());
     if (fr) out.rings[i] = readAs<std::uint16_t>(p + fr->offset());
     if (time_field) {
       const std::uint8_t* q = p + time_field->offset;
       double t = 0;
       switch (time_field->datatype) {
-        case kFloat32: t = readAs<float>(q); break;
-        case kFloat64: t = readAs<double>(q); break;
-        case kUint32: t = readAs<std::uint32_t>(q) * time_field->scale; break;
-        case kInt32: t = readAs<std::int32_t>(q) * time_field->scale; break;
+        case kFloat32:
+          t = readAs<float>(q);
+          break;
+        case kFloat64:
+          t = readAs<double>(q);
+          break;
+        case kUint32:
+          t = readAs<std::uint32_t>(q) * time_field->scale;
+          break;
+        case kInt32:
+          t = readAs<std::int32_t>(q) * time_field->scale;
+          break;
       }
-      out.time_offsets[i] = static_cast<float>(t);
+      // Also keeps t within float's range: converting a larger double to float is undefined.
+      out.time_offsets[i] = std::abs(t) <= kMaxTimeOffset ? static_cast<float>(t) : std::nanf("");
     }
   }
   return out;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 #include "uampc/pointcloud/scan_cloud.hpp"
@@ -56,6 +57,39 @@ TEST(ScanCloud, ReadsOtherDriversTimeFieldsInNanoseconds) {
   const ScanPoints back = readCloud(cloud, &tf);
   EXPECT_FLOAT_EQ(back.time_offsets[1], 0.05f);
   EXPECT_TRUE(back.intensities.empty());
+}
+
+// Found by tests/fuzz/pointcloud2: a point 1000 s after the stamp made the evaluator build four
+// million poses for the scan (a point at 1e30 s held it, and every scan after it, back for good);
+// a float64 time beyond float's range was converted to float, which is undefined.
+TEST(ScanCloud, PointTimesFartherThanAFrameCouldLastAreNotANumber) {
+  const std::vector<double> times = {0.05, 1e300, -20.0, 1000.0, -kMaxTimeOffset, 9.5};
+  auto cloud = makeXyzCloud(std::vector<Eigen::Vector3f>(times.size(), Eigen::Vector3f(1, 2, 3)), "lidar");
+  sensor_msgs::msg::PointField f;
+  f.name("timestamp");
+  f.offset(12);
+  f.datatype(8);  // float64
+  f.count(1);
+  cloud.fields().push_back(f);
+  cloud.point_step(20);
+  cloud.row_step(20 * static_cast<std::uint32_t>(times.size()));
+  std::vector<std::uint8_t> data(20 * times.size());
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const float xyz[3] = {1, 2, 3};
+    std::memcpy(&data[20 * i], xyz, 12);
+    std::memcpy(&data[20 * i + 12], &times[i], 8);
+  }
+  cloud.data(data);
+  const TimeField tf = findTimeField(cloud);
+  const ScanPoints back = readCloud(cloud, &tf);
+  ASSERT_EQ(back.time_offsets.size(), times.size());
+  EXPECT_FLOAT_EQ(back.time_offsets[0], 0.05f);
+  EXPECT_TRUE(std::isnan(back.time_offsets[1]));
+  EXPECT_TRUE(std::isnan(back.time_offsets[2]));
+  EXPECT_TRUE(std::isnan(back.time_offsets[3]));
+  EXPECT_FLOAT_EQ(back.time_offsets[4], -static_cast<float>(kMaxTimeOffset));
+  EXPECT_FLOAT_EQ(back.time_offsets[5], 9.5f);
+  EXPECT_EQ(back.positions.size(), times.size());  // the points stay; only their time is unknown
 }
 
 TEST(ScanCloud, RefusesCloudsItCannotRead) {

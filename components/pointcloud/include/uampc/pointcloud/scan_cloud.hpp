@@ -30,15 +30,21 @@ sensor_msgs::msg::PointCloud2 makeXyzCloud(const std::vector<Eigen::Vector3f>& p
 
 // How a cloud's time field is read; found once per layout, so a bad layout is reported once.
 struct TimeField {
-  std::string name;         // empty: the cloud has no usable time field
+  std::string name;  // empty: the cloud has no usable time field
   std::uint32_t offset = 0;
   std::uint8_t datatype = 0;
-  double scale = 1.0;       // to seconds (1e-9 for integer nanoseconds)
+  double scale = 1.0;  // to seconds (1e-9 for integer nanoseconds)
 };
 
 // Finds the time field, or throws std::runtime_error with a message naming the fields present
 // and the accepted names and types.
 TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud);
+
+// A point time farther than this from the header stamp, s, is read as NaN: no LiDAR frame lasts
+// that long, and a point at 1e30 s (a driver's garbage) would hold its scan back for good (the
+// LO waits for encoder states covering it, the evaluator for ground truth) or make the evaluator
+// evaluate a pose every 0.25 ms over its span. Callers already skip points without a finite time.
+constexpr double kMaxTimeOffset = 10.0;
 
 // Reads x, y, z (float32 required), and intensity, ring and time where present. Throws
 // std::runtime_error on an inconsistent cloud (data shorter than width*height*point_step, fields
