@@ -357,14 +357,14 @@ class UampcCli {
   void addSecurity() {
     uampc::app::SecurityInitOptions& o = options_.security;
     CLI::App* sub =
-        addCommand("security", "uampc security init DIR --scene SCENE.yaml [--days N]",
+        addCommand("security", "uampc security init DIR --scene SCENE.yaml [--days N] [--sign-metadata]",
                    "DDS Security (authentication, encryption, permissions) for a scene's runs. 'init' makes\n"
                    "DIR with openssl: a CA, an identity per process of the scene and one for the launcher,\n"
                    "the governance and, per identity, permissions for exactly the topics its components read\n"
                    "and write, signed by the CA. Then run the scene with security: {directory: DIR}.");
     sub->require_subcommand(1);
     CLI::App* init = sub->add_subcommand("init", "Make the security directory DIR for a scene.");
-    formatter_->addSynopsis("init", "uampc security init DIR --scene SCENE.yaml [--days N]");
+    formatter_->addSynopsis("init", "uampc security init DIR --scene SCENE.yaml [--days N] [--sign-metadata]");
     init->add_option("DIR", o.directory, "The directory to make (must not hold one already).")
         ->required()
         ->type_name("");
@@ -374,6 +374,9 @@ class UampcCli {
     init->add_option("--days", o.days, "Validity of the certificates and permissions, days (default 365).")
         ->check(CLI::Range(1, 36500))
         ->type_name("N");
+    init->add_flag("--sign-metadata", o.sign_metadata,
+                   "Also sign every submessage around the samples (heartbeats, acknowledgements), so that an\n"
+                   "outsider cannot disturb delivery; costs more CPU (README, \"Security\").");
     commands_.push_back({sub, [this] { return uampc::app::securityInitCommand(options_.security); }});
   }
 

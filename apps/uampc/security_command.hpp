@@ -18,7 +18,8 @@ namespace uampc::app {
 struct SecurityInitOptions {
   std::string directory;
   std::string scene_path;
-  int days = 365;  // validity of the certificates and permissions
+  int days = 365;              // validity of the certificates and permissions
+  bool sign_metadata = false;  // sign every submessage (metadata_protection_kind SIGN), not only the samples
 };
 
 // DDS topic names (rt/...) one identity may publish and subscribe to.
