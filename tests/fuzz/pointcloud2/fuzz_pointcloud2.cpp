@@ -23,6 +23,7 @@
 #include "byte_reader.hpp"
 #include "uampc/msgs/geometry_msgs.hpp"
 #include "uampc/msgs/sensor_msgs.hpp"
+#include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
 
 namespace {
@@ -82,9 +83,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::ByteReader in(data, size);
   const sensor_msgs::msg::PointCloud2 cloud = cloudFrom(in);
   const double stamp = fromMsg(cloud.header().stamp()).seconds();
-  // Encoder and ground truth from before the scan to well after any time offset a float32 in
-  // seconds can still add precisely enough to matter.
-  const double before = stamp - 1.0, after = stamp + 1000.0;
+  // Encoder and ground truth from before the scan to after any point time readCloud keeps.
+  const double before = stamp - 1.0, after = stamp + 2.0 * pointcloud::kMaxTimeOffset;
   {
     testing::TestContext lo("lo", {{"init_from_pose", "false"}, {"max_motor_wait", "0"}});
     deliver([&] { lo.inject("motor_state", encoderAt(before)); });
