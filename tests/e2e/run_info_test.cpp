@@ -17,6 +17,7 @@
 #include <sstream>
 #include <thread>
 
+#include "background_launch.hpp"
 #include "command_runner.hpp"
 #include "test_domains.hpp"
 #include "uampc/run_files/json_text.hpp"
@@ -237,46 +238,6 @@ TEST(RunRecord, LaunchingTheCopyReproducesTheRun) {
 }
 
 // ---------------------------------------------------------------- Ctrl-C
-
-// `uampc launch` in a process group of its own, as a shell starts a command, output to log.
-pid_t startLaunch(const std::string& args, const std::string& log, const std::string& environment = "") {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    setpgid(0, 0);
-    const std::string command = "exec env UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " + environment +
-                                " " + binaryPath("bin/uampc") + " launch " + args + " > " + log + " 2>&1";
-    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  setpgid(pid, pid);  // both sides: whichever runs first
-  return pid;
-}
-
-// Waits for condition, at most `limit` (a test that hangs is a failure, not a stall).
-bool waitFor(const std::function<bool()>& condition, std::chrono::seconds limit) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return true;
-}
-
-// The launcher's exit code; -1 when it did not exit (or exited by a signal) within the limit.
-int exitCodeOf(pid_t pid) {
-  int status = 0;
-  const bool exited = waitFor([&] { return waitpid(pid, &status, WNOHANG) == pid; }, std::chrono::seconds(30));
-  if (!exited) {
-    kill(-pid, SIGKILL);
-    waitpid(pid, &status, 0);
-    return -1;
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-bool logHas(const std::string& log, const std::string& text) {
-  return fs::exists(log) && readFile(log).find(text) != std::string::npos;
-}
 
 TEST(CtrlC, WhileTheProcessesAreStartingExits130) {
   const std::string dir = freshDirectory("ctrl_c_starting");

@@ -24,6 +24,7 @@ enum class DomainBlock {
   kExperimentE2e,
   kSceneValidation,
   kDdsProfile,
+  kFaults,
   kSecurity,
 };
 

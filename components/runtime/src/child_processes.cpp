@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,8 +34,14 @@ pid_t waitFor(pid_t pid, int& status, int options) {
 
 // In the child between fork and exec: only async-signal-safe calls (the parent may have threads,
 // e.g. Fast DDS's, holding locks that malloc or stdio would wait for forever).
-[[noreturn]] void execInChild(const char* executable, char* const* argv, char* const* envp, const char* log_file,
-                              const std::string& failure_message) {
+[[noreturn]] void execInChild(pid_t parent, const char* executable, char* const* argv, char* const* envp,
+                              const char* log_file, const std::string& failure_message) {
+  // A child stops when its parent dies, even by SIGKILL: SIGTERM asks it to stop as Ctrl-C would
+  // (a lockstep process would otherwise wait for a clock that is gone, a real-time one would go on
+  // commanding the motor). The parent may have died before prctl: then getppid() has changed.
+  // (Sent when the thread that forked ends: ours are started from the main thread.)
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (getppid() != parent) _exit(128 + SIGTERM);
   if (log_file) {
     const int fd = open(log_file, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int null = open("/dev/null", O_RDONLY);
@@ -61,10 +68,11 @@ pid_t ChildProcesses::start(const ChildCommand& command) {
     for (char** entry = environ; *entry; ++entry) environment.emplace_back(*entry);
   }
   const std::vector<char*> argv = nullTerminated(argv_text), envp = nullTerminated(environment);
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::system_error(errno, std::generic_category(), "fork failed");
   if (pid == 0) {
-    execInChild(command.executable.c_str(), argv.data(), envp.data(),
+    execInChild(parent, command.executable.c_str(), argv.data(), envp.data(),
                 command.log_file.empty() ? nullptr : command.log_file.c_str(), command.exec_failure_message);
   }
   running_[pid] = command.name;

@@ -15,6 +15,7 @@
 #include "uampc/runtime/child_processes.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/run_record.hpp"
+#include "uampc/runtime/shared_memory_cleanup.hpp"
 
 namespace fs = std::filesystem;
 
@@ -100,6 +101,7 @@ class ProcessSupervisor {
     if (!exit) return {};
     const std::string& process = exit->name;
     if (g_stop && stoppedAsAsked(exit->status)) return {};
+    killed_ = killed_ || WIFSIGNALED(exit->status);
     const std::string what =
         "process '" + process + "' (pid " + std::to_string(exit->pid) + ") " + describeStatus(exit->status);
     if (scene_.on_crash == CrashPolicy::kRestart && !g_stop && restarts_[process] < scene_.max_restarts) {
@@ -123,9 +125,10 @@ class ProcessSupervisor {
         for (const auto& [pid, name] : children_.running())
           std::cerr << "uampc: process '" << name << "' did not stop within 5 s; killing it\n";
         children_.killAll();
-        failed_ = true;
+        failed_ = killed_ = true;
         break;
       }
+      killed_ = killed_ || (WIFSIGNALED(exit->status) && !stoppedAsAsked(exit->status));
       const bool clean = WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0;
       if (!clean && !(g_stop && stoppedAsAsked(exit->status))) {
         std::cerr << "uampc: process '" << exit->name << "' " << describeStatus(exit->status) << " while stopping\n";
@@ -136,6 +139,9 @@ class ProcessSupervisor {
 
   bool empty() const { return children_.empty(); }
   bool failed() const { return failed_; }
+  // Whether a process died by a signal (crashed, or killed by someone or by stopAll): it left its
+  // shared-memory segments behind.
+  bool someKilled() const { return killed_; }
 
  private:
   const Scene& scene_;
@@ -143,7 +149,22 @@ class ProcessSupervisor {
   ChildProcesses children_;
   std::map<std::string, int> restarts_;
   bool failed_ = false;
+  bool killed_ = false;
 };
+
+// The output directory removed (or replaced) during the run: the outputs written from then on would
+// go nowhere, and the run's results would be silently lost.
+std::string outputDirectoryProblem(const std::string& output_directory) {
+  if (output_directory.empty() || fs::is_directory(output_directory)) return {};
+  return "the output directory " + output_directory + " was removed during the run; its outputs are lost";
+}
+
+// After a process died by a signal: its Fast DDS segments, which nobody else would remove.
+void removeWhatKilledProcessesLeft() {
+  if (const int removed = removeAbandonedSharedMemorySegments(); removed > 0) {
+    std::cerr << "uampc: removed " << removed << " shared-memory segment(s) that killed processes left in /dev/shm\n";
+  }
+}
 
 }  // namespace
 
@@ -178,9 +199,14 @@ int launch(const LaunchOptions& options) {
   ProcessSupervisor supervisor(scene, options);
   for (const auto& process : scene.processes()) supervisor.start(process);
 
+  // What ends a run early: a process that failed, or the output directory gone.
+  auto problem = [&] {
+    std::string what = supervisor.poll();
+    return what.empty() ? outputDirectoryProblem(options.output_directory) : what;
+  };
   std::string error;
   if (scene.clock.mode == ClockMode::kLockstep) {
-    const ClockResult result = runLockstepClock(scene, g_stop, [&] { return supervisor.poll(); });
+    const ClockResult result = runLockstepClock(scene, g_stop, problem);
     // Stopped while the processes were starting is no failure: the user asked.
     if (!result.ok && !g_stop) error = result.error;
     std::cerr << "uampc: " << result.sim_seconds << " s of sim time in " << result.wall_seconds << " s ("
@@ -188,7 +214,7 @@ int launch(const LaunchOptions& options) {
   } else {
     const auto start = std::chrono::steady_clock::now();
     while (!g_stop) {
-      error = supervisor.poll();
+      error = problem();
       if (!error.empty() || supervisor.empty()) break;
       if (scene.clock.duration_s > 0 &&
           std::chrono::steady_clock::now() - start > std::chrono::duration<double>(scene.clock.duration_s)) {
@@ -198,6 +224,7 @@ int launch(const LaunchOptions& options) {
     }
   }
   supervisor.stopAll();
+  if (supervisor.someKilled()) removeWhatKilledProcessesLeft();
   if (!error.empty()) {
     std::cerr << "uampc: run failed: " << error << "\n";
     return 1;

@@ -10,11 +10,11 @@
 #include <set>
 #include <thread>
 
-#include "uampc/runtime/dds_node.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/run_progress.hpp"
+#include "uampc/runtime/dds_node.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "wakeup.hpp"
 
@@ -74,6 +74,21 @@ class Progress {
   SteadyClock::time_point last_line_{}, last_file_{};
 };
 
+// Each process of the scene writes step acknowledgements with one writer. More writers mean another
+// lockstep run (or a stranger) on this domain: its clock ticks, acknowledgements and samples would
+// mix with ours, so the run stops and says so instead of waiting for acknowledgements in vain.
+std::string otherRunOnTheDomain(DataReader* ack_reader, std::size_t processes, int domain_id) {
+  SubscriptionMatchedStatus status;
+  ack_reader->get_subscription_matched_status(status);
+  // total_count, not current_count: a writer seen even briefly (a second run that gave up) counts.
+  if (status.total_count <= static_cast<int>(processes)) return {};
+  return "another lockstep run is on DDS domain " + std::to_string(domain_id) + ": " +
+         std::to_string(status.total_count) + " writers of step acknowledgements (" + kStepAckTopic +
+         ") where this scene has " + std::to_string(processes) +
+         " process(es); two runs on one domain hear each other's clock and topics, so give each run its own "
+         "domain_id (--set domain_id=N)";
+}
+
 }  // namespace
 
 static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
@@ -103,8 +118,13 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     uampc::msg::StepAck ack;
     SampleInfo info;
     while (acked.size() < processes.size()) {
+      if (std::string other = otherRunOnTheDomain(ack_reader, processes.size(), scene.domain_id); !other.empty()) {
+        result.error = other;
+        return false;
+      }
       while (ack_reader->take_next_sample(&ack, &info) == ReturnCode_t::RETCODE_OK) {
         if (!info.valid_data || ack.step() != step) continue;
+        if (std::find(processes.begin(), processes.end(), ack.process()) == processes.end()) continue;
         if (ack.failed()) {
           result.error = "process '" + ack.process() + "': " + ack.message();
           return false;
@@ -155,8 +175,12 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     if (scene.clock.duration_s > 0 && t > duration) break;
     if (stop) break;
     if (scene.clock.real_time_factor > 0) {
-      std::this_thread::sleep_until(wall_start +
-                                    std::chrono::duration<double>(t.seconds() / scene.clock.real_time_factor));
+      const auto due = wall_start + std::chrono::duration_cast<SteadyClock::duration>(
+                                        std::chrono::duration<double>(t.seconds() / scene.clock.real_time_factor));
+      // In slices, so that Ctrl-C is heard during a long pause.
+      while (!stop && SteadyClock::now() < due) {
+        std::this_thread::sleep_until(std::min(due, SteadyClock::now() + std::chrono::milliseconds(100)));
+      }
     }
     rosgraph_msgs::msg::Clock tick;
     tick.clock(toMsg(t));

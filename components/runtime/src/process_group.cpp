@@ -495,7 +495,9 @@ class ProcessRunner {
   // Lockstep: the acknowledgements of step `step` from every process, summed into the number of
   // samples written on each topic; false on timeout or stop.
   bool awaitAcks(std::int64_t step, std::map<std::string, std::uint64_t>& expected, const std::atomic<bool>& stop) {
-    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.ack_timeout_s);
+    // A little before the clock gives up: the clock then hears from this process which peer it
+    // waited for (a stopped process), instead of naming every process as late.
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(0.9 * scene_.clock.ack_timeout_s);
     for (;;) {
       std::deque<Sample> acks;
       ack_reader_->takeAll(acks);
@@ -505,16 +507,16 @@ class ProcessRunner {
       }
       // A faster process may already have acknowledged later steps; the counts must be those of
       // exactly this step.
-      bool complete = true;
+      std::string missing;
       for (const auto& p : scene_.processes()) {
         auto it = acks_.find(p);
-        complete = complete && it != acks_.end() && it->second.count(step);
+        if (it == acks_.end() || !it->second.count(step)) missing += (missing.empty() ? "" : ", ") + p;
       }
-      if (complete) break;
+      if (missing.empty()) break;
       if (stop) return false;
       if (SteadyClock::now() > deadline) {
-        failure_ = "acknowledgements of step " + std::to_string(step) + " did not arrive within " +
-                   std::to_string(scene_.clock.ack_timeout_s) + " s";
+        failure_ = "acknowledgements of step " + std::to_string(step) + " from process(es) " + missing +
+                   " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s";
         log_.error(failure_);
         return false;
       }
@@ -526,6 +528,17 @@ class ProcessRunner {
       by_step.erase(by_step.begin(), by_step.find(step));  // older steps are not needed again
     }
     return true;
+  }
+
+  // A second writer of /clock, ever: another lockstep run on this domain, whose ticks would drive
+  // this one (the clock checks the acknowledgements' writers the same way).
+  std::string anotherClock() const {
+    SubscriptionMatchedStatus status;
+    clock_reader_->reader->get_subscription_matched_status(status);
+    if (status.total_count <= 1) return {};
+    return "another lockstep run is on DDS domain " + std::to_string(scene_.domain_id) + ": " +
+           std::to_string(status.total_count) + " clocks were heard on " + kClockTopic +
+           "; give each run its own domain_id (--set domain_id=N)";
   }
 
   int runLockstep(const std::atomic<bool>& stop) {
@@ -554,6 +567,10 @@ class ProcessRunner {
 
     while (!stop) {
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
+      if (const std::string other = anotherClock(); !other.empty()) {
+        log_.error(other);
+        return 1;
+      }
       std::deque<Sample> ticks;
       clock_reader_->takeAll(ticks);
       for (const auto& tick : ticks) {

@@ -1,0 +1,51 @@
+#include "background_launch.hpp"
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <thread>
+
+#include "command_runner.hpp"
+
+namespace uampc::test {
+
+pid_t startLaunch(const std::string& args, const std::string& log, const std::string& environment) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    setpgid(0, 0);
+    const std::string command = "exec env UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " + environment +
+                                " " + binaryPath("bin/uampc") + " launch " + args + " > " + log + " 2>&1";
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);  // both sides: whichever runs first
+  return pid;
+}
+
+bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds limit) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return true;
+}
+
+int exitCodeOf(pid_t pid) {
+  int status = 0;
+  const bool exited = waitFor([&] { return waitpid(pid, &status, WNOHANG) == pid; }, std::chrono::seconds(30));
+  if (!exited) {
+    kill(-pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+bool logHas(const std::string& log, const std::string& text) {
+  return std::filesystem::exists(log) && readFile(log).find(text) != std::string::npos;
+}
+
+}  // namespace uampc::test

@@ -1,0 +1,26 @@
+// `uampc launch` started in the background, for tests that signal or kill it while it runs.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <functional>
+#include <string>
+
+namespace uampc::test {
+
+// `uampc launch ARGS` in a process group of its own, as a shell starts a command, with stdout and
+// stderr to `log`; `environment` is put before the command (NAME=VALUE ...).
+pid_t startLaunch(const std::string& args, const std::string& log, const std::string& environment = "");
+
+// Waits for condition, at most `limit` (a test that hangs is a failure, not a stall).
+bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds limit);
+
+// The launcher's exit code; -1 when it did not exit (or exited by a signal) within 30 s, after
+// which its process group is killed.
+int exitCodeOf(pid_t pid);
+
+// Whether the file exists and contains `text`.
+bool logHas(const std::string& log, const std::string& text);
+
+}  // namespace uampc::test

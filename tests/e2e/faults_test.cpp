@@ -1,0 +1,172 @@
+// Faults a run survives (issue 15): the launcher killed, a process group killed or stopped, two runs
+// on one DDS domain, an output directory that cannot be written or disappears. Each is detected and
+// named, nothing hangs, and what was written stays valid.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "background_launch.hpp"
+#include "command_runner.hpp"
+#include "test_domains.hpp"
+#include "uampc/run_files/csv.hpp"
+#include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_progress.hpp"
+
+namespace uampc::test {
+namespace {
+
+namespace fs = std::filesystem;
+using std::chrono::milliseconds;
+using std::chrono::seconds;
+
+// The pids of a run's process groups (`uampc run-process ... --set domain_id=D`), optionally only
+// the one named `process`. ([u] keeps the shell running pgrep from matching its own command line.)
+std::vector<pid_t> processesOfRun(int domain, const std::string& process = "") {
+  const std::string pattern = "[u]ampc run-process .*" + (process.empty() ? "" : "--process " + process + " .*") +
+                              "domain_id=" + std::to_string(domain) + "( |$)";
+  std::vector<pid_t> pids;
+  std::istringstream lines(runShell("pgrep -f '" + pattern + "'").output);
+  for (pid_t pid; lines >> pid;) pids.push_back(pid);
+  return pids;
+}
+
+// A lockstep run of two process groups (motor, control) that runs until something ends it.
+pid_t startLongRun(int domain, const std::string& dir, const std::string& extra = "") {
+  return startLaunch(sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + dir + "/out" +
+                         " --set clock.duration=600" + extra + " --set domain_id=" + std::to_string(domain),
+                     dir + "/launch.log", std::string(run_files::kProgressFileVariable) + "=" + dir + "/progress.json");
+}
+
+bool simTimeHasPassed(const std::string& dir) {
+  return waitFor(
+      [&] {
+        const auto p = run_files::readRunProgress(dir + "/progress.json");
+        return p && p->sim_s > 0.5;
+      },
+      seconds(60));
+}
+
+// Kills the launcher only (not its process group) and reports how long its children took to stop.
+void expectChildrenStopWhenTheLauncherIsKilled(pid_t launcher, int domain, const std::string& what) {
+  ASSERT_EQ(processesOfRun(domain).size(), 2u);
+  kill(launcher, SIGKILL);
+  waitpid(launcher, nullptr, 0);
+  const auto start = std::chrono::steady_clock::now();
+  const bool stopped = waitFor([&] { return processesOfRun(domain).empty(); }, seconds(20));
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(stopped) << what << ": children still running 20 s after the launcher was killed";
+  std::cout << what << ": children stopped " << elapsed << " s after the launcher was killed\n";
+  if (!stopped) {
+    for (pid_t pid : processesOfRun(domain)) kill(pid, SIGKILL);
+  }
+}
+
+TEST(Faults, LockstepChildrenStopWhenTheLauncherIsKilled) {
+  const int domain = testDomain(DomainBlock::kFaults, 0);
+  const std::string dir = freshDirectory("faults_launcher_killed_lockstep");
+  const pid_t launcher = startLongRun(domain, dir);
+  ASSERT_TRUE(simTimeHasPassed(dir)) << readFile(dir + "/launch.log");
+  expectChildrenStopWhenTheLauncherIsKilled(launcher, domain, "lockstep");
+}
+
+TEST(Faults, RealTimeChildrenStopWhenTheLauncherIsKilled) {
+  const int domain = testDomain(DomainBlock::kFaults, 1);
+  const std::string dir = freshDirectory("faults_launcher_killed_realtime");
+  const pid_t launcher =
+      startLaunch(sourcePath("tests/scenes/realtime_idle.yaml") + " --set domain_id=" + std::to_string(domain),
+                  dir + "/launch.log");
+  ASSERT_TRUE(waitFor([&] { return processesOfRun(domain).size() == 2; }, seconds(30)));
+  std::this_thread::sleep_for(seconds(1));  // running, commanding the motor
+  expectChildrenStopWhenTheLauncherIsKilled(launcher, domain, "real time");
+}
+
+TEST(Faults, TwoRunsOnOneDomainAreDetectedNotAStall) {
+  const int domain = testDomain(DomainBlock::kFaults, 2);
+  const std::string dir = freshDirectory("faults_two_runs");
+  const pid_t first = startLongRun(domain, dir);
+  ASSERT_TRUE(simTimeHasPassed(dir)) << readFile(dir + "/launch.log");
+  const std::string message = "another lockstep run is on DDS domain " + std::to_string(domain);
+  const CommandResult second =
+      runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + dir +
+               "/second --set clock.duration=2 --set domain_id=" + std::to_string(domain));
+  EXPECT_EQ(second.exit_code, 1);
+  EXPECT_NE(second.output.find(message), std::string::npos) << second.output;
+  EXPECT_EQ(exitCodeOf(first), 1);
+  EXPECT_TRUE(logHas(dir + "/launch.log", message)) << readFile(dir + "/launch.log");
+}
+
+TEST(Faults, AProcessGroupKilledMidRunIsNamedAndLeavesNothingBehind) {
+  const int domain = testDomain(DomainBlock::kFaults, 3);
+  const std::string dir = freshDirectory("faults_process_killed");
+  const pid_t launcher = startLongRun(domain, dir);
+  ASSERT_TRUE(simTimeHasPassed(dir)) << readFile(dir + "/launch.log");
+  const auto motor = processesOfRun(domain, "motor");
+  ASSERT_EQ(motor.size(), 1u);
+  kill(motor[0], SIGKILL);
+  EXPECT_EQ(exitCodeOf(launcher), 1);
+  const std::string log = readFile(dir + "/launch.log");
+  EXPECT_NE(log.find("process 'motor' (pid " + std::to_string(motor[0]) + ") killed by signal 9"), std::string::npos)
+      << log;
+  // Its Fast DDS segments (at least its own) are gone.
+  EXPECT_NE(log.find("shared-memory segment(s) that killed processes left in /dev/shm"), std::string::npos) << log;
+  // What the other process wrote is whole: every row of the recording parses, times increase.
+  const auto rows = run_files::readCsv(dir + "/out/recorder_motor_states.csv").rows;
+  ASSERT_GT(rows.size(), 50u);
+  for (std::size_t i = 1; i < rows.size(); ++i) ASSERT_GT(rows[i][0], rows[i - 1][0]) << "row " << i;
+  // The next run on the same domain starts and ends normally.
+  const CommandResult next = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " +
+                                      dir + "/next --set clock.duration=1 --set domain_id=" + std::to_string(domain));
+  EXPECT_EQ(next.exit_code, 0) << next.output;
+}
+
+TEST(Faults, AStoppedProcessGroupIsNamedByTheAcknowledgementTimeout) {
+  const int domain = testDomain(DomainBlock::kFaults, 4);
+  const std::string dir = freshDirectory("faults_process_stopped");
+  const pid_t launcher = startLongRun(domain, dir, " --set clock.ack_timeout=2");
+  ASSERT_TRUE(simTimeHasPassed(dir)) << readFile(dir + "/launch.log");
+  const auto motor = processesOfRun(domain, "motor");
+  ASSERT_EQ(motor.size(), 1u);
+  kill(motor[0], SIGSTOP);
+  EXPECT_EQ(exitCodeOf(launcher), 1);
+  // The stopped process is named, by the clock or by the other process waiting for its
+  // acknowledgement (whichever waited when it stopped), and only it.
+  EXPECT_TRUE(logHas(dir + "/launch.log", "from process(es) motor ")) << readFile(dir + "/launch.log");
+  EXPECT_FALSE(logHas(dir + "/launch.log", "process(es) motor, control")) << readFile(dir + "/launch.log");
+  kill(motor[0], SIGKILL);  // killed by the launcher already; in case it was not
+}
+
+TEST(Faults, AnOutputDirectoryThatCannotBeCreatedStartsNothing) {
+  const std::string dir = freshDirectory("faults_out_unwritable");
+  std::ofstream(dir + "/a_file") << "not a directory";
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + dir +
+                                   "/a_file/out --set clock.duration=1" + domainOverride(DomainBlock::kFaults, 5));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find(dir + "/a_file/out"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nothing was started"), std::string::npos) << r.output;
+}
+
+TEST(Faults, AnOutputDirectoryRemovedDuringTheRunStopsItWithTheReason) {
+  const int domain = testDomain(DomainBlock::kFaults, 6);
+  const std::string dir = freshDirectory("faults_out_removed");
+  const pid_t launcher = startLongRun(domain, dir);
+  ASSERT_TRUE(simTimeHasPassed(dir)) << readFile(dir + "/launch.log");
+  fs::remove_all(dir + "/out");
+  EXPECT_EQ(exitCodeOf(launcher), 1);
+  const std::string log = readFile(dir + "/launch.log");
+  EXPECT_NE(log.find("the output directory " + dir + "/out was removed during the run"), std::string::npos) << log;
+  EXPECT_EQ(log.find("while stopping"), std::string::npos) << log;  // the processes stopped cleanly
+  EXPECT_TRUE(processesOfRun(domain).empty());
+}
+
+}  // namespace
+}  // namespace uampc::test
