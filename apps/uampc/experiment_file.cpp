@@ -70,6 +70,13 @@ std::optional<std::string> ExperimentValidator::name(const YAML::Node& node, con
     error(node, what + " '" + *value + "' may only hold letters, digits, _ . - (it names a directory)");
     return std::nullopt;
   }
+  // A directory name has at most 255 bytes (NAME_MAX); the run's directory adds to it.
+  constexpr std::size_t kMaxLength = 100;
+  if (value->size() > kMaxLength) {
+    error(node, what + " '" + value->substr(0, 20) + "...' is longer than " + std::to_string(kMaxLength) +
+                    " characters (it names a directory)");
+    return std::nullopt;
+  }
   if (!seen.insert(*value).second) {
     error(node, what + " '" + *value + "' appears twice");
     return std::nullopt;
@@ -275,6 +282,7 @@ Experiment loadExperiment(const std::string& path, const std::map<std::string, s
                          : file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
     throw ExperimentError({where + ": error: " + e.msg});
   }
+  if (auto errors = yamlStructureErrors(root, file); !errors.empty()) throw ExperimentError(std::move(errors));
   return ExperimentValidator(file, variables).validate(root);
 }
 

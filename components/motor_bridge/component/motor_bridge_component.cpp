@@ -28,7 +28,8 @@ class MotorBridge : public Component {
     spec.param("command_timeout", 0.5, "after this long without a command, drive at safe_speed, s")
         .between(0.0, 3600.0);
     spec.param("safe_speed", 0.0, "speed when commands stop arriving, rad/s").between(-1000.0, 1000.0);
-    spec.param("initial_angle", 0.0, "encoder angle at start, rad");
+    // Bounded: 1e308 overflowed to an infinite angle on the first encoder step.
+    spec.param("initial_angle", 0.0, "encoder angle at start, rad").between(-1.0e4, 1.0e4);
   }
 
   explicit MotorBridge(Context& ctx)

@@ -10,11 +10,12 @@
 #include <set>
 #include <sstream>
 
+#include "scene_document.hpp"
+#include "scene_ports.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/edit_distance.hpp"
-#include "scene_document.hpp"
-#include "scene_ports.hpp"
+#include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 
 namespace fs = std::filesystem;
@@ -85,6 +86,11 @@ Override parseOverride(const std::string& text) {
 }
 
 namespace {
+
+// Component and process names become DDS participant names, log prefixes and file names; a process
+// name of 250 characters stalled the start for 60 s. 63 is far more than a name needs.
+constexpr std::size_t kMaxNameLength = 63;
+constexpr double kMinRealTimeFactor = 0.001;
 
 // Collects errors so that one run of the validator reports every problem in the file.
 class SceneValidator {
@@ -191,6 +197,10 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
       value = YAML::Load(o.value);
     } catch (const YAML::Exception& e) {
       errors_.push_back("--set " + o.text + ": error: " + e.msg);
+      continue;
+    }
+    if (auto structure = yamlStructureErrors(value, "--set " + o.text); !structure.empty()) {
+      errors_.insert(errors_.end(), structure.begin(), structure.end());
       continue;
     }
     if (value.IsNull()) value = YAML::Node(std::string());
@@ -387,7 +397,16 @@ void SceneValidator::readClock(const YAML::Node& node, Scene& scene) {
   positive("step", 1e-6, 1.0, [&](double v) { scene.clock.step = Time::fromSeconds(v); });
   positive("duration", 0.0, 1e7, [&](double v) { scene.clock.duration_s = v; });
   positive("ack_timeout", 0.1, 3600.0, [&](double v) { scene.clock.ack_timeout_s = v; });
-  positive("real_time_factor", 0.0, 1000.0, [&](double v) { scene.clock.real_time_factor = v; });
+  // 0: as fast as the components go. Otherwise at least 0.001: 1e-300 overflowed the pacing (which
+  // then stopped pacing) and 1e-12 put the clock to sleep for years, deaf to Ctrl-C.
+  positive("real_time_factor", 0.0, 1000.0, [&](double v) {
+    if (v > 0.0 && v < kMinRealTimeFactor) {
+      error(node["real_time_factor"], "clock.real_time_factor must be 0 (as fast as possible) or at least 0.001, not " +
+                                          node["real_time_factor"].Scalar());
+    } else {
+      scene.clock.real_time_factor = v;
+    }
+  });
 }
 
 void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene) {
@@ -397,6 +416,11 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
   static const std::regex name_pattern("[A-Za-z][A-Za-z0-9_]*");
   if (!std::regex_match(instance.name, name_pattern)) {
     error(key, "component name '" + instance.name + "' must start with a letter and use only letters, digits, _");
+    return;
+  }
+  if (instance.name.size() > kMaxNameLength) {
+    error(key, "component name '" + instance.name.substr(0, 20) + "...' is longer than " +
+                   std::to_string(kMaxNameLength) + " characters");
     return;
   }
   if (!node.IsMap()) {
@@ -431,6 +455,9 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
       static const std::regex process_pattern("[a-z][a-z0-9_]*");
       if (!std::regex_match(*v, process_pattern)) {
         error(node["process"], "process name '" + *v + "' must use lower-case letters, digits and _");
+      } else if (v->size() > kMaxNameLength) {
+        error(node["process"], "process name '" + v->substr(0, 20) + "...' is longer than " +
+                                   std::to_string(kMaxNameLength) + " characters");
       } else {
         instance.process = *v;
       }
@@ -654,7 +681,12 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
     auto target = scalar<std::string>(kv.second, "topic of port '" + port + "'");
     if (!target) continue;
     topic_locations_[instance.name + "." + port] = at(kv.second);
-    if (std::regex_match(*target, topic_pattern)) {
+    if (*target == kClockTopic || target->rfind(kStepAckTopic, 0) == 0) {
+      // The runtime's own topics: a port on them would fight the lockstep clock (a port mapped to
+      // /clock crashed the process).
+      error(kv.second, "topic " + *target + " is the runtime's own (the lockstep clock); map port '" + port +
+                           "' to another topic");
+    } else if (std::regex_match(*target, topic_pattern)) {
       instance.topics[port] = *target;
     } else if (std::regex_match(*target, reference_pattern)) {
       references.push_back({0, port, *target, locationOf(kv.second)});

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <set>
+#include <vector>
 
 #include "uampc/runtime/scene.hpp"
+#include "uampc/runtime/yaml_errors.hpp"
 
 namespace fs = std::filesystem;
 
@@ -17,7 +20,9 @@ std::string position(const std::string& file, const YAML::Mark& mark) {
 
 YAML::Node parse(const std::string& file) {
   try {
-    return YAML::LoadFile(file);
+    YAML::Node document = YAML::LoadFile(file);
+    if (auto errors = yamlStructureErrors(document, file); !errors.empty()) throw SceneError(std::move(errors));
+    return document;
   } catch (const YAML::ParserException& e) {
     throw SceneError({position(file, e.mark) + ": error: YAML syntax: " + e.msg});
   } catch (const YAML::Exception& e) {
@@ -61,15 +66,25 @@ YAML::Node deepMerge(const YAML::Node& base, const YAML::Node& over) {
   return merged;
 }
 
-void SceneDocument::remember(const YAML::Node& node, const std::string& file) {
-  origins_.emplace_back(node, file);
-  if (node.IsMap()) {
-    for (const auto& kv : node) {
-      remember(kv.first, file);
-      remember(kv.second, file);
+void SceneDocument::remember(const YAML::Node& root, const std::string& file) {
+  // A stack, not recursion, and each collection once however often it is aliased: an alias bomb
+  // (ten aliases of ten aliases of ... nine levels deep) was walked a billion nodes deep.
+  std::set<std::pair<int, int>> visited;
+  std::vector<YAML::Node> pending{root};
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    const bool collection = node.IsMap() || node.IsSequence();
+    if (collection && !visited.insert({node.Mark().line, node.Mark().column}).second) continue;
+    origins_.emplace_back(node, file);
+    if (node.IsMap()) {
+      for (const auto& kv : node) {
+        pending.push_back(kv.first);
+        pending.push_back(kv.second);
+      }
+    } else if (node.IsSequence()) {
+      for (const auto& item : node) pending.push_back(item);
     }
-  } else if (node.IsSequence()) {
-    for (const auto& item : node) remember(item, file);
   }
 }
 

@@ -15,6 +15,13 @@ class Node;
 
 namespace uampc {
 
+// What yaml-cpp lets through in a parsed document but our readers cannot take: a key that is not a
+// scalar (`? [a, b]`), and a key written twice in one mapping (yaml-cpp keeps both, and lookups
+// then found the first or the last depending on how they were made). Each as
+// "file:line:column: error: message"; empty when the document is sound. Aliased collections are
+// visited once, so an alias bomb costs what its text costs.
+std::vector<std::string> yamlStructureErrors(const YAML::Node& root, const std::string& file);
+
 class YamlErrors {
  public:
   // Where a node is: its file, line and column, or what else names it (a --set override).
