@@ -45,6 +45,8 @@ std::vector<Eigen::Vector3f> toPoints(const pcl::PCLPointCloud2& cloud, const st
     throw std::runtime_error(path + ": declares " + std::to_string(declared) +
                              " points but holds data for fewer");
   }
+  // PCL 1.13's conversion takes &points[0] of an empty cloud (undefined behaviour, UBSan stops it).
+  if (declared == 0) return {};
   pcl::PointCloud<pcl::PointXYZ> xyz;
   pcl::fromPCLPointCloud2(cloud, xyz);
   std::vector<Eigen::Vector3f> points;
