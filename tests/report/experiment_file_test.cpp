@@ -128,6 +128,20 @@ TEST_F(ExperimentFileTest, NamesMustBeUniqueAndSafeForDirectories) {
                                         StartsWith(at(6, 21) + "compare.baseline: no controller named 'y'")));
 }
 
+// A name of 300 characters was valid in --dry-run and aborted the run (the directory name was too
+// long); keys written twice or that are not names are refused as in scenes (issue 15).
+TEST_F(ExperimentFileTest, NamesAreBoundedAndKeysAreNamesWrittenOnce) {
+  const std::string long_name(300, 'n');
+  const auto e =
+      errors("scenes:\n  - {name: " + long_name + ", scene: scenes/campus.yaml}\ncontrollers:\n  - {name: x}\n");
+  EXPECT_THAT(
+      e, ::testing::ElementsAre(StartsWith(at(2, 12) + "scene name 'nnnnnnnnnnnnnnnnnnnn...' is longer than 100")));
+  const auto twice = errors("scenes:\n  - {name: a, scene: scenes/campus.yaml}\nscenes: []\n");
+  EXPECT_THAT(twice, ::testing::ElementsAre(StartsWith(at(3, 1) + "key 'scenes' is written twice")));
+  const auto listed = errors("? [a]\n: 1\n");
+  EXPECT_THAT(listed, ::testing::ElementsAre(StartsWith(at(1, 3) + "a key must be a plain name")));
+}
+
 TEST_F(ExperimentFileTest, YamlSyntaxAndMissingScenes) {
   EXPECT_THAT(errors("scenes: [unclosed\n"),
               ::testing::ElementsAre(StartsWith(dir_ + "/experiment.yaml:2:1: error: ")));

@@ -28,9 +28,20 @@ void declareLidarModelParameters(ComponentSpec& spec) {
   spec.param("lidar_max_range", 100.0, "lidar_model spinning: maximum range, m").between(0.1, 10000.0).partOfRig();
 }
 
+// A frame's points are allocated at once (and again in the scan message and the LO): 1e8 points/s
+// at 1 Hz, both within their bounds, needed more than 8 GB for one frame. Two million points is 7x a
+// 128-beam LiDAR's frame.
+constexpr double kMaxPointsPerFrame = 2e6;
+
 lidar::LidarModel lidarModel(const Context& ctx) {
   const std::string name = ctx.paramString("lidar_model");
   if (name != "spinning") return lidar::lidarModelByName(name);
+  const double per_frame = ctx.paramDouble("lidar_points_per_second") / ctx.paramDouble("lidar_frame_rate");
+  if (per_frame > kMaxPointsPerFrame) {
+    throw std::runtime_error("lidar_points_per_second / lidar_frame_rate = " + std::to_string(per_frame) +
+                             " points per frame; at most " + std::to_string(static_cast<long>(kMaxPointsPerFrame)) +
+                             " are simulated (memory)");
+  }
   return lidar::spinningLidar(ctx.paramDoubleList("lidar_elevations_deg"), ctx.paramDouble("lidar_points_per_second"),
                               ctx.paramDouble("lidar_frame_rate"), ctx.paramDouble("lidar_min_range"),
                               ctx.paramDouble("lidar_max_range"));

@@ -22,10 +22,14 @@
 namespace uampc::world {
 namespace {
 
+// The largest map read (1.2 GB as x, y, z floats; more than any map a scene needs).
+constexpr std::size_t kMaxMapPoints = 100'000'000;
+// LZF's best compression: 264 bytes from a 3-byte back reference.
+constexpr std::size_t kMaxLzfRatio = 88;
+
 std::string extensionOf(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -42,8 +46,7 @@ std::vector<Eigen::Vector3f> toPoints(const pcl::PCLPointCloud2& cloud, const st
   if (!hasXyz(cloud)) throw std::runtime_error(path + ": has no x, y, z fields");
   const std::size_t declared = static_cast<std::size_t>(cloud.width) * cloud.height;
   if (declared * cloud.point_step > cloud.data.size()) {
-    throw std::runtime_error(path + ": declares " + std::to_string(declared) +
-                             " points but holds data for fewer");
+    throw std::runtime_error(path + ": declares " + std::to_string(declared) + " points but holds data for fewer");
   }
   // PCL 1.13's conversion takes &points[0] of an empty cloud (undefined behaviour, UBSan stops it).
   if (declared == 0) return {};
@@ -56,8 +59,8 @@ std::vector<Eigen::Vector3f> toPoints(const pcl::PCLPointCloud2& cloud, const st
 }
 
 void keepFinitePoints(std::vector<Eigen::Vector3f>& points, LoadedMap& map) {
-  const auto end = std::remove_if(points.begin(), points.end(),
-                                  [](const Eigen::Vector3f& p) { return !p.allFinite(); });
+  const auto end =
+      std::remove_if(points.begin(), points.end(), [](const Eigen::Vector3f& p) { return !p.allFinite(); });
   const auto skipped = static_cast<std::size_t>(points.end() - end);
   points.erase(end, points.end());
   if (skipped > 0) {
@@ -77,8 +80,7 @@ struct PcdLayout {
 };
 
 bool parseCount(const std::string& word, std::size_t& value) {
-  if (word.empty() || word.size() > 12 ||
-      word.find_first_not_of("0123456789") != std::string::npos) {
+  if (word.empty() || word.size() > 12 || word.find_first_not_of("0123456789") != std::string::npos) {
     return false;
   }
   value = std::stoull(word);
@@ -86,9 +88,7 @@ bool parseCount(const std::string& word, std::size_t& value) {
 }
 
 PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
-  auto bad = [&](const std::string& what) {
-    return std::runtime_error(path + ": not a valid PCD file: " + what);
-  };
+  auto bad = [&](const std::string& what) { return std::runtime_error(path + ": not a valid PCD file: " + what); };
   PcdLayout layout;
   std::vector<std::string> sizes, types, counts;
   std::size_t fields = 0, width = 0, height = 0;
@@ -133,12 +133,10 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
     }
   }
   layout.header_bytes = pos;
-  if (fields == 0 || sizes.size() != fields || types.size() != fields ||
-      (!counts.empty() && counts.size() != fields)) {
+  if (fields == 0 || sizes.size() != fields || types.size() != fields || (!counts.empty() && counts.size() != fields)) {
     throw bad("FIELDS, SIZE, TYPE and COUNT disagree");
   }
-  if (!have_width || !have_height || !have_points || height == 0 ||
-      width * height != layout.points) {
+  if (!have_width || !have_height || !have_points || height == 0 || width * height != layout.points) {
     throw bad("WIDTH, HEIGHT and POINTS missing or inconsistent");
   }
   for (std::size_t i = 0; i < fields; ++i) {
@@ -153,7 +151,12 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
     layout.point_step += size * count;
     layout.values += count;
   }
-  if (layout.points > (std::size_t{1} << 32)) throw bad("too many points");
+  // A memory budget checked before anything is allocated: PCL holds a map two or three times over
+  // while it converts it.
+  if (layout.points > kMaxMapPoints) {
+    throw bad(std::to_string(layout.points) + " points declared; maps of at most " + std::to_string(kMaxMapPoints) +
+              " points are read");
+  }
   const std::size_t payload = bytes.size() - layout.header_bytes;
   const std::size_t expected = layout.points * layout.point_step;
   if (layout.data == "binary" && payload < expected) throw bad("file shorter than its points");
@@ -163,6 +166,12 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
     std::memcpy(sizes_word, bytes.data() + layout.header_bytes, 8);
     if (sizes_word[1] != expected || sizes_word[0] > payload - 8) {
       throw bad("compressed data sizes inconsistent");
+    }
+    // LZF encodes at most 264 bytes in a 3-byte back reference: a file claiming more than that
+    // ratio lies about its size (a 171-byte file declaring 4.3 GB took 8.4 GB before it failed).
+    if (expected > std::size_t{kMaxLzfRatio} * sizes_word[0]) {
+      throw bad("declares " + std::to_string(expected) + " bytes of points in " + std::to_string(sizes_word[0]) +
+                " compressed bytes, more than LZF can expand to");
     }
   }
   if (layout.data == "ascii") {
@@ -181,8 +190,8 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
       }
       if (n == 0) continue;
       if (n != layout.values) {
-        throw bad("data row " + std::to_string(rows + 1) + " has " + std::to_string(n) +
-                  " values, expected " + std::to_string(layout.values));
+        throw bad("data row " + std::to_string(rows + 1) + " has " + std::to_string(n) + " values, expected " +
+                  std::to_string(layout.values));
       }
       ++rows;
     }
@@ -278,8 +287,7 @@ LoadedMap loadMap(const std::string& path, const MapLoadOptions& options) {
   return map;
 }
 
-void savePointsPcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
-                   PcdEncoding encoding) {
+void savePointsPcd(const std::string& path, const std::vector<Eigen::Vector3f>& points, PcdEncoding encoding) {
   pcl::PointCloud<pcl::PointXYZ> cloud;
   cloud.reserve(points.size());
   for (const auto& p : points) cloud.push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
@@ -306,8 +314,8 @@ void saveMeshPly(const std::string& path, const TriangleMesh& mesh) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write PLY file");
   out << "ply\nformat ascii 1.0\nelement vertex " << mesh.vertices.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
-      << mesh.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << mesh.triangles.size()
+      << "\nproperty list uchar int vertex_indices\nend_header\n";
   out.precision(9);
   for (const auto& v : mesh.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
   for (const auto& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';

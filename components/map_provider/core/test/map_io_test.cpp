@@ -24,8 +24,7 @@ void expectLoadError(const std::string& path, const std::string& fragment) {
   }
 }
 
-const char* kAsciiPcdHeader =
-    "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+const char* kAsciiPcdHeader = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
 
 TEST(MapIo, PcdRoundTripWithVoxelAndOffset) {
   TempDir dir;
@@ -48,10 +47,9 @@ TEST(MapIo, PcdRoundTripWithVoxelAndOffset) {
 
 TEST(MapIo, NonFinitePointsAreSkippedAndCounted) {
   TempDir dir;
-  const std::string path =
-      dir.write("nan.pcd", std::string(kAsciiPcdHeader) +
-                               "WIDTH 4\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n"
-                               "1 2 3\nnan 0 0\n4 5 6\n0 inf 0\n");
+  const std::string path = dir.write("nan.pcd", std::string(kAsciiPcdHeader) +
+                                                    "WIDTH 4\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n"
+                                                    "1 2 3\nnan 0 0\n4 5 6\n0 inf 0\n");
   const LoadedMap map = loadMap(path);
   EXPECT_EQ(map.points.size(), 2u);
   EXPECT_EQ(map.skipped_points, 2u);
@@ -69,21 +67,20 @@ TEST(MapIo, PlyMeshPlyPointsAndBadFaces) {
   EXPECT_EQ(mesh.mesh.size(), 12u);
   EXPECT_NEAR(mesh.mesh.area(), 2 * (2 + 3 + 6), 1e-4);
 
-  const std::string quads = dir.write(
-      "quads.ply",
-      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
-      "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n"
-      "0 0 0\n1 0 0\n1 1 0\n0 1 0\nnan 0 0\n4 0 1 2 3\n3 0 1 9\n3 0 1 4\n");
+  const std::string quads =
+      dir.write("quads.ply",
+                "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n"
+                "0 0 0\n1 0 0\n1 1 0\n0 1 0\nnan 0 0\n4 0 1 2 3\n3 0 1 9\n3 0 1 4\n");
   const LoadedMap q = loadMap(quads);
   EXPECT_EQ(q.mesh.size(), 2u);  // the quad as a fan
   EXPECT_EQ(q.skipped_triangles, 2u);
   EXPECT_EQ(q.skipped_points, 1u);
   EXPECT_EQ(q.warnings.size(), 2u);
 
-  const std::string cloud =
-      dir.write("cloud.ply",
-                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                "property float z\nend_header\n0 0 0\n1 0 0\n1 1 0\n");
+  const std::string cloud = dir.write("cloud.ply",
+                                      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nend_header\n0 0 0\n1 0 0\n1 1 0\n");
   const LoadedMap c = loadMap(cloud);
   EXPECT_FALSE(c.isMesh());
   EXPECT_EQ(c.points.size(), 3u);
@@ -100,12 +97,11 @@ TEST(MapIo, BrokenFilesGiveErrorsNamingTheFile) {
                             "VERSION 0.7\nFIELDS a b\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\n"
                             "HEIGHT 1\nPOINTS 1\nDATA ascii\n1 2\n"),
                   "");
-  expectLoadError(dir.write("zero.pcd", std::string(kAsciiPcdHeader) +
-                                            "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n"),
+  expectLoadError(dir.write("zero.pcd", std::string(kAsciiPcdHeader) + "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n"),
                   "");
-  expectLoadError(dir.write("allnan.pcd", std::string(kAsciiPcdHeader) +
-                                              "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\nnan 0 0\n"),
-                  "no usable points");
+  expectLoadError(
+      dir.write("allnan.pcd", std::string(kAsciiPcdHeader) + "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\nnan 0 0\n"),
+      "no usable points");
   // A binary PCD cut short: the header promises more points than the file holds.
   std::vector<Eigen::Vector3f> points(1000, Eigen::Vector3f(1, 2, 3));
   savePointsPcd(dir.file("full.pcd"), points);
@@ -139,13 +135,30 @@ TEST(MapIo, BrokenFilesGiveErrorsNamingTheFile) {
   expectLoadError(dir.write("cut.ply", ply.substr(0, ply.size() - 40)), "");
 }
 
+// Declared sizes beyond the memory budget are refused before anything is allocated (issue 15: a
+// 171-byte binary_compressed PCD declaring 357,913,941 points took 8.4 GB before it failed).
+TEST(MapIo, DeclaredSizesBeyondTheBudgetAreRefusedBeforeAllocation) {
+  TempDir dir;
+  const std::string header = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  // 357,913,941 points of 12 bytes: 4,294,967,292 bytes, which fits the 32-bit size word.
+  std::string tiny = header + "WIDTH 357913941\nHEIGHT 1\nPOINTS 357913941\nDATA binary_compressed\n";
+  const std::uint32_t sizes[2] = {8, 4294967292u};
+  tiny.append(reinterpret_cast<const char*>(sizes), 8);
+  tiny.append(8, '\0');
+  expectLoadError(dir.write("tiny.pcd", tiny), "357913941 points declared; maps of at most 100000000 points");
+  // Within the point budget, but more than LZF can expand its compressed bytes to.
+  std::string liar = header + "WIDTH 1000000\nHEIGHT 1\nPOINTS 1000000\nDATA binary_compressed\n";
+  const std::uint32_t liar_sizes[2] = {8, 12000000u};
+  liar.append(reinterpret_cast<const char*>(liar_sizes), 8);
+  liar.append(8, '\0');
+  expectLoadError(dir.write("liar.pcd", liar), "more than LZF can expand to");
+}
+
 // A binary little-endian PLY of a mesh, written byte by byte (float xyz, uchar count, int index).
 std::string binaryPly(const TriangleMesh& mesh) {
-  std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " +
-                    std::to_string(mesh.vertices.size()) +
+  std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(mesh.vertices.size()) +
                     "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                    std::to_string(mesh.triangles.size()) +
-                    "\nproperty list uchar int vertex_indices\nend_header\n";
+                    std::to_string(mesh.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   auto put = [&](const void* p, std::size_t n) { out.append(static_cast<const char*>(p), n); };
   for (const auto& v : mesh.vertices) put(v.data(), 12);  // x86: little-endian host
   for (const auto& t : mesh.triangles) {
@@ -172,17 +185,14 @@ TEST(MapIo, RandomCorruptionNeverCrashes) {
   mesh.addBox({0, 0, 0}, {1, 2, 3});
   mesh.addCylinder({3, 3, 0}, 1.0f, 2.0f, 8);
   std::vector<std::pair<std::string, std::string>> originals;
-  for (auto encoding :
-       {PcdEncoding::kAscii, PcdEncoding::kBinary, PcdEncoding::kBinaryCompressed}) {
+  for (auto encoding : {PcdEncoding::kAscii, PcdEncoding::kBinary, PcdEncoding::kBinaryCompressed}) {
     savePointsPcd(dir.file("src.pcd"), mesh.vertices, encoding);
     std::ifstream in(dir.file("src.pcd"), std::ios::binary);
-    originals.emplace_back(".pcd", std::string((std::istreambuf_iterator<char>(in)),
-                                               std::istreambuf_iterator<char>()));
+    originals.emplace_back(".pcd", std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
   }
   saveMeshPly(dir.file("src.ply"), mesh);
   std::ifstream in(dir.file("src.ply"), std::ios::binary);
-  originals.emplace_back(
-      ".ply", std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+  originals.emplace_back(".ply", std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
   originals.emplace_back(".ply", binaryPly(mesh));
 
   SeededRandom random(1);
@@ -191,8 +201,7 @@ TEST(MapIo, RandomCorruptionNeverCrashes) {
     for (int i = 0; i < 300; ++i) {
       std::string bytes = original;
       for (int k = random.integer(1, 4); k > 0 && !bytes.empty(); --k) {
-        const auto at =
-            static_cast<std::size_t>(random.integer(0, static_cast<int>(bytes.size()) - 1));
+        const auto at = static_cast<std::size_t>(random.integer(0, static_cast<int>(bytes.size()) - 1));
         switch (random.integer(0, 2)) {
           case 0:
             bytes[at] = static_cast<char>(random.integer(0, 255));

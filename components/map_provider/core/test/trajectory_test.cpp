@@ -47,22 +47,21 @@ TEST(Trajectory, RefusesTimesOutsideAndUnorderedPoses) {
 }
 
 TEST(Trajectory, AttitudeModes) {
-  const Eigen::Quaterniond q = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) *
-                               Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY());
+  const Eigen::Quaterniond q =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY());
   std::vector<TimedPose> poses(1);
   poses[0].orientation = q;
   auto yaw = poses;
   applyAttitudeMode(yaw, AttitudeMode::kYawOnly, Eigen::Quaterniond::Identity());
-  EXPECT_TRUE(yaw[0].orientation.isApprox(
-      Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())), 1e-12));
+  EXPECT_TRUE(yaw[0].orientation.isApprox(Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())), 1e-12));
   auto identity = poses;
   applyAttitudeMode(identity, AttitudeMode::kIdentity, Eigen::Quaterniond::Identity());
   EXPECT_TRUE(identity[0].orientation.isApprox(Eigen::Quaterniond::Identity()));
   auto corrected = poses;
   const Eigen::Quaterniond flip(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()));
   applyAttitudeMode(corrected, AttitudeMode::kFromFile, flip);
-  EXPECT_TRUE(corrected[0].orientation.toRotationMatrix().isApprox(
-      q.toRotationMatrix() * flip.toRotationMatrix(), 1e-12));
+  EXPECT_TRUE(
+      corrected[0].orientation.toRotationMatrix().isApprox(q.toRotationMatrix() * flip.toRotationMatrix(), 1e-12));
 }
 
 TEST(Trajectory, AttitudeModeNames) {
@@ -109,8 +108,7 @@ TEST(TrajectoryIo, MalformedFilesNameFileAndLine) {
     const std::string path = dir.write(name, body);
     return [path] { readMcdCsv(path); };
   };
-  expectError(mcd("ntu.csv", header + good1 + "2,100.1,0,0,0,0,0\n"),
-              "ntu.csv:3: expected 9 columns, got 7");
+  expectError(mcd("ntu.csv", header + good1 + "2,100.1,0,0,0,0,0\n"), "ntu.csv:3: expected 9 columns, got 7");
   expectError(mcd("word.csv", header + good1 + "2,100.1,0,abc,0,0,0,0,1\n"),
               "word.csv:3: column y: 'abc' is not a number");
   expectError(mcd("nan.csv", header + "1,100.0,nan,0,0,0,0,0,1\n"), "nan.csv:2: column x");
@@ -126,11 +124,15 @@ TEST(TrajectoryIo, MalformedFilesNameFileAndLine) {
   const std::string tum = dir.write("t.txt", "0 0 0 0 0 0 0 1\n1 0 0 0 0 0 0\n");
   expectError([&] { readTum(tum); }, "t.txt:2: expected 8 columns, got 7");
 
+  // A file without line breaks (/dev/zero read 2.1 GB deep before "no poses in file") stops at its
+  // first line's budget.
+  expectError([&] { readTum("/dev/zero"); }, "/dev/zero:1: line longer than 4096 bytes");
+  expectError([&] { readMcdCsv(dir.write("long.csv", std::string(5000, '1'))); }, "long.csv:1: line longer");
+
   // A larger max_gap accepts the gap; a disabled check too.
   TrajectoryReadOptions loose;
   loose.max_gap = 5.0;
-  EXPECT_NO_THROW(
-      readMcdCsv(dir.write("gap2.csv", header + good1 + "2,102.0,0,0,0,0,0,0,1\n"), loose));
+  EXPECT_NO_THROW(readMcdCsv(dir.write("gap2.csv", header + good1 + "2,102.0,0,0,0,0,0,0,1\n"), loose));
 }
 
 // The MCD trajectories copied into the repository (data/mcd).
@@ -174,8 +176,7 @@ TEST(GeneratedPaths, ClosedLoopAtConstantSpeedFacingForward) {
   GeneratedPathConfig config;
   config.closed = true;
   config.speed = 2.0;
-  const Trajectory t =
-      pathThroughWaypoints({{0, 0, 1}, {40, 0, 1}, {40, 30, 1}, {0, 30, 1}}, config);
+  const Trajectory t = pathThroughWaypoints({{0, 0, 1}, {40, 0, 1}, {40, 30, 1}, {0, 30, 1}}, config);
   const auto& p = t.poses();
   ASSERT_GT(p.size(), 500u);  // 140 m less the cut corners, at 0.2 m a sample
   for (std::size_t i = 1; i < p.size(); ++i) {

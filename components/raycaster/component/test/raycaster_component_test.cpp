@@ -76,5 +76,20 @@ TEST(RaycasterComponent, RefusesAWorldChunkThatNamesAVertexItDoesNotHave) {
   EXPECT_THROW(ctx.inject("world", bad), std::runtime_error);
 }
 
+// A spinning LiDAR whose frame would not fit in memory is refused at start, naming the budget
+// (issue 15: 1e8 points/s at 1 Hz, each within its bounds, needed more than 8 GB for one frame).
+TEST(RaycasterComponent, RefusesAFrameBeyondThePointBudget) {
+  try {
+    testing::TestContext ctx(
+        "raycaster", {{"lidar_model", "spinning"}, {"lidar_points_per_second", "1e8"}, {"lidar_frame_rate", "1"}});
+    ADD_FAILURE() << "a 1e8-point frame was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("points per frame; at most 2000000 are simulated"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(testing::TestContext(
+      "raycaster", {{"lidar_model", "spinning"}, {"lidar_points_per_second", "1e6"}, {"lidar_frame_rate", "1"}}));
+}
+
 }  // namespace
 }  // namespace uampc
