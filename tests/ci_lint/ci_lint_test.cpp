@@ -13,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "command_runner.hpp"
+#include "../e2e/command_runner.hpp"
 
 namespace uampc::test {
 namespace {
