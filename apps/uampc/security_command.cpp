@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "svg_plot.hpp"  // svg::escapeXml
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/process_group.hpp"
@@ -73,26 +74,6 @@ void openssl(const fs::path& directory, const std::vector<std::string>& args) {
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw OpensslError(command + " failed:\n" + said);
 }
 
-std::string xmlEscaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // "2026-05-01T12:00:00", UTC, `days` from now (negative: before).
 std::string isoTime(int days) {
   const std::time_t t = std::time(nullptr) + static_cast<std::time_t>(days) * 86400;
@@ -146,7 +127,7 @@ std::string subjectName(const std::string& identity) { return "CN=" + identity +
 std::string permissionsXml(const std::string& identity, const TopicGrant& grant, int days) {
   auto topics = [](const std::set<std::string>& names) {
     std::string out;
-    for (const auto& n : names) out += "            <topic>" + xmlEscaped(n) + "</topic>\n";
+    for (const auto& n : names) out += "            <topic>" + svg::escapeXml(n) + "</topic>\n";
     return out;
   };
   std::string xml = R"(<?xml version="1.0" encoding="UTF-8"?>

@@ -78,6 +78,7 @@ std::vector<double> niceTicks(double lo, double hi, int target);
 std::string paletteColour(std::size_t index);
 // Viridis for t in [0, 1], as #rrggbb.
 std::string viridis(double t);
+// Text for XML (SVG, the report, DDS Security documents): & < > " ' escaped.
 std::string escapeXml(const std::string& text);
 
 }  // namespace uampc::app::svg
