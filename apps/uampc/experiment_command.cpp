@@ -11,8 +11,8 @@
 #include "report_page.hpp"
 #include "results_table.hpp"
 #include "run_results.hpp"
-#include "stop_signals.hpp"
 #include "uampc/runtime/scene.hpp"
+#include "uampc/runtime/stop_signals.hpp"
 
 namespace fs = std::filesystem;
 

@@ -18,6 +18,7 @@
 
 #include "experiment_eta.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/runtime/child_processes.hpp"
 
 namespace fs = std::filesystem;
@@ -38,13 +39,6 @@ std::string duration(double seconds) {
   else
     std::snprintf(buffer, sizeof(buffer), "%lds", s);
   return buffer;
-}
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 std::string lastLine(const std::string& text) {
@@ -312,7 +306,7 @@ class Scheduler {
       r.wall_time_s = wall;
       run_files::writeFailedMarker(dir.string(), r.failure);
       ++failed_;
-      const std::string last = lastLine(readText(dir / run_files::kRunLog));
+      const std::string last = lastLine(run_files::readTextFile(dir / run_files::kRunLog));
       progress_->say("experiment: " + plan_[done.run].directory + " failed (" + r.failure + "): " + last +
                      "\n            full log: " + (dir / run_files::kRunLog).string());
     }

@@ -16,8 +16,8 @@
 #include "play_command.hpp"
 #include "record_command.hpp"
 #include "security_command.hpp"
-#include "uampc/runtime/dds_names.hpp"
 #include "topic_command.hpp"
+#include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/launcher.hpp"
 #include "version.hpp"
 
@@ -331,7 +331,8 @@ class UampcCli {
     uampc::app::PlayOptions& o = options_.play;
     CLI::App* sub = addCommand(
         "play",
-        "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] [--wait-for-readers]",
+        "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] "
+        "[--wait-for-readers]",
         "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
         "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
         "use the player component instead (config/scenes/replay_lo.yaml).");

@@ -7,12 +7,12 @@
 #include <iostream>
 #include <thread>
 
-#include "stop_signals.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/recording/playback.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_node.hpp"
 #include "uampc/runtime/process_group.hpp"
+#include "uampc/runtime/stop_signals.hpp"
 
 namespace uampc::app {
 

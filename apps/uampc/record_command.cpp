@@ -11,12 +11,12 @@
 #include <set>
 #include <thread>
 
-#include "stop_signals.hpp"
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
 #include "uampc/recording/recording_writer.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/message_type.hpp"
+#include "uampc/runtime/stop_signals.hpp"
 
 namespace uampc::app {
 

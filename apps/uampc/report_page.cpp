@@ -10,6 +10,7 @@
 #include "run_files.hpp"
 #include "svg_plot.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/run_files/time_series.hpp"
 
 namespace fs = std::filesystem;
@@ -19,12 +20,6 @@ namespace uampc::app {
 namespace {
 
 using svg::escapeXml;
-
-void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
 
 struct Figure {
   std::string file;
@@ -70,7 +65,7 @@ class SceneFigures {
 
   Figure save(const std::string& name, const std::string& svg_text, const std::string& caption) {
     const std::string file = scene_ + "_" + name + ".svg";
-    writeText(report_ / file, svg_text);
+    run_files::writeTextFile(report_ / file, svg_text);
     return {file, caption};
   }
   void note(const std::string& text) { summary_.notes.push_back(scene_ + ": " + text); }
@@ -455,7 +450,7 @@ ReportSummary writeReport(const Experiment& experiment, const std::vector<RunRes
   for (const auto& n : summary.notes) html += "<li>" + escapeXml(n) + "</li>\n";
   html += "</ul>\n<p id=\"figure-check\">figures loaded: not checked yet</p>\n" + std::string(kFigureCheck) +
           "</body>\n</html>\n";
-  writeText(report / "index.html", html);
+  run_files::writeTextFile(report / "index.html", html);
   return summary;
 }
 

@@ -10,19 +10,13 @@
 #include "uampc/run_files/json_text.hpp"
 #include "uampc/run_files/metrics_file.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/text_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace uampc::app {
 
 namespace {
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The paper's RPE figure over one segment length; NaN when the evaluator did not measure it.
 double rpeRmse(const run_files::TrajectorySummary& trajectory, double segment_length_m) {
@@ -81,7 +75,8 @@ void readRunOutputs(const std::string& run_directory, RunResult& result) {
   if (auto metrics = readRunMetrics(run_directory)) result.metrics = *metrics;
   const fs::path log = run_files::inDirectory(run_directory, run_files::kRunLog);
   if (fs::is_regular_file(log)) {
-    if (auto summary = parseLauncherSummary(readText(log))) result.real_time_factor = summary->real_time_factor;
+    if (auto summary = parseLauncherSummary(run_files::readTextFile(log)))
+      result.real_time_factor = summary->real_time_factor;
   }
   // The done marker holds the wall time the runner measured (process start to exit).
   if (auto wall = run_files::readDoneMarker(run_directory)) result.wall_time_s = *wall;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "svg_plot.hpp"  // svg::escapeXml
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/process_group.hpp"
@@ -31,19 +32,6 @@ namespace {
 struct OpensslError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
-
-std::string readText(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void writeText(const fs::path& file, const std::string& text) {
-  std::ofstream out(file);
-  out << text;
-  if (!out.flush()) throw std::runtime_error(file.string() + ": cannot write");
-}
 
 // Runs `openssl ARGS` in `directory`, its output in a log that is shown when it fails.
 void openssl(const fs::path& directory, const std::vector<std::string>& args) {
@@ -69,7 +57,7 @@ void openssl(const fs::path& directory, const std::vector<std::string>& args) {
   }
   int status = 0;
   waitpid(pid, &status, 0);
-  const std::string said = readText(log);
+  const std::string said = run_files::readTextFile(log);
   fs::remove(log);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw OpensslError(command + " failed:\n" + said);
 }
@@ -193,7 +181,7 @@ void makeIdentity(const fs::path& dir, const std::string& identity, const TopicG
                 (dir / "ca.key.pem").string(), "-set_serial", std::to_string(serial), "-days", std::to_string(days),
                 "-out", (folder / "cert.pem").string()});
   fs::remove(request);
-  writeText(folder / "permissions.xml", permissionsXml(identity, grant, days));
+  run_files::writeTextFile(folder / "permissions.xml", permissionsXml(identity, grant, days));
   signDocument(dir, folder / "permissions.xml", folder / "permissions.p7s");
 }
 
@@ -242,7 +230,7 @@ int securityInitCommand(const SecurityInitOptions& options) {
   try {
     fs::create_directories(dir);
     makeCa(dir, options.days);
-    writeText(dir / "governance.xml", governanceXml(options.sign_metadata));
+    run_files::writeTextFile(dir / "governance.xml", governanceXml(options.sign_metadata));
     signDocument(dir, dir / "governance.xml", dir / "governance.p7s");
     int serial = 1;
     for (const auto& [identity, grant] : grants) makeIdentity(dir, identity, grant, options.days, ++serial);

@@ -16,7 +16,6 @@
 #include <thread>
 #include <utility>
 
-#include "stop_signals.hpp"
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
 #include "topic/topic_statistics.hpp"
@@ -26,6 +25,7 @@
 #include "uampc/runtime/idl_parser.hpp"
 #include "uampc/runtime/message_definition.hpp"
 #include "uampc/runtime/message_type.hpp"
+#include "uampc/runtime/stop_signals.hpp"
 #include "uampc/runtime/yaml_printer.hpp"
 
 namespace uampc::app {

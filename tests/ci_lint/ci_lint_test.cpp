@@ -56,6 +56,12 @@ void expectContains(const std::string& text, const std::string& part) {
   EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in:\n" << text;
 }
 
+// What each CI file's two jobs must say: the Docker image (which runs the tests), and the asan
+// workflow in debian:12 with ccache.
+const char* const kBothJobs[] = {"docker build --shm-size=2g -f docker/Dockerfile", "image: debian:12",
+                                 "bash docker/install-deps.sh", "cmake --workflow --preset asan",
+                                 "CMAKE_CXX_COMPILER_LAUNCHER: ccache"};
+
 class CiLint : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -68,23 +74,15 @@ TEST_F(CiLint, CommittedGithubWorkflowIsValidAndHasBothJobs) {
   const CommandResult result = lint("github", sourcePath(kGithubWorkflow));
   EXPECT_EQ(result.exit_code, 0) << result.output;
   const std::string text = readFile(sourcePath(kGithubWorkflow));
-  expectContains(text, "docker build --shm-size=2g -f docker/Dockerfile");
-  expectContains(text, "image: debian:12");
-  expectContains(text, "bash docker/install-deps.sh");
-  expectContains(text, "cmake --workflow --preset asan");
+  for (const char* line : kBothJobs) expectContains(text, line);
   expectContains(text, "uses: actions/cache@");
-  expectContains(text, "CMAKE_CXX_COMPILER_LAUNCHER: ccache");
 }
 
 TEST_F(CiLint, CommittedGitlabFileIsValidAndHasBothJobs) {
   const CommandResult result = lint("gitlab", sourcePath(kGitlabFile));
   EXPECT_EQ(result.exit_code, 0) << result.output;
   const std::string text = readFile(sourcePath(kGitlabFile));
-  expectContains(text, "docker build --shm-size=2g -f docker/Dockerfile");
-  expectContains(text, "image: debian:12");
-  expectContains(text, "bash docker/install-deps.sh");
-  expectContains(text, "cmake --workflow --preset asan");
-  expectContains(text, "CMAKE_CXX_COMPILER_LAUNCHER: ccache");
+  for (const char* line : kBothJobs) expectContains(text, line);
   expectContains(text, "- .ccache/");
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <sstream>
 #include <thread>
 
 #include "command_runner.hpp"
@@ -42,6 +43,16 @@ int exitCodeOf(pid_t pid) {
     return -1;
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::vector<pid_t> processesOfRun(int domain, const std::string& process) {
+  // [u] keeps the shell that runs pgrep from matching its own command line.
+  const std::string pattern = "[u]ampc run-process .*" + (process.empty() ? "" : "--process " + process + " .*") +
+                              "domain_id=" + std::to_string(domain) + "( |$)";
+  std::vector<pid_t> pids;
+  std::istringstream lines(runShell("pgrep -f '" + pattern + "'").output);
+  for (pid_t pid; lines >> pid;) pids.push_back(pid);
+  return pids;
 }
 
 bool logHas(const std::string& log, const std::string& text) {

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace uampc::test {
 
@@ -19,6 +20,10 @@ bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds l
 // The launcher's exit code; -1 when it did not exit (or exited by a signal) within 30 s, after
 // which its process group is killed.
 int exitCodeOf(pid_t pid);
+
+// The pids of a run's process groups (`uampc run-process ... --set domain_id=D`), optionally only
+// the one named `process`. The domain tells runs of parallel tests apart.
+std::vector<pid_t> processesOfRun(int domain, const std::string& process = "");
 
 // Whether the file exists and contains `text`.
 bool logHas(const std::string& log, const std::string& text);

@@ -29,17 +29,6 @@ namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
-// The pids of a run's process groups (`uampc run-process ... --set domain_id=D`), optionally only
-// the one named `process`. ([u] keeps the shell running pgrep from matching its own command line.)
-std::vector<pid_t> processesOfRun(int domain, const std::string& process = "") {
-  const std::string pattern = "[u]ampc run-process .*" + (process.empty() ? "" : "--process " + process + " .*") +
-                              "domain_id=" + std::to_string(domain) + "( |$)";
-  std::vector<pid_t> pids;
-  std::istringstream lines(runShell("pgrep -f '" + pattern + "'").output);
-  for (pid_t pid; lines >> pid;) pids.push_back(pid);
-  return pids;
-}
-
 // A lockstep run of two process groups (motor, control) that runs until something ends it.
 pid_t startLongRun(int domain, const std::string& dir, const std::string& extra = "") {
   return startLaunch(sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + dir + "/out" +

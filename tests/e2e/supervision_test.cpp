@@ -7,6 +7,7 @@
 #include <chrono>
 #include <thread>
 
+#include "background_launch.hpp"
 #include "command_runner.hpp"
 #include "test_domains.hpp"
 
@@ -51,30 +52,15 @@ TEST(Supervision, RealTimeRestartPolicyRestartsThenGivesUp) {
 
 TEST(Supervision, CtrlCStopsEveryProcessCleanly) {
   const std::string log = freshDirectory("ctrl_c") + "/launch.log";
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string cmd = "exec env UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
-                            binaryPath("bin/uampc") + " launch " + sourcePath("tests/scenes/realtime_idle.yaml") +
-                            domainOverride(DomainBlock::kSupervision, 4) + " > " + log + " 2>&1";
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t pid =
+      startLaunch(sourcePath("tests/scenes/realtime_idle.yaml") + domainOverride(DomainBlock::kSupervision, 4), log);
   std::this_thread::sleep_for(std::chrono::seconds(2));
   kill(pid, SIGINT);  // what Ctrl-C sends to the launcher
-  int status = 0;
-  const auto start = std::chrono::steady_clock::now();
-  while (waitpid(pid, &status, WNOHANG) == 0) {
-    ASSERT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(15)) << "launcher did not stop";
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_EQ(exitCodeOf(pid), 130) << readFile(log);
   const std::string output = readFile(log);
   EXPECT_NE(output.find("stopped by Ctrl-C"), std::string::npos) << output;
-  EXPECT_EQ(output.find("while stopping"), std::string::npos) << output;  // children exited cleanly
-  // No process of the scene is left behind.
-  EXPECT_NE(runShell("pgrep -f 'realtime_idle[.]yaml --process'").exit_code, 0);
+  EXPECT_EQ(output.find("while stopping"), std::string::npos) << output;          // children exited cleanly
+  EXPECT_TRUE(processesOfRun(testDomain(DomainBlock::kSupervision, 4)).empty());  // none left behind
 }
 
 }  // namespace

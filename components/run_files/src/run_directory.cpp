@@ -1,5 +1,7 @@
 #include "uampc/run_files/run_directory.hpp"
 
+#include "uampc/run_files/text_file.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,20 +19,6 @@ namespace {
 constexpr char kPanoramaPrefix[] = "panorama_";
 constexpr char kPanoramaSuffix[] = ".png";
 constexpr char kWallTimeKey[] = "wall_time_s=";
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void writeText(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  out.flush();
-  if (!out) throw std::runtime_error("cannot write " + path);
-}
 
 }  // namespace
 
@@ -56,13 +44,13 @@ std::string inDirectory(const std::string& directory, const std::string& name) {
 void writeDoneMarker(const std::string& run_directory, double wall_time_s) {
   std::ostringstream text;
   text << kWallTimeKey << wall_time_s << "\n";
-  writeText(inDirectory(run_directory, kDoneMarker), text.str());
+  writeTextFile(inDirectory(run_directory, kDoneMarker), text.str());
 }
 
 std::optional<double> readDoneMarker(const std::string& run_directory) {
   const std::string path = inDirectory(run_directory, kDoneMarker);
   if (!fs::is_regular_file(path)) return std::nullopt;
-  const std::string text = readText(path);
+  const std::string text = readTextFile(path);
   const std::size_t at = text.find(kWallTimeKey);
   if (at == std::string::npos) return NAN;
   const char* begin = text.c_str() + at + sizeof(kWallTimeKey) - 1;
@@ -72,11 +60,11 @@ std::optional<double> readDoneMarker(const std::string& run_directory) {
 }
 
 void writeFailedMarker(const std::string& run_directory, const std::string& reason) {
-  writeText(inDirectory(run_directory, kFailedMarker), reason + "\n");
+  writeTextFile(inDirectory(run_directory, kFailedMarker), reason + "\n");
 }
 
 std::string readFailedMarker(const std::string& run_directory) {
-  return readText(inDirectory(run_directory, kFailedMarker));
+  return readTextFile(inDirectory(run_directory, kFailedMarker));
 }
 
 }  // namespace uampc::run_files

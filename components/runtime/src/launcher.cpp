@@ -16,28 +16,13 @@
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/run_record.hpp"
 #include "uampc/runtime/shared_memory_cleanup.hpp"
+#include "uampc/runtime/stop_signals.hpp"
 
 namespace fs = std::filesystem;
 
 namespace uampc {
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-std::atomic<int> g_signal{0};
-
-void onSignal(int signal) {
-  g_signal = signal;
-  g_stop = true;
-}
-
-void installSignalHandlers() {
-  struct sigaction action {};
-  action.sa_handler = onSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
 
 // How a process ended when the user asked everything to stop: exit 0 (stopped by SIGTERM) or 130
 // (it got the terminal's SIGINT too), or killed by either signal before it had its handlers
@@ -48,7 +33,7 @@ bool stoppedAsAsked(int status) {
 }
 
 // 130 after Ctrl-C, as shells report a command that SIGINT ended; otherwise the command's code.
-int exitCodeAfter(int code) { return code == 0 && g_signal == SIGINT ? 130 : code; }
+int exitCodeAfter(int code) { return code == 0 && lastStopSignal() == SIGINT ? 130 : code; }
 
 std::string describeStatus(int status) {
   if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
@@ -100,11 +85,11 @@ class ProcessSupervisor {
     const auto exit = children_.pollExit();
     if (!exit) return {};
     const std::string& process = exit->name;
-    if (g_stop && stoppedAsAsked(exit->status)) return {};
+    if (stopRequested() && stoppedAsAsked(exit->status)) return {};
     killed_ = killed_ || WIFSIGNALED(exit->status);
     const std::string what =
         "process '" + process + "' (pid " + std::to_string(exit->pid) + ") " + describeStatus(exit->status);
-    if (scene_.on_crash == CrashPolicy::kRestart && !g_stop && restarts_[process] < scene_.max_restarts) {
+    if (scene_.on_crash == CrashPolicy::kRestart && !stopRequested() && restarts_[process] < scene_.max_restarts) {
       ++restarts_[process];
       std::cerr << "uampc: " << what << "; restarting it (" << restarts_[process] << " of " << scene_.max_restarts
                 << ")\n";
@@ -130,7 +115,7 @@ class ProcessSupervisor {
       }
       killed_ = killed_ || (WIFSIGNALED(exit->status) && !stoppedAsAsked(exit->status));
       const bool clean = WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0;
-      if (!clean && !(g_stop && stoppedAsAsked(exit->status))) {
+      if (!clean && !(stopRequested() && stoppedAsAsked(exit->status))) {
         std::cerr << "uampc: process '" << exit->name << "' " << describeStatus(exit->status) << " while stopping\n";
         failed_ = true;
       }
@@ -182,7 +167,7 @@ static bool recordRun(const Scene& scene, const LaunchOptions& options) {
 
 int launch(const LaunchOptions& options) {
   // First: a Ctrl-C from here on ends the launch with 130, however far it got.
-  installSignalHandlers();
+  catchStopSignals();
   ComponentCatalog catalog;
   bool ok = false;
   const Scene scene = loadOrReport(options, catalog, ok);
@@ -190,7 +175,7 @@ int launch(const LaunchOptions& options) {
   for (const auto& w : scene.warnings) std::cerr << w << "\n";
   if (!ok) return 2;
   if (!options.output_directory.empty() && !recordRun(scene, options)) return 1;
-  if (g_stop) return exitCodeAfter(0);  // stopped while loading: nothing to stop
+  if (stopRequested()) return exitCodeAfter(0);  // stopped while loading: nothing to stop
 
   std::cerr << "uampc: scene '" << scene.name << "' (" << scene.components.size() << " components, "
             << scene.processes().size() << " process(es), "
@@ -200,20 +185,26 @@ int launch(const LaunchOptions& options) {
   for (const auto& process : scene.processes()) supervisor.start(process);
 
   // What ends a run early: a process that failed, or the output directory gone.
+  // The directory once a second: the clock asks every step, and a stat per step would be waste.
+  auto next_directory_check = std::chrono::steady_clock::now();
   auto problem = [&] {
     std::string what = supervisor.poll();
-    return what.empty() ? outputDirectoryProblem(options.output_directory) : what;
+    if (what.empty() && std::chrono::steady_clock::now() >= next_directory_check) {
+      next_directory_check = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+      what = outputDirectoryProblem(options.output_directory);
+    }
+    return what;
   };
   std::string error;
   if (scene.clock.mode == ClockMode::kLockstep) {
-    const ClockResult result = runLockstepClock(scene, g_stop, problem);
+    const ClockResult result = runLockstepClock(scene, stopFlag(), problem);
     // Stopped while the processes were starting is no failure: the user asked.
-    if (!result.ok && !g_stop) error = result.error;
+    if (!result.ok && !stopRequested()) error = result.error;
     std::cerr << "uampc: " << result.sim_seconds << " s of sim time in " << result.wall_seconds << " s ("
               << (result.wall_seconds > 0 ? result.sim_seconds / result.wall_seconds : 0.0) << "x real time)\n";
   } else {
     const auto start = std::chrono::steady_clock::now();
-    while (!g_stop) {
+    while (!stopRequested()) {
       error = problem();
       if (!error.empty() || supervisor.empty()) break;
       if (scene.clock.duration_s > 0 &&
@@ -230,7 +221,7 @@ int launch(const LaunchOptions& options) {
     return 1;
   }
   // Ctrl-C wins over a process that then failed to stop cleanly (said above): the user ended it.
-  if (g_signal == SIGINT) {
+  if (lastStopSignal() == SIGINT) {
     std::cerr << "uampc: stopped by Ctrl-C\n";
     return 130;
   }
@@ -238,7 +229,7 @@ int launch(const LaunchOptions& options) {
 }
 
 int runClockCommand(const LaunchOptions& options) {
-  installSignalHandlers();
+  catchStopSignals();
   ComponentCatalog catalog;
   bool ok = false;
   const Scene scene = loadOrReport(options, catalog, ok);
@@ -247,8 +238,8 @@ int runClockCommand(const LaunchOptions& options) {
     std::cerr << "uampc: scene " << options.scene_path << " runs in real time; it has no clock to run\n";
     return 2;
   }
-  const ClockResult result = runLockstepClock(scene, g_stop, [] { return std::string(); });
-  if (!result.ok && !g_stop) {
+  const ClockResult result = runLockstepClock(scene, stopFlag(), [] { return std::string(); });
+  if (!result.ok && !stopRequested()) {
     std::cerr << "uampc: run failed: " << result.error << "\n";
     return 1;
   }
@@ -256,7 +247,7 @@ int runClockCommand(const LaunchOptions& options) {
 }
 
 int runProcessCommand(const LaunchOptions& options, const std::string& process) {
-  installSignalHandlers();
+  catchStopSignals();
   ComponentCatalog catalog;
   bool ok = false;
   const Scene scene = loadOrReport(options, catalog, ok);
@@ -268,7 +259,7 @@ int runProcessCommand(const LaunchOptions& options, const std::string& process) 
     return 2;
   }
   // 130 on Ctrl-C, like launch: the launcher counts it as a clean stop when it was stopping too.
-  return exitCodeAfter(runProcessGroup(scene, process, options.output_directory, g_stop));
+  return exitCodeAfter(runProcessGroup(scene, process, options.output_directory, stopFlag()));
 }
 
 }  // namespace uampc

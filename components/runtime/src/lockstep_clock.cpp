@@ -120,6 +120,7 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     while (acked.size() < processes.size()) {
       if (std::string other = otherRunOnTheDomain(ack_reader, processes.size(), scene.domain_id); !other.empty()) {
         result.error = other;
+        stayUntilTheOtherRunNotices();
         return false;
       }
       while (ack_reader->take_next_sample(&ack, &info) == ReturnCode_t::RETCODE_OK) {
@@ -201,6 +202,8 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   dds.deleteReader(ack_reader);
   return result;
 }
+
+void stayUntilTheOtherRunNotices() { std::this_thread::sleep_for(std::chrono::milliseconds(1500)); }
 
 // A participant Fast DDS refuses (DDS Security's certificates, a profile's transports) is a failed
 // run with its reason, not an exception out of the launcher.

@@ -22,4 +22,10 @@ struct ClockResult {
 ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
                              const std::function<std::string()>& check_processes);
 
+// Two runs on one domain: the side that notices the other first stays on the bus a moment (1.5 s)
+// before it leaves. Discovery is not symmetric in time; without the pause a busy machine can let
+// the noticing run tear down before the other has matched its writers, and the other then runs
+// on alone, never naming the cause (seen in CI under AddressSanitizer).
+void stayUntilTheOtherRunNotices();
+
 }  // namespace uampc

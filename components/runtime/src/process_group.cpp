@@ -12,6 +12,7 @@
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/dds_node.hpp"
+#include "lockstep_clock.hpp"
 #include "wakeup.hpp"
 
 namespace uampc {
@@ -569,6 +570,7 @@ class ProcessRunner {
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
       if (const std::string other = anotherClock(); !other.empty()) {
         log_.error(other);
+        stayUntilTheOtherRunNotices();
         return 1;
       }
       std::deque<Sample> ticks;

@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <set>
-#include <vector>
 
 #include "uampc/runtime/scene.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
+#include "yaml_walk.hpp"
 
 namespace fs = std::filesystem;
 
@@ -67,25 +66,7 @@ YAML::Node deepMerge(const YAML::Node& base, const YAML::Node& over) {
 }
 
 void SceneDocument::remember(const YAML::Node& root, const std::string& file) {
-  // A stack, not recursion, and each collection once however often it is aliased: an alias bomb
-  // (ten aliases of ten aliases of ... nine levels deep) was walked a billion nodes deep.
-  std::set<std::pair<int, int>> visited;
-  std::vector<YAML::Node> pending{root};
-  while (!pending.empty()) {
-    const YAML::Node node = pending.back();
-    pending.pop_back();
-    const bool collection = node.IsMap() || node.IsSequence();
-    if (collection && !visited.insert({node.Mark().line, node.Mark().column}).second) continue;
-    origins_.emplace_back(node, file);
-    if (node.IsMap()) {
-      for (const auto& kv : node) {
-        pending.push_back(kv.first);
-        pending.push_back(kv.second);
-      }
-    } else if (node.IsSequence()) {
-      for (const auto& item : node) pending.push_back(item);
-    }
-  }
+  forEachNodeOnce(root, [&](const YAML::Node& node) { origins_.emplace_back(node, file); });
 }
 
 YAML::Node SceneDocument::loadChain(const std::string& file, std::vector<std::string>& chain) {

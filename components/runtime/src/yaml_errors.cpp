@@ -3,16 +3,13 @@
 #include <yaml-cpp/yaml.h>
 
 #include <map>
-#include <set>
 
 #include "uampc/runtime/edit_distance.hpp"
+#include "yaml_walk.hpp"
 
 namespace uampc {
 
 namespace {
-
-// A collection's place in its file: aliases of it share it, so it identifies the collection.
-std::pair<int, int> placeOf(const YAML::Node& node) { return {node.Mark().line, node.Mark().column}; }
 
 // Problems of one mapping's keys.
 void checkMappingKeys(const YAML::Node& map, const std::string& file, std::vector<std::string>& errors) {
@@ -38,20 +35,9 @@ void checkMappingKeys(const YAML::Node& map, const std::string& file, std::vecto
 
 std::vector<std::string> yamlStructureErrors(const YAML::Node& root, const std::string& file) {
   std::vector<std::string> errors;
-  std::set<std::pair<int, int>> visited;
-  std::vector<YAML::Node> pending{root};  // a stack, not recursion: deep nesting must not overflow
-  while (!pending.empty()) {
-    const YAML::Node node = pending.back();
-    pending.pop_back();
-    if (!node.IsMap() && !node.IsSequence()) continue;
-    if (!node.Mark().is_null() && !visited.insert(placeOf(node)).second) continue;
-    if (node.IsMap()) {
-      checkMappingKeys(node, file, errors);
-      for (const auto& kv : node) pending.push_back(kv.second);
-    } else {
-      for (const auto& item : node) pending.push_back(item);
-    }
-  }
+  forEachNodeOnce(root, [&](const YAML::Node& node) {
+    if (node.IsMap()) checkMappingKeys(node, file, errors);
+  });
   return errors;
 }
 

@@ -19,7 +19,7 @@ namespace uampc {
 // scalar (`? [a, b]`), and a key written twice in one mapping (yaml-cpp keeps both, and lookups
 // then found the first or the last depending on how they were made). Each as
 // "file:line:column: error: message"; empty when the document is sound. Aliased collections are
-// visited once, so an alias bomb costs what its text costs.
+// checked once (yaml_walk.hpp).
 std::vector<std::string> yamlStructureErrors(const YAML::Node& root, const std::string& file);
 
 class YamlErrors {

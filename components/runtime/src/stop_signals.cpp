@@ -1,12 +1,17 @@
-#include "stop_signals.hpp"
+#include "uampc/runtime/stop_signals.hpp"
 
 #include <signal.h>
 
-namespace uampc::app {
+namespace uampc {
 
 namespace {
 std::atomic<bool> g_stop{false};
-void onSignal(int) { g_stop = true; }
+std::atomic<int> g_signal{0};
+
+void onSignal(int signal) {
+  g_signal = signal;
+  g_stop = true;
+}
 }  // namespace
 
 void catchStopSignals() {
@@ -19,5 +24,6 @@ void catchStopSignals() {
 
 bool stopRequested() { return g_stop; }
 const std::atomic<bool>& stopFlag() { return g_stop; }
+int lastStopSignal() { return g_signal; }
 
-}  // namespace uampc::app
+}  // namespace uampc
