@@ -26,6 +26,7 @@ enum class DomainBlock {
   kDdsProfile,
   kFaults,
   kSecurity,
+  kDynamixel,
 };
 
 inline constexpr int kDomainsPerTest = 12;

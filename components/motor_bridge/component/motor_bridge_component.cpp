@@ -97,7 +97,7 @@ class MotorBridge : public Component {
       return std::make_unique<SimBackend>(limitsFrom(ctx), ctx.paramDouble("initial_angle"), ctx.now());
     // A real motor turns in wall time; simulated time would run it at the wrong speed.
     if (ctx.lockstep())
-      throw std::runtime_error("backend 'dynamixel' drives a real motor and needs clock.mode: real_time");
+      throw std::runtime_error("backend 'dynamixel' drives a real motor and needs clock.mode: realtime");
     const int baud_rate = static_cast<int>(ctx.paramInt("baud_rate"));
     if (!dynamixel::isSupportedBaudRate(baud_rate))
       throw std::runtime_error("baud_rate " + std::to_string(baud_rate) + " is not one of " +

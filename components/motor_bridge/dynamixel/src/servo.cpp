@@ -39,13 +39,16 @@ std::string Servo::where() const {
 
 Reply Servo::request(const Packet& packet, const char* what) {
   Reply reply;
-  for (int attempt = 0; attempt <= options_.max_retries; ++attempt) {
+  int tries = 0;
+  // A failed port is not retried: it stays failed until reopened.
+  while (tries <= options_.max_retries) {
+    ++tries;
     reply = bus_.transact(packet);
     if (reply.ok() || reply.outcome == Reply::Outcome::kPortError) break;
   }
   if (!reply.ok()) {
-    throw BusFault(std::string(what) + " of DYNAMIXEL " + where() + " failed after " +
-                   std::to_string(options_.max_retries + 1) + " tries: " + reply.detail);
+    throw BusFault(std::string(what) + " of DYNAMIXEL " + where() + " failed after " + std::to_string(tries) +
+                   (tries == 1 ? " try: " : " tries: ") + reply.detail);
   }
   return reply;
 }
