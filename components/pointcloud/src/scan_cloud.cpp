@@ -8,7 +8,7 @@ namespace uampc::pointcloud {
 
 namespace {
 
-constexpr std::uint8_t kInt32 = 5, kUint32 = 6, kFloat32 = 7, kFloat64 = 8, kUint16 = 4;
+constexpr std::uint8_t kUint8 = 2, kInt32 = 5, kUint32 = 6, kFloat32 = 7, kFloat64 = 8, kUint16 = 4;
 
 sensor_msgs::msg::PointField field(const char* name, std::uint32_t offset, std::uint8_t type) {
   sensor_msgs::msg::PointField f;
@@ -85,6 +85,34 @@ sensor_msgs::msg::PointCloud2 makeScanCloud(const ScanPoints& points, const std:
   return cloud;
 }
 
+sensor_msgs::msg::PointCloud2 makeLivoxCloud(const ScanPoints& points, const std::string& frame_id,
+                                             std::int64_t stamp_ns) {
+  constexpr std::uint32_t kStep = 26;  // packed, as the driver's LivoxPointXyzrtlt
+  sensor_msgs::msg::PointCloud2 cloud;
+  cloud.fields({field("x", 0, kFloat32), field("y", 4, kFloat32), field("z", 8, kFloat32),
+                field("intensity", 12, kFloat32), field("tag", 16, kUint8), field("line", 17, kUint8),
+                field("timestamp", 18, kFloat64)});
+  setLayout(cloud, points.positions.size(), kStep, frame_id);
+  builtin_interfaces::msg::Time stamp;
+  stamp.sec(static_cast<std::int32_t>(stamp_ns / 1'000'000'000));
+  stamp.nanosec(static_cast<std::uint32_t>(stamp_ns % 1'000'000'000));
+  cloud.header().stamp(stamp);
+  for (std::size_t i = 0; i < points.positions.size(); ++i) {
+    std::uint8_t* out = &cloud.data()[kStep * i];
+    std::memcpy(out, points.positions[i].data(), 12);
+    const float intensity = points.intensities.empty() ? 0.0f : points.intensities[i];
+    const std::uint8_t tag = 0;
+    const auto line = static_cast<std::uint8_t>(points.rings.empty() ? 0 : points.rings[i]);
+    const double t = points.time_offsets.empty() ? 0.0 : points.time_offsets[i];
+    const double timestamp = static_cast<double>(stamp_ns) + t * 1e9;
+    std::memcpy(out + 12, &intensity, 4);
+    std::memcpy(out + 16, &tag, 1);
+    std::memcpy(out + 17, &line, 1);
+    std::memcpy(out + 18, &timestamp, 8);
+  }
+  return cloud;
+}
+
 sensor_msgs::msg::PointCloud2 makeXyzCloud(const std::vector<Eigen::Vector3f>& points, const std::string& frame_id) {
   sensor_msgs::msg::PointCloud2 cloud;
   cloud.fields({field("x", 0, kFloat32), field("y", 4, kFloat32), field("z", 8, kFloat32)});
@@ -100,7 +128,7 @@ TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud) {
     switch (f->datatype()) {
       case kFloat32:
       case kFloat64:
-        return {name, f->offset(), f->datatype(), 1.0};
+        return {name, f->offset(), f->datatype(), 1.0, f->datatype() == kFloat64 && std::string(name) == "timestamp"};
       case kUint32:
       case kInt32:
         return {name, f->offset(), f->datatype(), 1e-9};
@@ -148,6 +176,15 @@ ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField
   if (time_field && time_field->offset + sizeOf(time_field->datatype) > step) {
     throw std::runtime_error("time field '" + time_field->name + "' lies beyond point_step");
   }
+  // Absolute times, made seconds since the header stamp: seconds if the last point read so lies
+  // within a frame of the stamp, else nanoseconds if it does read so.
+  double time_scale = time_field ? time_field->scale : 1.0, time_origin = 0.0;
+  if (time_field && time_field->absolute && n > 0) {
+    time_origin = cloud.header().stamp().sec() + 1e-9 * cloud.header().stamp().nanosec();
+    const double last = readAs<double>(cloud.data().data() + (n - 1) * step + time_field->offset);
+    const bool seconds = std::abs(last - time_origin) <= kMaxTimeOffset;
+    time_scale = !seconds && std::abs(last * 1e-9 - time_origin) <= kMaxTimeOffset ? 1e-9 : 1.0;
+  }
   ScanPoints out;
   out.positions.resize(n);
   if (fi) out.intensities.resize(n);
@@ -168,7 +205,7 @@ ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField
           t = readAs<float>(q);
           break;
         case kFloat64:
-          t = readAs<double>(q);
+          t = readAs<double>(q) * time_scale - time_origin;
           break;
         case kUint32:
           t = readAs<std::uint32_t>(q) * time_field->scale;

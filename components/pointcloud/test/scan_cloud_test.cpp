@@ -34,6 +34,45 @@ TEST(ScanCloud, RoundTripsEveryField) {
   }
 }
 
+// livox_ros_driver2's PointCloud2 (xfer_format 0): 26 bytes a point, timestamp float64 in absolute
+// nanoseconds on the header's clock (a PTP-synchronised Mid-360 in 2026: 1.79e18 ns).
+TEST(ScanCloud, ReadsLivoxDriverCloudsWithAbsoluteNanosecondTimes) {
+  const std::int64_t stamp_ns = 1'795'464'880'913'398'000;
+  const auto cloud = makeLivoxCloud(threePoints(), "livox_frame", stamp_ns);
+  EXPECT_EQ(cloud.point_step(), 26u);
+  ASSERT_EQ(cloud.fields().size(), 7u);
+  EXPECT_EQ(cloud.fields()[6].name(), "timestamp");
+  EXPECT_EQ(cloud.fields()[6].offset(), 18u);
+  double first = 0;
+  std::memcpy(&first, cloud.data().data() + 18, 8);
+  EXPECT_EQ(first, static_cast<double>(stamp_ns));  // absolute, not an offset
+  const TimeField tf = findTimeField(cloud);
+  EXPECT_TRUE(tf.absolute);
+  const ScanPoints back = readCloud(cloud, &tf);
+  const ScanPoints want = threePoints();
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.positions[i], want.positions[i]);
+    EXPECT_NEAR(back.time_offsets[i], want.time_offsets[i], 1e-6);  // double ns: 256 ns steps at 1.8e18
+  }
+  EXPECT_TRUE(back.rings.empty());  // the layout has line, not ring
+}
+
+// Hesai's and RoboSense's drivers write the same field in absolute seconds.
+TEST(ScanCloud, ReadsAbsoluteSecondTimestampsToo) {
+  auto cloud = makeLivoxCloud(threePoints(), "lidar", 0);
+  builtin_interfaces::msg::Time stamp;
+  stamp.sec(1'795'464'880);
+  stamp.nanosec(500'000'000);
+  cloud.header().stamp(stamp);
+  const double seconds[3] = {1'795'464'880.5, 1'795'464'880.55, 1'795'464'880.599};
+  for (int i = 0; i < 3; ++i) std::memcpy(cloud.data().data() + 26 * i + 18, &seconds[i], 8);
+  const TimeField tf = findTimeField(cloud);
+  const ScanPoints back = readCloud(cloud, &tf);
+  EXPECT_NEAR(back.time_offsets[0], 0.0, 1e-6);
+  EXPECT_NEAR(back.time_offsets[1], 0.05, 1e-6);
+  EXPECT_NEAR(back.time_offsets[2], 0.099, 1e-6);
+}
+
 // Another driver's layout: x y z, then offset_time as uint32 nanoseconds (as Livox's driver).
 TEST(ScanCloud, ReadsOtherDriversTimeFieldsInNanoseconds) {
   auto cloud = makeXyzCloud({{1, 1, 1}, {2, 2, 2}}, "lidar");

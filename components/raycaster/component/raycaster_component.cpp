@@ -45,6 +45,12 @@ class RaycasterComponent : public Component {
                "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
         .between(0.0, 1.0);
     spec.param("frame_id", "lidar", "frame_id of the published scans and IMU samples");
+    // livox: what a rig's driver publishes, so that a recording of a simulation can stand in for the
+    // LiDAR of config/scenes/rig_mid360.yaml (docs/hardware.md).
+    spec.param("point_layout", "uampc",
+               "layout of the published scans: 'uampc' (x, y, z, intensity, t, ring) or 'livox' "
+               "(livox_ros_driver2's PointCloud2: x, y, z, intensity, tag, line, timestamp in absolute ns)")
+        .oneOf({"uampc", "livox"});
     spec.param("imu", false, "publish the LiDAR's IMU (angular velocity and specific force in the LiDAR frame)");
     raycaster::RayCasterConfig scan_defaults;
     raycaster::ImuSimulatorConfig imu_defaults;  // the Mid-360's IMU, an ICM-40609
@@ -59,6 +65,7 @@ class RaycasterComponent : public Component {
         scan_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("scan")),
         imu_pub_(ctx.publisher<sensor_msgs::msg::Imu>("imu")) {
     frame_id_ = ctx.paramString("frame_id");
+    livox_layout_ = ctx.paramString("point_layout") == "livox";
     if (ctx.paramBool("imu")) imu_.emplace(imuConfigFrom(ctx, config_));
     ctx.subscribe<msg::WorldMesh>("world", [this](const msg::WorldMesh& m) { onWorld(m); });
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& p) {
@@ -278,8 +285,10 @@ class RaycasterComponent : public Component {
       points.time_offsets.push_back(p.time_offset);
       points.rings.push_back(p.ring);
     }
-    auto cloud = pointcloud::makeScanCloud(points, frame_id_);
-    cloud.header().stamp(toMsg(Time::fromSeconds(scan.stamp)));
+    const Time stamp = Time::fromSeconds(scan.stamp);
+    auto cloud = livox_layout_ ? pointcloud::makeLivoxCloud(points, frame_id_, stamp.ns)
+                               : pointcloud::makeScanCloud(points, frame_id_);
+    cloud.header().stamp(toMsg(stamp));
     scan_pub_.publish(cloud);
   }
 
@@ -288,6 +297,7 @@ class RaycasterComponent : public Component {
   Publisher<sensor_msgs::msg::PointCloud2> scan_pub_;
   Publisher<sensor_msgs::msg::Imu> imu_pub_;
   std::string frame_id_;
+  bool livox_layout_ = false;
   world::TriangleMesh mesh_;
   std::vector<Eigen::Vector3f> points_;
   std::vector<bool> chunks_seen_;

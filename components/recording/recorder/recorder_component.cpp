@@ -62,16 +62,22 @@ class RecorderComponent : public Component {
     }
     std::vector<PortSpec> ports;
     for (const std::string& topic : topics) {
-      const auto writer = request.written.find(topic);
-      if (writer == request.written.end()) {
-        std::vector<std::string> written;
-        for (const auto& entry : request.written) written.push_back(entry.first);
-        const std::string guess = closestMatch(topic, written);
-        throw std::runtime_error("cannot record " + topic + ": no component of the scene writes it" +
+      // A topic the scene only reads comes from outside it (a LiDAR driver on a rig): its type and
+      // QoS are its reader's.
+      const PortSpec* port = nullptr;
+      if (auto w = request.written.find(topic); w != request.written.end())
+        port = w->second;
+      else if (auto r = request.read.find(topic); r != request.read.end())
+        port = r->second;
+      if (!port) {
+        std::vector<std::string> known;
+        for (const auto& entry : request.written) known.push_back(entry.first);
+        for (const auto& entry : request.read) known.push_back(entry.first);
+        const std::string guess = closestMatch(topic, known);
+        throw std::runtime_error("cannot record " + topic + ": no component of the scene writes or reads it" +
                                  (guess.empty() ? "" : "; did you mean " + guess + "?"));
       }
-      ports.push_back({topic, PortDirection::kInput, writer->second->type_name, topic, writer->second->qos,
-                       "recorded: " + writer->second->doc});
+      ports.push_back({topic, PortDirection::kInput, port->type_name, topic, port->qos, "recorded: " + port->doc});
     }
     return ports;
   }

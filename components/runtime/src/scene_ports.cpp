@@ -120,16 +120,18 @@ std::string portList(const std::vector<Binding>& bindings) {
 
 namespace {
 
-// Every topic written in the scene by a component other than `self`, with the first port writing it.
-std::map<std::string, const PortSpec*> writtenTopics(const Scene& scene, const ComponentInstance* self) {
-  std::map<std::string, const PortSpec*> written;
+// Every topic written (or read) in the scene by a component other than `self`, with the first port
+// writing (reading) it.
+std::map<std::string, const PortSpec*> topicsOf(const Scene& scene, const ComponentInstance* self,
+                                                PortDirection direction) {
+  std::map<std::string, const PortSpec*> topics;
   for (const auto& c : scene.components) {
     if (&c == self) continue;
     for (const auto& port : c.ports) {
-      if (port.direction == PortDirection::kOutput) written.emplace(c.topics.at(port.name), &port);
+      if (port.direction == direction) topics.emplace(c.topics.at(port.name), &port);
     }
   }
-  return written;
+  return topics;
 }
 
 std::string checkScenePort(const ComponentInstance& c, const PortSpec& port) {
@@ -156,7 +158,8 @@ void resolveScenePorts(Scene& scene, std::vector<std::string>& errors) {
         continue;
       std::vector<PortSpec> decided;
       try {
-        decided = resolve({c.params, writtenTopics(scene, &c)});
+        decided = resolve(
+            {c.params, topicsOf(scene, &c, PortDirection::kOutput), topicsOf(scene, &c, PortDirection::kInput)});
       } catch (const std::exception& e) {
         if (round == 1) {
           errors.push_back(diagnostic(c.location, "error", "component '" + c.name + "' (" + c.type + "): " + e.what()));

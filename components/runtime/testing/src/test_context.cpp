@@ -137,9 +137,9 @@ TestContext::TestContext(const std::string& type, const std::map<std::string, st
   }
   ports_ = library_->spec().ports();
   if (const ScenePortResolver& resolve = library_->spec().scenePortResolver()) {
-    std::map<std::string, const PortSpec*> written;
+    std::map<std::string, const PortSpec*> written, read;
     for (const PortSpec& output : options_.scene_outputs) written.emplace(output.default_topic, &output);
-    for (PortSpec& port : resolve({params_, written})) {
+    for (PortSpec& port : resolve({params_, written, read})) {
       port.default_topic = port.name;
       ports_.push_back(std::move(port));
     }

@@ -5,6 +5,10 @@
 // The reader also accepts other drivers' layouts: the per-point time may be called t, time,
 // timestamp or offset_time, in float32 or float64 seconds or integer nanoseconds (uint32, int32,
 // uint64 as two uint32 is not a PointField type, so offset_time in uint32 ns as Livox's driver).
+// A float64 field named timestamp is absolute time on the header stamp's clock, as the drivers that
+// write it mean it: livox_ros_driver2 in nanoseconds, Hesai's and RoboSense's in seconds; seconds
+// when the cloud's last point so read lies within kMaxTimeOffset of the header stamp, else
+// nanoseconds when it does so (docs/hardware.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -25,6 +29,11 @@ struct ScanPoints {
 
 // Builds a scan cloud with fields x, y, z, intensity, t, ring.
 sensor_msgs::msg::PointCloud2 makeScanCloud(const ScanPoints& points, const std::string& frame_id);
+// Builds a cloud in livox_ros_driver2's PointCloud2 layout (xfer_format 0): x, y, z, intensity
+// (float32), tag, line (uint8), timestamp (float64, absolute ns), 26 bytes per point; line is the
+// ring, tag 0. stamp_ns is the header stamp, the time the offsets count from.
+sensor_msgs::msg::PointCloud2 makeLivoxCloud(const ScanPoints& points, const std::string& frame_id,
+                                             std::int64_t stamp_ns);
 // Builds a cloud with x, y, z only (maps, registered scans).
 sensor_msgs::msg::PointCloud2 makeXyzCloud(const std::vector<Eigen::Vector3f>& points, const std::string& frame_id);
 
@@ -34,6 +43,8 @@ struct TimeField {
   std::uint32_t offset = 0;
   std::uint8_t datatype = 0;
   double scale = 1.0;  // to seconds (1e-9 for integer nanoseconds)
+  // float64 "timestamp": absolute time on the header's clock, its unit found per cloud.
+  bool absolute = false;
 };
 
 // Finds the time field, or throws std::runtime_error with a message naming the fields present

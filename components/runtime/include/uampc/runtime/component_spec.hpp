@@ -30,6 +30,9 @@ struct ScenePortRequest {
   // Every topic the scene's other components write (declared outputs and the outputs other
   // components decided from the scene), with the port that writes it first.
   const std::map<std::string, const PortSpec*>& written;
+  // Every topic they read, with the first port reading it: on a rig, what an external driver
+  // publishes is read by the scene but written by nobody in it.
+  const std::map<std::string, const PortSpec*>& read;
 };
 // Returns the ports; each one's name is its topic (default_topic), and it cannot be remapped.
 // Throws std::runtime_error with a message for the user when the parameters do not make sense.
