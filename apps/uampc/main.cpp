@@ -332,7 +332,7 @@ class UampcCli {
     CLI::App* sub = addCommand(
         "play",
         "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] "
-        "[--wait-for-readers]",
+        "[--wait-for-readers] [--restamp]",
         "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
         "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
         "use the player component instead (config/scenes/replay_lo.yaml).");
@@ -352,6 +352,10 @@ class UampcCli {
     sub->add_flag("--wait-for-readers", o.wait_for_readers,
                   "Start only once every played topic has a reader (else after 0.5 s), so that no sample goes\n"
                   "out before the system under test or a recorder hears it.");
+    sub->add_flag("--restamp", o.restamp,
+                  "Move every header stamp (and a PointCloud2's absolute point times) to the present, as if the\n"
+                  "recording were happening now: for a real-time system that pairs the played samples with live ones\n"
+                  "by stamp (a recorded LiDAR beside a live motor, docs/hardware.md).");
     commands_.push_back({sub, [this] { return uampc::app::playCommand(options_.play); }});
   }
 

@@ -9,10 +9,12 @@
 
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/recording/playback.hpp"
+#include "uampc/recording/restamp.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_node.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/stop_signals.hpp"
+#include "uampc/runtime/wall_clock.hpp"
 
 namespace uampc::app {
 
@@ -77,6 +79,8 @@ class Player {
   bool playOnce() {
     const auto started = SteadyClock::now();
     const Time origin = playback_.start() + Time::fromSeconds(options_.start_s);
+    // Each pass starts now: its samples' stamps move by the same offset as its time line.
+    restamper_.setOffset(options_.restamp ? wallNow() - origin : Time{0});
     playback_.seek(origin);  // from the start, or past what --start skips without reading it
     const double length_s = (playback_.end() - origin).seconds();
     auto next_progress = started;
@@ -93,7 +97,7 @@ class Player {
       }
       if (clock_writer_ && now >= next_clock) {
         rosgraph_msgs::msg::Clock clock;
-        clock.clock(toMsg(until));
+        clock.clock(toMsg(until + restamper_.offset()));
         clock_writer_->write(&clock);
         next_clock +=
             std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(1.0 / kClockRate));
@@ -124,6 +128,7 @@ class Player {
     DataWriter* writer = writers_[sample.topic];
     if (!writer) return;
     const auto t0 = SteadyClock::now();
+    if (options_.restamp) restamper_.restamp(playback_.topics()[sample.topic].type, sample.data);
     if (writer->write(&sample.data) != true) {
       throw std::runtime_error("publishing on " + playback_.topics()[sample.topic].topic + " failed");
     }
@@ -140,6 +145,7 @@ class Player {
   std::vector<DataWriter*> writers_;  // by topic index; null: not played
   DataWriter* clock_writer_ = nullptr;
   std::vector<PublishCost> costs_;
+  recording::Restamper restamper_{Time{0}};
 };
 
 }  // namespace

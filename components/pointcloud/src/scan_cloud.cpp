@@ -63,7 +63,38 @@ T readAs(const std::uint8_t* p) {
   return v;
 }
 
+double headerSeconds(const sensor_msgs::msg::PointCloud2& cloud) {
+  return cloud.header().stamp().sec() + 1e-9 * cloud.header().stamp().nanosec();
+}
+
+// The unit of absolute point times, to seconds: seconds if the last point read so lies within a
+// frame of the header stamp, else nanoseconds if it does read so (else seconds: the times are
+// garbage and will be refused).
+double absoluteTimeScale(const sensor_msgs::msg::PointCloud2& cloud, const TimeField& field) {
+  const std::size_t n = static_cast<std::size_t>(cloud.width()) * cloud.height();
+  const std::size_t end = (n - 1) * cloud.point_step() + field.offset + 8;
+  if (n == 0 || cloud.data().size() < end) return 1.0;
+  const double last = readAs<double>(cloud.data().data() + end - 8);
+  const double origin = headerSeconds(cloud);
+  if (std::abs(last - origin) <= kMaxTimeOffset) return 1.0;
+  return std::abs(last * 1e-9 - origin) <= kMaxTimeOffset ? 1e-9 : 1.0;
+}
+
 }  // namespace
+
+void shiftAbsoluteTimes(sensor_msgs::msg::PointCloud2& cloud, double offset_s) {
+  const auto* f = find(cloud, "timestamp");
+  if (!f || f->datatype() != kFloat64) return;
+  const TimeField field{"timestamp", f->offset(), kFloat64, 1.0, true};
+  const double offset = offset_s / absoluteTimeScale(cloud, field);  // in the field's unit
+  const std::size_t n = static_cast<std::size_t>(cloud.width()) * cloud.height();
+  const std::size_t step = cloud.point_step();
+  for (std::size_t i = 0; i < n && (i * step + f->offset() + 8) <= cloud.data().size(); ++i) {
+    std::uint8_t* q = cloud.data().data() + i * step + f->offset();
+    const double shifted = readAs<double>(q) + offset;
+    std::memcpy(q, &shifted, 8);
+  }
+}
 
 sensor_msgs::msg::PointCloud2 makeScanCloud(const ScanPoints& points, const std::string& frame_id) {
   constexpr std::uint32_t kStep = 22;
@@ -176,14 +207,10 @@ ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField
   if (time_field && time_field->offset + sizeOf(time_field->datatype) > step) {
     throw std::runtime_error("time field '" + time_field->name + "' lies beyond point_step");
   }
-  // Absolute times, made seconds since the header stamp: seconds if the last point read so lies
-  // within a frame of the stamp, else nanoseconds if it does read so.
   double time_scale = time_field ? time_field->scale : 1.0, time_origin = 0.0;
-  if (time_field && time_field->absolute && n > 0) {
-    time_origin = cloud.header().stamp().sec() + 1e-9 * cloud.header().stamp().nanosec();
-    const double last = readAs<double>(cloud.data().data() + (n - 1) * step + time_field->offset);
-    const bool seconds = std::abs(last - time_origin) <= kMaxTimeOffset;
-    time_scale = !seconds && std::abs(last * 1e-9 - time_origin) <= kMaxTimeOffset ? 1e-9 : 1.0;
+  if (time_field && time_field->absolute) {
+    time_origin = headerSeconds(cloud);
+    time_scale = absoluteTimeScale(cloud, *time_field);
   }
   ScanPoints out;
   out.positions.resize(n);

@@ -12,6 +12,7 @@
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/dds_node.hpp"
+#include "uampc/runtime/wall_clock.hpp"
 #include "lockstep_clock.hpp"
 #include "wakeup.hpp"
 
@@ -21,11 +22,6 @@ using namespace eprosima::fastdds::dds;
 using SteadyClock = std::chrono::steady_clock;
 
 namespace {
-
-Time wallNow() {
-  return Time{std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-                  .count()};
-}
 
 // A sample taken from a reader, owned until it is delivered.
 struct Sample {

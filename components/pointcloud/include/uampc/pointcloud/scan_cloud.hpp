@@ -57,6 +57,11 @@ TimeField findTimeField(const sensor_msgs::msg::PointCloud2& cloud);
 // evaluate a pose every 0.25 ms over its span. Callers already skip points without a finite time.
 constexpr double kMaxTimeOffset = 10.0;
 
+// Adds `offset_s` to every point's time when the cloud's times are absolute (a float64 timestamp
+// field), in the field's own unit; nothing for times relative to the header stamp. For a player
+// that moves a recording to the present (its header stamps shift by the same offset).
+void shiftAbsoluteTimes(sensor_msgs::msg::PointCloud2& cloud, double offset_s);
+
 // Reads x, y, z (float32 required), and intensity, ring and time where present. Throws
 // std::runtime_error on an inconsistent cloud (data shorter than width*height*point_step, fields
 // beyond point_step, big-endian data). Non-finite points are kept: callers decide and count.
