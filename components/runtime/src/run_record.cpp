@@ -120,6 +120,8 @@ std::string resolvedSceneYaml(const Scene& scene) {
   }
   out << YAML::Key << "on_crash" << YAML::Value << (scene.on_crash == CrashPolicy::kRestart ? "restart" : "stop");
   out << YAML::Key << "max_restarts" << YAML::Value << scene.max_restarts;
+  if (!scene.external_topics.empty())
+    out << YAML::Key << "external_topics" << YAML::Value << YAML::Flow << scene.external_topics;
   emitClock(out, scene.clock);
   if (!scene.rig.empty()) {
     out << YAML::Key << "rig" << YAML::Value << YAML::BeginMap;

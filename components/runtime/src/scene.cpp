@@ -136,6 +136,7 @@ class SceneValidator {
   void applyOverrides(YAML::Node& root, const std::vector<Override>& overrides);
   void readTopLevel(const YAML::Node& root, Scene& scene);
   void readClock(const YAML::Node& node, Scene& scene);
+  void readExternalTopics(const YAML::Node& node, Scene& scene);
   void readSecurity(const YAML::Node& node, Scene& scene);
   void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
   void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec, Scene& scene);
@@ -245,7 +246,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
   applyOverrides(root, overrides);
   checkKeys(root,
             {"name", "domain_id", "dds_profile", "security", "seed", "clock", "on_crash", "max_restarts", "rig",
-             "components"},
+             "external_topics", "components"},
             "the scene");
   readRigNode(root);
   readTopLevel(root, scene);
@@ -307,6 +308,7 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
         scene.max_restarts = *v;
     }
   }
+  if (const YAML::Node topics = root["external_topics"]) readExternalTopics(topics, scene);
   if (root["on_crash"]) {
     if (auto v = scalar<std::string>(root["on_crash"], "on_crash")) {
       if (*v == "stop")
@@ -654,6 +656,26 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
     }
   }
   return std::nullopt;
+}
+
+// external_topics: [/livox/lidar, ...]: ROS topic names, each once.
+void SceneValidator::readExternalTopics(const YAML::Node& node, Scene& scene) {
+  if (!node.IsSequence()) {
+    error(node, "external_topics must be a list of topics, e.g. [/livox/lidar]");
+    return;
+  }
+  static const std::regex topic_pattern("(/[A-Za-z_][A-Za-z0-9_]*)+");
+  for (const auto& item : node) {
+    const auto topic = scalar<std::string>(item, "an external topic");
+    if (!topic) continue;
+    if (!std::regex_match(*topic, topic_pattern))
+      error(item, "external topic '" + *topic + "' is not a ROS topic name (e.g. /livox/lidar)");
+    else if (std::find(scene.external_topics.begin(), scene.external_topics.end(), *topic) !=
+             scene.external_topics.end())
+      error(item, "external topic " + *topic + " is listed twice");
+    else
+      scene.external_topics.push_back(*topic);
+  }
 }
 
 void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,

@@ -213,7 +213,9 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
                                   "topic " + topic + " connects ports of different types: " + first.key() + " (" +
                                       first.port->type_name + ") and " + b.key() + " (" + b.port->type_name + ")"));
     }
-    if (writers.empty()) {
+    const bool external =
+        std::find(scene.external_topics.begin(), scene.external_topics.end(), topic) != scene.external_topics.end();
+    if (writers.empty() && !external) {
       const auto typed =
           std::find_if(readers.begin(), readers.end(), [&](const Binding& b) { return remapped.count(b.key()); });
       const std::string suggestion =

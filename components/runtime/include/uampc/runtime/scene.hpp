@@ -72,6 +72,9 @@ struct Scene {
   ClockSettings clock;
   CrashPolicy on_crash = CrashPolicy::kStop;
   int max_restarts = 3;
+  // Topics published outside the scene (external_topics:), such as a LiDAR driver's on a rig: read
+  // by the scene's components, written by none of them, and neither an error nor a warning.
+  std::vector<std::string> external_topics;
   std::vector<ComponentInstance> components;  // in file order
   // The rig's parameters (ParameterSpec::rig) that the scene's components declare, resolved: the
   // rig: block's values, defaults filled in. Each such component has the same value in its params.
