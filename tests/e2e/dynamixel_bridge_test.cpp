@@ -24,6 +24,7 @@
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/recording/playback.hpp"
 #include "uampc/run_files/csv.hpp"
+#include "uampc/runtime/typed_sample.hpp"
 
 namespace uampc::test {
 namespace {
@@ -131,12 +132,8 @@ TEST(DynamixelBridge, RefusesLockstep) {
 
 template <typename Message>
 Message decode(const SerializedMessage& sample) {
-  typename MessageType<Message>::PubSubType support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(sample.data.size()));
-  std::memcpy(payload.data, sample.data.data(), sample.data.size());
-  payload.length = static_cast<std::uint32_t>(sample.data.size());
   Message message;
-  EXPECT_TRUE(support.deserialize(&payload, &message));
+  EXPECT_TRUE(decodeSample(sample, message));
   return message;
 }
 

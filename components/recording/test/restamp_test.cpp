@@ -8,26 +8,20 @@
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/recording/restamp.hpp"
+#include "uampc/runtime/typed_sample.hpp"
 
 namespace uampc::recording {
 namespace {
 
 template <typename Message>
 SerializedMessage serialize(Message message) {
-  typename MessageType<Message>::PubSubType support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(support.getSerializedSizeProvider(&message)());
-  EXPECT_TRUE(support.serialize(&message, &payload));
-  return SerializedMessage{std::vector<std::uint8_t>(payload.data, payload.data + payload.length)};
+  return encodeSample(message);
 }
 
 template <typename Message>
 Message deserialize(const SerializedMessage& sample) {
-  typename MessageType<Message>::PubSubType support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(sample.data.size()));
-  std::memcpy(payload.data, sample.data.data(), sample.data.size());
-  payload.length = static_cast<std::uint32_t>(sample.data.size());
   Message message;
-  EXPECT_TRUE(support.deserialize(&payload, &message));
+  EXPECT_TRUE(decodeSample(sample, message));
   return message;
 }
 

@@ -7,6 +7,7 @@
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/message_type.hpp"
+#include "uampc/runtime/typed_sample.hpp"
 
 namespace uampc::recording {
 namespace {
@@ -16,17 +17,10 @@ constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 
 // A PointCloud2 with absolute point times: shifted through the real type, as its data says.
 void shiftPointTimes(SerializedMessage& sample, Time offset) {
-  using Cloud = sensor_msgs::msg::PointCloud2;
-  typename MessageType<Cloud>::PubSubType support;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(sample.data.size()));
-  std::memcpy(payload.data, sample.data.data(), sample.data.size());
-  payload.length = static_cast<std::uint32_t>(sample.data.size());
-  Cloud cloud;
-  if (!support.deserialize(&payload, &cloud)) throw std::runtime_error("a PointCloud2 sample that does not decode");
+  sensor_msgs::msg::PointCloud2 cloud;
+  if (!decodeSample(sample, cloud)) throw std::runtime_error("a PointCloud2 sample that does not decode");
   pointcloud::shiftAbsoluteTimes(cloud, offset.seconds());
-  eprosima::fastrtps::rtps::SerializedPayload_t out(support.getSerializedSizeProvider(&cloud)());
-  if (!support.serialize(&cloud, &out)) throw std::runtime_error("a PointCloud2 sample that does not encode");
-  sample.data.assign(out.data, out.data + out.length);
+  sample = encodeSample(cloud);
 }
 
 }  // namespace
