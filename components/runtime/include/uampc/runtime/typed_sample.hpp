@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstring>
+#include <stdexcept>
+#include <vector>
 
 #include "uampc/runtime/message_type.hpp"
 #include "uampc/runtime/serialized_message.hpp"
