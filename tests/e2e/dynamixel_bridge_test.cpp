@@ -109,6 +109,35 @@ TEST(DynamixelBridge, APulledCableIsReportedTheServoStopsAndTheRunRecovers) {
   EXPECT_GT(rows.back()[0], gap_end + 1.0);
 }
 
+TEST(DynamixelBridge, AHardwareErrorMidRunIsNamed) {
+  dynamixel::ServoEmulator emulator(emulated("hardware_error"));
+  const std::string out = freshDirectory("dynamixel_hardware_error");
+  const pid_t launcher = startLaunch(launchArguments(emulator, 6, out), out + ".log");
+  ASSERT_TRUE(waitFor([&] { return std::abs(emulator.velocity() - 3.0) < 0.05; }, seconds(30)))
+      << readFile(out + ".log");
+  emulator.setHardwareError(0x24);     // overheating and overload
+  EXPECT_EQ(exitCodeOf(launcher), 0);  // the run goes on; the servo has let go
+  const std::string log = readFile(out + ".log");
+  EXPECT_NE(log.find("reports a hardware error: overheating, overload; the servo has turned its torque off"),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(emulator.torqueEnabled());
+  const auto rows = motorStates(out);
+  ASSERT_FALSE(rows.empty());
+  EXPECT_LT(std::abs(rows.back()[2]), 0.05);  // still read: the motor has coasted to rest
+}
+
+TEST(DynamixelBridge, FallsBackToTheSafeSpeedWithoutCommands) {
+  dynamixel::ServoEmulator emulator(emulated("fallback"));
+  const std::string out = freshDirectory("dynamixel_fallback");
+  const CommandResult run =
+      runUampc("launch " + sourcePath("tests/scenes/dynamixel_fallback.yaml") + " --out " + out +
+               " --set motor.port=" + emulator.port() + domainOverride(DomainBlock::kDynamixel, 7));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("falling back to the safe speed 1.5 rad/s"), std::string::npos) << run.output;
+  EXPECT_NEAR(emulator.goalVelocity(), 1.5, 0.03);
+}
+
 TEST(DynamixelBridge, AWrongIdStartsNothingAndNamesPortAndId) {
   dynamixel::ServoEmulator emulator(emulated("wrong_id"));
   const std::string out = freshDirectory("dynamixel_wrong_id");
