@@ -142,6 +142,8 @@ TEST(Loop, EveryShippedSceneStartsAndSteps) {
     if (entry.path().extension() != ".yaml") continue;
     // replay_lo needs a recording: record_replay_test runs it on one.
     if (entry.path().filename() == "replay_lo.yaml") continue;
+    // rig_mid360 drives a servo on a serial port: dynamixel_bridge_test runs it on the emulator.
+    if (entry.path().filename() == "rig_mid360.yaml") continue;
     const CommandResult r = runUampc("launch " + entry.path().string() + domainOverride(DomainBlock::kLoop, 8) +
                                      " --set clock.duration=0.2");
     EXPECT_EQ(r.exit_code, 0) << entry.path() << "\n" << r.output;

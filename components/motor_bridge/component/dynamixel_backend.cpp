@@ -16,8 +16,8 @@ DynamixelBackend::~DynamixelBackend() {
   servo_->release();  // torque off: a stopped bridge leaves the motor coasting, not driven
   const auto& c = servo_->bus().counters();
   log_.info("DYNAMIXEL bus: ", c.transactions, " transactions, ", c.timeouts, " timeouts, ", c.corrupt,
-            " corrupt replies, ", c.port_errors, " port errors, ", c.bytes_sent, " bytes sent, ", c.bytes_received,
-            " received; ", faults_, " time(s) lost");
+            " corrupt replies, ", c.stale, " late replies skipped, ", c.port_errors, " port errors, ", c.bytes_sent,
+            " bytes sent, ", c.bytes_received, " received; ", faults_, " time(s) lost");
 }
 
 void DynamixelBackend::command(double omega, Time now) {
@@ -38,12 +38,14 @@ std::optional<MotorReading> DynamixelBackend::read(Time now) {
     tryReconnect(now);
     if (lost_) return std::nullopt;
   }
+  // `now` is the scene's time at this call; the servo samples its encoder a little later (half the
+  // round trip, more after a retry). Measured on the steady clock from the same instant.
+  const auto called = dynamixel::SteadyClock::now();
   try {
     const dynamixel::ServoState state = servo_->readState();
     reportHardwareError(state.hardware_error);
-    // The encoder was sampled this long before now, on the host's clock.
-    const double age = std::chrono::duration<double>(dynamixel::SteadyClock::now() - state.stamp).count();
-    return MotorReading{state.position, state.velocity, now - Time::fromSeconds(age)};
+    const double after_call = std::chrono::duration<double>(state.stamp - called).count();
+    return MotorReading{state.position, state.velocity, now + Time::fromSeconds(after_call)};
   } catch (const dynamixel::BusFault& e) {
     lose(e.what(), now);
     return std::nullopt;

@@ -76,7 +76,9 @@ class MotorBridge : public Component {
     spec.param("reply_timeout", 0.01, "dynamixel: wait for each status packet, s").between(0.001, 1.0);
     spec.param("max_retries", 2, "dynamixel: further tries of a request after a timeout or corrupt reply")
         .between(0, 10);
-    spec.param("bus_watchdog", 0.1, "dynamixel: the servo stops itself after the bus is silent this long, s (0: off)")
+    // 0.5 s: long enough that a busy host's scheduling does not trip it (0.1 s did, on two loaded
+    // cores), short enough that a rotor left running by a dead host stops within half a turn or so.
+    spec.param("bus_watchdog", 0.5, "dynamixel: the servo stops itself after the bus is silent this long, s (0: off)")
         .between(0.0, 2.54);
     spec.param("reconnect_interval", 0.5, "dynamixel: after the bus is lost, try to reopen it this often, s")
         .between(0.01, 60.0);

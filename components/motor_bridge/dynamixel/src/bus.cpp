@@ -15,7 +15,7 @@ void Bus::reopen() {
   port_ = std::make_unique<SerialPort>(path_, baud_rate_);
 }
 
-Reply Bus::transact(const Packet& request) {
+Reply Bus::transact(const Packet& request, std::size_t expected_params) {
   ++counters_.transactions;
   Reply reply;
   reply.sent = SteadyClock::now();
@@ -33,7 +33,7 @@ Reply Bus::transact(const Packet& request) {
     reply.sent = SteadyClock::now();
     port_->write(bytes);
     counters_.bytes_sent += bytes.size();
-    return receive(request.id, std::move(reply));
+    return receive(request.id, expected_params, std::move(reply));
   } catch (const SerialError& e) {
     ++counters_.port_errors;
     port_.reset();  // reopen() brings it back
@@ -43,7 +43,7 @@ Reply Bus::transact(const Packet& request) {
   }
 }
 
-Reply Bus::receive(std::uint8_t id, Reply reply) {
+Reply Bus::receive(std::uint8_t id, std::size_t expected_params, Reply reply) {
   const auto deadline = reply.sent + reply_timeout_;
   std::uint8_t buffer[256];
   bool corrupt = false;
@@ -55,6 +55,12 @@ Reply Bus::receive(std::uint8_t id, Reply reply) {
       }
       // A half-duplex adapter may echo our own request; only a status from the addressed ID counts.
       if (result->packet.instruction != instruction::kStatus || result->packet.id != id) continue;
+      const auto& params = result->packet.params;
+      const bool error = !params.empty() && (params[0] & ~kAlertBit) != 0;
+      if (expected_params != 0 && params.size() != expected_params && !error) {
+        ++counters_.stale;
+        continue;
+      }
       reply.received = SteadyClock::now();
       reply.outcome = Reply::Outcome::kOk;
       reply.status = std::move(result->packet);

@@ -21,6 +21,9 @@ Packet writeRequest(std::uint8_t id, Field field, std::uint32_t value) {
 }
 
 constexpr std::uint8_t kDataRangeError = 4;
+// Status parameters: the error byte, then the model number and firmware for a ping, nothing for a write.
+constexpr std::size_t kPingStatusParams = 4;
+constexpr std::size_t kWriteStatusParams = 1;
 
 }  // namespace
 
@@ -37,13 +40,13 @@ std::string Servo::where() const {
          " baud";
 }
 
-Reply Servo::request(const Packet& packet, const char* what) {
+Reply Servo::request(const Packet& packet, std::size_t expected_params, const char* what) {
   Reply reply;
   int tries = 0;
   // A failed port is not retried: it stays failed until reopened.
   while (tries <= options_.max_retries) {
     ++tries;
-    reply = bus_.transact(packet);
+    reply = bus_.transact(packet, expected_params);
     if (reply.ok() || reply.outcome == Reply::Outcome::kPortError) break;
   }
   if (!reply.ok()) {
@@ -54,7 +57,7 @@ Reply Servo::request(const Packet& packet, const char* what) {
 }
 
 std::uint32_t Servo::read(Field field, const char* what) {
-  const Reply reply = request(readRequest(options_.id, field), what);
+  const Reply reply = request(readRequest(options_.id, field), 1u + field.size, what);
   if (reply.status.params.size() != 1u + field.size)
     throw BusFault(std::string(what) + " of DYNAMIXEL " + where() + ": a reply of " +
                    std::to_string(reply.status.params.size() - 1) + " bytes where " + std::to_string(field.size) +
@@ -63,7 +66,7 @@ std::uint32_t Servo::read(Field field, const char* what) {
 }
 
 void Servo::write(Field field, std::uint32_t value, const char* what) {
-  const Reply reply = request(writeRequest(options_.id, field, value), what);
+  const Reply reply = request(writeRequest(options_.id, field, value), kWriteStatusParams, what);
   if (const std::uint8_t error = reply.error() & ~kAlertBit; error != 0)
     throw BusFault(std::string(what) + " of DYNAMIXEL " + where() + " refused: " + processingErrorText(error));
 }
@@ -71,7 +74,7 @@ void Servo::write(Field field, std::uint32_t value, const char* what) {
 void Servo::identify() {
   Reply reply;
   try {
-    reply = request(Packet{options_.id, instruction::kPing, {}}, "ping");
+    reply = request(Packet{options_.id, instruction::kPing, {}}, kPingStatusParams, "ping");
   } catch (const BusFault& e) {
     throw BusFault("no DYNAMIXEL answered as " + where() +
                    " (check the ID, the baud rate, the power and the cable): " + e.what());
@@ -113,7 +116,8 @@ void Servo::rearmWatchdog() {
 double Servo::setVelocity(double radians_per_second) {
   const double applied = std::clamp(radians_per_second, -velocity_limit_, velocity_limit_);
   const auto units = static_cast<std::uint32_t>(velocityUnits(*model_, applied));
-  const Reply reply = request(writeRequest(options_.id, table::kGoalVelocity, units), "goal velocity");
+  const Reply reply =
+      request(writeRequest(options_.id, table::kGoalVelocity, units), kWriteStatusParams, "goal velocity");
   const std::uint8_t error = reply.error() & ~kAlertBit;
   // The bus watchdog tripped (the bus was silent too long): Goal Velocity is refused with a data
   // range error until the watchdog is cleared and armed again.
@@ -130,7 +134,7 @@ double Servo::setVelocity(double radians_per_second) {
 ServoState Servo::readState() {
   // Present Velocity (128) and Present Position (132) are adjacent: one read of 8 bytes.
   const Field both{table::kPresentVelocity.address, 8};
-  const Reply reply = request(readRequest(options_.id, both), "present velocity and position read");
+  const Reply reply = request(readRequest(options_.id, both), 1u + both.size, "present velocity and position read");
   if (reply.status.params.size() != 9u)
     throw BusFault("present velocity and position read of DYNAMIXEL " + where() + ": a reply of the wrong size");
   const auto velocity = static_cast<std::int32_t>(readLittleEndian(&reply.status.params[1], 4));

@@ -28,7 +28,7 @@ struct Reply {
 };
 
 struct BusCounters {
-  std::uint64_t transactions = 0, timeouts = 0, corrupt = 0, port_errors = 0;
+  std::uint64_t transactions = 0, timeouts = 0, corrupt = 0, port_errors = 0, stale = 0;
   std::uint64_t bytes_sent = 0, bytes_received = 0;
 };
 
@@ -37,7 +37,10 @@ class Bus {
   // Opens the port (throws SerialError naming it).
   Bus(std::string port, int baud_rate, std::chrono::microseconds reply_timeout);
 
-  Reply transact(const Packet& request);
+  // expected_params: the parameter count of this request's status packet (error byte included), or
+  // 0 for any. A status of another size without an error is a late reply to an earlier request
+  // (half duplex cannot tell them apart otherwise): it is skipped, and counted as stale.
+  Reply transact(const Packet& request, std::size_t expected_params = 0);
   // Closes and opens the port again (a USB adapter that came back); throws SerialError.
   void reopen();
   bool isOpen() const { return port_ != nullptr; }
@@ -47,7 +50,7 @@ class Bus {
   const BusCounters& counters() const { return counters_; }
 
  private:
-  Reply receive(std::uint8_t id, Reply reply);
+  Reply receive(std::uint8_t id, std::size_t expected_params, Reply reply);
 
   std::string path_;
   int baud_rate_;

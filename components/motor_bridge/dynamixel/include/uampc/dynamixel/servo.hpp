@@ -19,7 +19,7 @@ struct ServoOptions {
   std::string model = "XM430-W350";
   double reply_timeout_s = 0.01;  // per try
   int max_retries = 2;            // further tries after a timeout or a corrupt reply
-  double bus_watchdog_s = 0.1;    // the servo stops by itself when the bus is silent this long; 0: off
+  double bus_watchdog_s = 0.5;    // the servo stops by itself when the bus is silent this long; 0: off
 };
 
 struct ServoState {
@@ -57,7 +57,7 @@ class Servo {
   std::string where() const;  // "ID 1 on /dev/ttyUSB0 at 1000000 baud"
 
  private:
-  Reply request(const Packet& packet, const char* what);
+  Reply request(const Packet& packet, std::size_t expected_params, const char* what);
   std::uint32_t read(Field field, const char* what);
   void write(Field field, std::uint32_t value, const char* what);
   void identify();
