@@ -1,46 +1,28 @@
 // The motor bridge's DYNAMIXEL backend in real-time runs of `uampc launch` against an emulated
 // XM430 on a pseudo-terminal (tools/dynamixel_emulator), hosted by this test: velocity tracking,
-// a cable pulled and plugged back mid-run, a wrong ID at start, lockstep refused; and the rig
-// scene (config/scenes/rig_mid360.yaml) on the emulator with `uampc play --restamp` of a recorded
-// simulation standing in for the Livox driver.
+// a cable pulled and plugged back mid-run, a hardware error, the safe speed without commands, a
+// wrong ID at start, lockstep refused. rig_scene_test runs the whole rig scene.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
-#include <map>
 #include <string>
 #include <thread>
 
 #include "background_launch.hpp"
 #include "command_runner.hpp"
-#include "servo_emulator.hpp"
+#include "emulated_servo.hpp"
 #include "test_domains.hpp"
-#include "uampc/msgs/nav_msgs.hpp"
-#include "uampc/msgs/sensor_msgs.hpp"
-#include "uampc/recording/playback.hpp"
 #include "uampc/run_files/csv.hpp"
-#include "uampc/runtime/typed_sample.hpp"
 
 namespace uampc::test {
 namespace {
 
 using std::chrono::milliseconds;
 using std::chrono::seconds;
-
-dynamixel::EmulatorOptions emulated(const std::string& name) {
-  dynamixel::EmulatorOptions o;
-  o.link =
-      (std::filesystem::temp_directory_path() / ("uampc_dxl_e2e_" + name + "_" + std::to_string(getpid()))).string();
-  o.model = "XM430-W350";
-  o.velocity_limit = 265;
-  o.max_acceleration = 50.0;
-  return o;
-}
 
 std::string launchArguments(const dynamixel::ServoEmulator& emulator, int domain_index, const std::string& out,
                             const std::string& extra = "") {
@@ -157,88 +139,6 @@ TEST(DynamixelBridge, RefusesLockstep) {
             std::string::npos)
       << run.output;
   EXPECT_FALSE(emulator.torqueEnabled());
-}
-
-template <typename Message>
-Message decode(const SerializedMessage& sample) {
-  Message message;
-  EXPECT_TRUE(decodeSample(sample, message));
-  return message;
-}
-
-// What the rig's recorder heard, by topic: (log time on arrival, header stamp).
-std::map<std::string, std::vector<std::pair<Time, Time>>> arrivals(const std::string& file) {
-  recording::Playback playback(file, {});
-  std::map<std::string, std::vector<std::pair<Time, Time>>> by_topic;
-  recording::RecordedSample sample;
-  while (playback.next(playback.end(), sample)) {
-    const std::string& topic = playback.topics()[sample.topic].topic;
-    Time stamp;
-    if (topic == "/livox/lidar") stamp = fromMsg(decode<sensor_msgs::msg::PointCloud2>(sample.data).header().stamp());
-    if (topic == "/lo/odometry") stamp = fromMsg(decode<nav_msgs::msg::Odometry>(sample.data).header().stamp());
-    by_topic[topic].push_back({sample.time, stamp});
-  }
-  return by_topic;
-}
-
-double percentile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  return values[std::min(values.size() - 1, static_cast<std::size_t>(p * (values.size() - 1) + 0.5))];
-}
-
-// The rig scene as it runs on hardware, with the emulator for the servo and a recorded simulation
-// in livox_ros_driver2's layout for the LiDAR. The scans were taken at another motor's angles, so
-// the odometry says nothing about accuracy; what is checked is that every part works together in
-// real time, and the latency from a scan's arrival to the motor command it leads to is measured.
-TEST(DynamixelBridge, TheRigSceneRunsOnARecordedLidarAndTheEmulatedServo) {
-  const std::string dir = freshDirectory("dynamixel_rig");
-  const CommandResult sim = runUampc("launch " + sourcePath("tests/scenes/record_livox.yaml") + " --out " + dir +
-                                     "/sim" + domainOverride(DomainBlock::kDynamixel, 4));
-  ASSERT_EQ(sim.exit_code, 0) << sim.output;
-
-  dynamixel::EmulatorOptions servo = emulated("rig");
-  servo.model = "XM430-W210";
-  servo.velocity_limit = 330;  // 7.9 rad/s
-  dynamixel::ServoEmulator emulator(servo);
-  const int domain = testDomain(DomainBlock::kDynamixel, 5);
-  // The emulator shares two cores with the LO, the MPC, the player and another test here: a reply
-  // can come far later than the default reply_timeout (10 ms, sized for a real servo), so allow 200.
-  const pid_t rig = startLaunch(sourcePath("config/scenes/rig_mid360.yaml") + " --set motor.port=" + emulator.port() +
-                                    " --set motor.reply_timeout=0.2" + " --set clock.duration=14 --out " + dir +
-                                    "/rig --set domain_id=" + std::to_string(domain),
-                                dir + "/rig.log");
-  const CommandResult play =
-      runUampc("play " + dir + "/sim/recording.mcap --restamp --wait-for-readers --domain " + std::to_string(domain));
-  EXPECT_EQ(play.exit_code, 0) << play.output;
-  ASSERT_EQ(exitCodeOf(rig), 0) << readFile(dir + "/rig.log");
-  const std::string log = readFile(dir + "/rig.log");
-  EXPECT_EQ(log.find("ERROR"), std::string::npos) << log;
-  EXPECT_EQ(log.find("s rejected:"), std::string::npos) << log;  // no scan refused: its times were understood
-
-  const auto heard = arrivals(dir + "/rig/recording.mcap");
-  const auto& scans = heard.at("/livox/lidar");
-  const auto& odometry = heard.at("/lo/odometry");
-  const auto& commands = heard.at("/motor/command");
-  // 6 s at 10 Hz, 60 scans; best-effort on a loaded machine loses some.
-  EXPECT_GE(scans.size(), 40u);
-  EXPECT_GE(odometry.size(), 30u);
-  EXPECT_GE(heard.at("/motor/state").size(), 1400u);  // 14 s at 200 Hz, less the start and a loaded machine
-  EXPECT_GT(emulator.packetsReceived(), 2000u);
-
-  // Scan arrival -> the first command published after the odometry of that scan (the bridge writes
-  // each command on the bus as it arrives: one 16-byte write, 0.3 ms at 1 Mbps).
-  std::vector<double> latencies;
-  for (const auto& [odometry_arrival, odometry_stamp] : odometry) {
-    const auto scan =
-        std::find_if(scans.rbegin(), scans.rend(), [&](const auto& s) { return s.second <= odometry_stamp; });
-    const auto command =
-        std::find_if(commands.begin(), commands.end(), [&](const auto& c) { return c.first >= odometry_arrival; });
-    if (scan == scans.rend() || command == commands.end()) continue;
-    latencies.push_back((command->first - scan->first).seconds());
-  }
-  ASSERT_GE(latencies.size(), 25u);
-  std::cout << "scan arrival to motor command, " << latencies.size() << " scans: median "
-            << percentile(latencies, 0.5) * 1e3 << " ms, p99 " << percentile(latencies, 0.99) * 1e3 << " ms\n";
 }
 
 }  // namespace

@@ -27,6 +27,7 @@ enum class DomainBlock {
   kFaults,
   kSecurity,
   kDynamixel,
+  kRigScene,
 };
 
 inline constexpr int kDomainsPerTest = 12;
