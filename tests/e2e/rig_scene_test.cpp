@@ -91,11 +91,11 @@ TEST(DynamixelBridge, TheRigSceneRunsOnARecordedLidarAndTheEmulatedServo) {
   // Scan arrival -> the first command published after the odometry of that scan (the bridge writes
   // each command on the bus as it arrives: one 16-byte write, 0.3 ms at 1 Mbps).
   std::vector<double> latencies;
-  for (const auto& [odometry_arrival, odometry_stamp] : odometry) {
-    const auto scan =
-        std::find_if(scans.rbegin(), scans.rend(), [&](const auto& s) { return s.second <= odometry_stamp; });
+  for (const auto& odometry_sample : odometry) {
+    const Time arrival = odometry_sample.first, stamp = odometry_sample.second;  // lambdas cannot capture bindings
+    const auto scan = std::find_if(scans.rbegin(), scans.rend(), [&](const auto& s) { return s.second <= stamp; });
     const auto command =
-        std::find_if(commands.begin(), commands.end(), [&](const auto& c) { return c.first >= odometry_arrival; });
+        std::find_if(commands.begin(), commands.end(), [&](const auto& c) { return c.first >= arrival; });
     if (scan == scans.rend() || command == commands.end()) continue;
     latencies.push_back((command->first - scan->first).seconds());
   }
