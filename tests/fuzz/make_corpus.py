@@ -141,6 +141,9 @@ def write_panorama():
     out("panorama", "big_endian", image(0, 2, w, h, 4 * w, 1, "32FC1", (40, 0), depth))
     nan_inf = b"".join(struct.pack("<f", v) for v in (float("nan"), float("inf"), -1.0, 1e30) * 4)
     out("panorama", "non_finite_4x4", image(0, 0, 4, 4, 16, 0, "32FC1", (20, 0), nan_inf))
+    # A stamp 2^31 s ahead at the 1 ms snapshot period: the evaluator once stepped there one
+    # period at a time (a CI timeout).
+    out("panorama", "far_future_stamp", image(2, 0, 4, 4, 16, 0, "32FC1", (2**31 - 1, 0), nan_inf))
 
 
 if __name__ == "__main__":

@@ -23,6 +23,7 @@
 #include "uampc/evaluator/completeness.hpp"
 #include "uampc/evaluator/depth_colouring.hpp"
 #include "uampc/evaluator/motor_activity.hpp"
+#include "uampc/evaluator/periodic_grid.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/report_files.hpp"
 #include "uampc/evaluator/trajectory_evaluator.hpp"
@@ -281,7 +282,7 @@ class EvaluatorComponent : public Component {
     evaluator::writePng(
         run_files::inDirectory(directory, run_files::panoramaSnapshotName(t)),
         evaluator::colourDepth(depth, static_cast<int>(m.width()), static_cast<int>(m.height()), panorama_max_range_));
-    while (next_panorama_ <= t) next_panorama_ += panorama_period_;
+    next_panorama_ = evaluator::firstGridPointAfter(next_panorama_, t, panorama_period_);
   }
 
   // Pairs estimates and places raw scans once ground truth (and encoder states) cover them.

@@ -5,7 +5,7 @@
 //
 // Input (little-endian): u8 choice of panorama_period, u8 choice of panorama_max_range; u32 width,
 // height, step; u8 is_bigendian; u8 encoding length, encoding; i32 stamp sec, u32 nanosec; the
-// rest is the pixel data. tests/fuzz/panorama/make_corpus.py writes seeds.
+// rest is the pixel data. tests/fuzz/make_corpus.py writes seeds.
 #include <cstddef>
 #include <cstdint>
 #include <exception>

@@ -13,7 +13,7 @@
 //
 // Input (little-endian): u32 height, width, point_step, row_step; u8 is_bigendian, is_dense;
 // i32 stamp sec, u32 nanosec; u8 field count, each field u8 name length, name, u32 offset,
-// u8 datatype, u32 count; the rest is data. tests/fuzz/pointcloud2/make_corpus.py writes seeds.
+// u8 datatype, u32 count; the rest is data. tests/fuzz/make_corpus.py writes seeds.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "uampc/evaluator/periodic_grid.hpp"
+
 namespace uampc::evaluator {
 
 MotorActivity::MotorActivity(double period) : period_(period) {
@@ -29,7 +31,7 @@ void MotorActivity::add(double time, double speed, double command) {
   grid_speed_ = speed;
   grid_command_ = command;
   have_grid_point_ = true;
-  while (next_grid_time_ <= time + 1e-9) next_grid_time_ += period_;
+  next_grid_time_ = firstGridPointAfter(next_grid_time_, time + 1e-9, period_);
 }
 
 MotorActivityReport MotorActivity::report() const {

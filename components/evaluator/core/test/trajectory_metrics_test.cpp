@@ -8,6 +8,7 @@
 
 #include "uampc/evaluator/absolute_trajectory_error.hpp"
 #include "uampc/evaluator/motor_activity.hpp"
+#include "uampc/evaluator/periodic_grid.hpp"
 #include "uampc/evaluator/pose_interpolator.hpp"
 #include "uampc/evaluator/relative_pose_error.hpp"
 #include "uampc/evaluator/speed_error.hpp"
@@ -345,12 +346,6 @@ TEST(SpeedError, FindsWhenTheEstimatedSpeedRunsAwayAndIgnoresFrameJitter) {
   EXPECT_LT(steady.max, 0.05);
 }
 
-}  // namespace
-}  // namespace uampc::evaluator
-
-namespace uampc::evaluator {
-namespace {
-
 TEST(MotorActivity, ChangesPerControlPeriodNotPerEncoderSample) {
   // A command alternating 3 and 5 rad/s every 0.1 s, the motor following it exactly, states at
   // 200 Hz: every period changes by 2 rad/s, whatever the encoder rate.
@@ -378,6 +373,27 @@ TEST(MotorActivity, ConstantSpeedDoesNotChangeAndBadSamplesAreIgnored) {
   EXPECT_EQ(r.command_change_rms, 0.0);
   EXPECT_EQ(r.speed_change_rms, 0.0);
   EXPECT_THROW(MotorActivity(0.0), std::invalid_argument);
+}
+
+TEST(MotorActivity, ATimeFarAheadIsOneMorePeriodNotAHang) {
+  // A stamp 2^31 s ahead at a 1 ms grid: stepping there one period at a time would never end.
+  MotorActivity activity(0.001);
+  activity.add(0.0, 1.0, 1.0);
+  activity.add(2147483647.5, 3.0, 3.0);
+  activity.add(2147483647.6, 3.0, 3.0);
+  const MotorActivityReport r = activity.report();
+  EXPECT_EQ(r.periods, 2u);
+  EXPECT_NEAR(r.command_change_rms, std::sqrt(2.0), 1e-12);
+}
+
+TEST(PeriodicGrid, FirstPointStrictlyAfterTheTime) {
+  EXPECT_DOUBLE_EQ(firstGridPointAfter(20.0, 5.0, 20.0), 20.0);   // not reached yet
+  EXPECT_DOUBLE_EQ(firstGridPointAfter(20.0, 20.0, 20.0), 40.0);  // on a point: the next one
+  EXPECT_DOUBLE_EQ(firstGridPointAfter(20.0, 79.9, 20.0), 80.0);
+  EXPECT_NEAR(firstGridPointAfter(0.0, 2147483647.0, 0.001), 2147483647.001, 1e-5);
+  const double huge = 1e300;  // the period is below a double's resolution there
+  EXPECT_GT(firstGridPointAfter(0.0, huge, 0.001), huge);
+  EXPECT_EQ(firstGridPointAfter(3.0, kNaN, 1.0), 3.0);
 }
 
 }  // namespace
