@@ -21,6 +21,8 @@ packages=(
   chromium libxml2-utils
   # fuzzing (tests/fuzz, the fuzz preset): clang 14 and its libFuzzer, ASan and UBSan runtimes
   clang libclang-rt-14-dev
+  # `uampc experiment --backend slurm` is tested against a real one-node cluster (tests/slurm)
+  slurm-wlm munge
 )
 
 missing=()

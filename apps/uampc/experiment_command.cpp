@@ -5,12 +5,15 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <set>
 
+#include "experiment_collect.hpp"
 #include "experiment_file.hpp"
 #include "experiment_runner.hpp"
-#include "report_page.hpp"
-#include "results_table.hpp"
+#include "experiment_snapshot.hpp"
+#include "experiment_task.hpp"
 #include "run_results.hpp"
+#include "slurm_backend.hpp"
 #include "uampc/runtime/scene.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
@@ -22,7 +25,9 @@ namespace {
 
 // Every scene with every controller's overrides, validated as `uampc launch` will, before the
 // first run starts: a typo in a controller's override should cost seconds, not an hour of runs.
-bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>& plan, int domain_base) {
+// `scenes_with_profile` gets the scenes that name a dds_profile of their own.
+bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>& plan, int domain_base,
+                    std::set<std::size_t>& scenes_with_profile) {
   ComponentCatalog catalog;
   bool ok = true;
   for (const PlannedRun& run : plan) {
@@ -31,7 +36,7 @@ bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>&
     for (std::size_t i = 2; i + 1 < run.args.size(); i += 2) overrides.push_back(parseOverride(run.args[i + 1]));
     overrides.push_back(parseOverride("domain_id=" + std::to_string(domain_base)));
     try {
-      loadScene(run.args[1], overrides, catalog);
+      if (!loadScene(run.args[1], overrides, catalog).dds_profile.empty()) scenes_with_profile.insert(run.scene);
     } catch (const SceneError& e) {
       ok = false;
       std::cerr << "uampc experiment: scene '" << experiment.scenes[run.scene].name << "' with controller '"
@@ -46,6 +51,21 @@ bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>&
 }  // namespace
 
 std::string experimentOptionsError(const ExperimentOptions& options) {
+  const bool collecting = !options.collect_directory.empty(), task = options.run_task >= 0;
+  if (collecting && task) return "--collect and --run-task: give one of them";
+  if ((collecting || task) && !options.experiment_file.empty()) {
+    return std::string(collecting ? "--collect" : "--run-task") + " reads the experiment from " +
+           kExperimentSnapshotFile + " in its directory: give no EXPERIMENT.yaml";
+  }
+  if (!collecting && !task && options.experiment_file.empty()) return "EXPERIMENT.yaml is required";
+  if (!collecting && options.output_directory.empty()) return "--out is required";
+  if (options.plan_only && (options.dry_run || options.backend == "slurm")) {
+    return "--plan-only runs nothing and submits nothing: not with --dry-run or --backend slurm";
+  }
+  if (options.backend != "slurm" &&
+      (!options.partition.empty() || !options.time_limit.empty() || !options.sbatch_options.empty() || options.no_wait)) {
+    return "--partition, --time, --sbatch-option and --no-wait need --backend slurm";
+  }
   for (const std::string& text : options.overrides) {
     try {
       const Override parsed = parseOverride(text);
@@ -56,71 +76,106 @@ std::string experimentOptionsError(const ExperimentOptions& options) {
       return e.what();
     }
   }
-  if (options.domain_base + options.jobs - 1 > kHighestDomainId) {
+  if (options.backend == "local" && options.domain_base + options.jobs - 1 > kHighestDomainId) {
     return "--domain-base " + std::to_string(options.domain_base) + " with --jobs " + std::to_string(options.jobs) +
            " needs DDS domains above " + std::to_string(kHighestDomainId);
   }
   return "";
 }
 
-int experimentCommand(const ExperimentOptions& options) {
-  std::map<std::string, std::string> variables;
-  if (!options.data_directory.empty()) {
-    variables["data_dir"] = fs::absolute(options.data_directory).lexically_normal().string();
-  }
-  Experiment experiment;
-  try {
-    experiment = loadExperiment(options.experiment_file, variables);
-  } catch (const ExperimentError& e) {
-    for (const auto& m : e.messages()) std::cerr << m << "\n";
-    return 2;
-  }
-  const std::vector<PlannedRun> plan = planRuns(experiment, options.overrides);
-  if (!validateScenes(experiment, plan, options.domain_base)) return 2;
-  if (options.dry_run) {
-    for (const PlannedRun& run : plan) {
-      std::cout << run.directory << ":";
-      for (const auto& a : run.args) std::cout << " " << a;
-      std::cout << "\n";
-    }
-    std::cerr << "uampc experiment: " << plan.size() << " runs valid; nothing run (--dry-run)\n";
-    return 0;
-  }
+namespace {
 
-  fs::create_directories(options.output_directory);
+// For schedulers (Slurm, a Kubernetes Indexed Job): every run of a scene without a dds_profile of
+// its own gets the host-only one (slurm_backend.hpp), whose file is written beside the plan.
+ExperimentSnapshot withHostOnlyDds(ExperimentSnapshot snapshot, const std::set<std::size_t>& scenes_with_profile,
+                                   const std::string& out) {
+  for (PlannedRun& run : snapshot.plan) {
+    if (scenes_with_profile.count(run.scene)) continue;
+    run.args.push_back("--set");
+    run.args.push_back(hostOnlyDdsOverride(out));
+  }
+  for (std::size_t scene : scenes_with_profile) {
+    std::cerr << "uampc experiment: warning: scene '" << snapshot.experiment.scenes[scene].name
+              << "' has a dds_profile of its own: its runs keep it, so it must keep their DDS traffic on their host "
+                 "(runs on other nodes may share their domain)\n";
+  }
+  writeHostOnlyDdsProfile(out);
+  return snapshot;
+}
+
+int submitToSlurm(const ExperimentSnapshot& snapshot, const std::string& out, const ExperimentOptions& options) {
+  SlurmOptions slurm;
+  slurm.partition = options.partition;
+  slurm.time_limit = options.time_limit;
+  slurm.sbatch_options = options.sbatch_options;
+  slurm.wait = !options.no_wait;
+  slurm.domain_base = options.domain_base;
+  return runOnSlurm(snapshot, out, slurm);
+}
+
+// --plan-only: the plan for a scheduler uampc does not submit to itself.
+int writePlanOnly(const ExperimentSnapshot& snapshot, const std::string& out) {
+  writeExperimentSnapshot(out, snapshot);
+  std::cerr << "uampc experiment: " << snapshot.plan.size() << " runs planned in " << out << "/"
+            << kExperimentSnapshotFile << "; run K with `uampc experiment --run-task K --out " << out
+            << "` (K = 0.." << snapshot.plan.size() - 1 << ", e.g. a Kubernetes Indexed Job with completions: "
+            << snapshot.plan.size() << ", docker/k8s/), then `uampc experiment --collect " << out << "`\n";
+  return 0;
+}
+
+int runLocally(const ExperimentSnapshot& snapshot, const ExperimentOptions& options) {
+  const Experiment& experiment = snapshot.experiment;
+  writeExperimentSnapshot(options.output_directory, snapshot);
   catchStopSignals();
-  std::cerr << "uampc experiment " << experiment.name << ": " << plan.size() << " runs (" << experiment.scenes.size()
-            << " scenes x " << experiment.controllers.size() << " controllers x " << experiment.seeds.size()
-            << " seeds), " << options.jobs << " at a time on DDS domains " << options.domain_base << ".."
-            << options.domain_base + options.jobs - 1 << ", into " << options.output_directory << "\n";
-
+  std::cerr << "uampc experiment " << experiment.name << ": " << snapshot.plan.size() << " runs ("
+            << experiment.scenes.size() << " scenes x " << experiment.controllers.size() << " controllers x "
+            << experiment.seeds.size() << " seeds), " << options.jobs << " at a time on DDS domains "
+            << options.domain_base << ".." << options.domain_base + options.jobs - 1 << ", into "
+            << options.output_directory << "\n";
   RunnerOptions runner;
   runner.output_directory = options.output_directory;
   runner.jobs = options.jobs;
   runner.domain_base = options.domain_base;
   runner.interrupted = &stopFlag();
-  const std::vector<RunResult> results = runAll(experiment, plan, runner);
+  const std::vector<RunResult> results = runAll(experiment, snapshot.plan, runner);
+  const int code = writeExperimentOutputs(experiment, results, options.output_directory);
+  return stopRequested() ? 130 : code;
+}
 
-  const ResultsTable table = summarize(experiment, results);
-  const fs::path out(options.output_directory);
-  writeResultsJson((out / "results.json").string(), experiment, results);
-  const std::string markdown = renderMarkdown(experiment, table, results);
-  std::ofstream((out / "results.md").string()) << markdown;
-  const ReportSummary report = writeReport(experiment, results, table, options.output_directory);
+}  // namespace
 
-  std::size_t failed = 0, not_run = 0;
-  for (const RunResult& r : results) {
-    failed += r.status == RunStatus::kFailed;
-    not_run += r.status == RunStatus::kNotRun;
+int experimentCommand(const ExperimentOptions& options) {
+  if (!options.collect_directory.empty()) return collectCommand(options.collect_directory);
+  if (options.run_task >= 0) return experimentTaskCommand(options.output_directory, options.run_task, options.domain_base);
+  std::map<std::string, std::string> variables;
+  if (!options.data_directory.empty()) {
+    variables["data_dir"] = fs::absolute(options.data_directory).lexically_normal().string();
   }
-  // The paper's table, as in results.md, for the terminal.
-  std::cout << markdown.substr(0, markdown.find("\n## Runs")) << "\n";
-  std::cerr << "uampc experiment: results in " << (out / "results.md").string() << " and "
-            << (out / "results.json").string() << "; report " << (out / "report" / "index.html").string() << " ("
-            << report.figures << " figures)\n";
-  if (failed) std::cerr << "uampc experiment: " << failed << " run(s) failed; run again to retry them\n";
-  if (stopRequested()) return 130;
-  return failed ? 1 : 0;
+  ExperimentSnapshot snapshot;
+  try {
+    snapshot.experiment = loadExperiment(options.experiment_file, variables);
+  } catch (const ExperimentError& e) {
+    for (const auto& m : e.messages()) std::cerr << m << "\n";
+    return 2;
+  }
+  snapshot.plan = planRuns(snapshot.experiment, options.overrides);
+  std::set<std::size_t> scenes_with_profile;
+  if (!validateScenes(snapshot.experiment, snapshot.plan, options.domain_base, scenes_with_profile)) return 2;
+  if (options.dry_run) {
+    for (const PlannedRun& run : snapshot.plan) {
+      std::cout << run.directory << ":";
+      for (const auto& a : run.args) std::cout << " " << a;
+      std::cout << "\n";
+    }
+    std::cerr << "uampc experiment: " << snapshot.plan.size() << " runs valid; nothing run (--dry-run)\n";
+    return 0;
+  }
+  fs::create_directories(options.output_directory);
+  if (options.backend == "local" && !options.plan_only) return runLocally(snapshot, options);
+  // Scheduled elsewhere: absolute paths, for tasks that start in another directory.
+  const std::string out = fs::absolute(options.output_directory).lexically_normal().string();
+  snapshot = withHostOnlyDds(std::move(snapshot), scenes_with_profile, out);
+  return options.plan_only ? writePlanOnly(snapshot, out) : submitToSlurm(snapshot, out, options);
 }
 
 }  // namespace uampc::app

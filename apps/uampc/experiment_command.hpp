@@ -1,5 +1,5 @@
 // `uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]
-//  [--set NAME=VALUE ...] [--dry-run]`: validates the experiment and every scene it runs, runs the matrix
+//  [--set NAME=VALUE ...] [--dry-run] [--backend local|slurm ...]`, `uampc experiment --collect DIR`: validates the experiment and every scene it runs, runs the matrix
 // (experiment_runner.hpp), and writes DIR/results.json, DIR/results.md and DIR/report/index.html.
 // --dry-run stops after validation and prints every planned run's command line.
 // The command line is parsed in main.cpp; this file has what the command does with it.
@@ -18,21 +18,30 @@ constexpr int kDefaultDomainBase = 100;
 constexpr int kMostJobs = kHighestDomainId - kDefaultDomainBase + 1;
 
 struct ExperimentOptions {
-  std::string experiment_file;
+  std::string experiment_file;  // empty with --collect and --run-task
   std::string output_directory;
   std::string data_directory;  // as given; ${data_dir} becomes its absolute path
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   int domain_base = kDefaultDomainBase;
   bool dry_run = false;
   std::vector<std::string> overrides;  // --set, as given: every run gets them
+  std::string backend = "local";       // local (child processes) or slurm (slurm_backend.hpp)
+  std::string partition;               // slurm: --partition
+  std::string time_limit;              // slurm: --time per run
+  std::vector<std::string> sbatch_options;
+  bool no_wait = false;     // slurm: submit only
+  bool plan_only = false;   // write DIR/experiment.json for another scheduler, run nothing
+  std::string collect_directory;  // --collect DIR: results from DIR's run directories (experiment_collect.hpp)
+  long run_task = -1;       // --run-task K: run plan entry K of --out (experiment_task.hpp)
 };
 
 // What is wrong with options that parsed (a --set the experiment owns or that is no NAME=VALUE,
 // domains past kHighestDomainId), as a message for the user; empty if nothing.
 std::string experimentOptionsError(const ExperimentOptions& options);
 
-// Exit codes: 0 every run finished, 1 a run failed, 2 invalid experiment,
-// 130 Ctrl-C (what finished is still written to the results).
+// Exit codes: 0 every run finished, 1 a run failed or did not finish, 2 invalid experiment,
+// 130 Ctrl-C (what finished is still written to the results). --collect and --run-task are
+// dispatched to their own commands.
 int experimentCommand(const ExperimentOptions& options);
 
 }  // namespace uampc::app

@@ -168,6 +168,34 @@ bool isRunComplete(const std::string& run_directory) {
   return run_files::readDoneMarker(run_directory).has_value() && readRunMetrics(run_directory).has_value();
 }
 
+pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
+               const std::string& directory, int domain_id) {
+  fs::remove_all(directory);  // no stale file of an earlier attempt may pass for this one's
+  fs::create_directories(directory);
+  std::vector<std::string> args = run.args;
+  args.insert(args.end(), {"--out", directory, "--set", "domain_id=" + std::to_string(domain_id)});
+  return children.start(runCommand(executable, args, directory));
+}
+
+void recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
+                  RunResult& result) {
+  result.exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+  if (result.exit_code == 0 && readRunMetrics(directory)) {
+    run_files::writeDoneMarker(directory, wall_time_s);
+    result.status = RunStatus::kOk;
+    readRunOutputs(directory, result);
+  } else if (interrupted) {
+    result.status = RunStatus::kNotRun;  // stopped by Ctrl-C: not a failure of the run
+    result.failure = "interrupted";
+    run_files::writeFailedMarker(directory, result.failure);
+  } else {
+    result.status = RunStatus::kFailed;
+    result.failure = result.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(wait_status);
+    result.wall_time_s = wall_time_s;
+    run_files::writeFailedMarker(directory, result.failure);
+  }
+}
+
 namespace {
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -262,15 +290,9 @@ class Scheduler {
       const int slot = freeSlot();
       if (slot < 0) return;
       const std::size_t i = pending_[next_++];
-      const fs::path dir = directoryOf(i);
-      fs::remove_all(dir);  // no stale file of an earlier attempt may pass for this one's
-      fs::create_directories(dir);
-      std::vector<std::string> args = plan_[i].args;
-      args.insert(args.end(),
-                  {"--out", dir.string(), "--set", "domain_id=" + std::to_string(options_.domain_base + slot)});
       pid_t pid = -1;
       try {
-        pid = children_.start(runCommand(options_.executable, args, dir));
+        pid = startRun(children_, options_.executable, plan_[i], directoryOf(i).string(), options_.domain_base + slot);
       } catch (const std::system_error& e) {
         results_[i].status = RunStatus::kFailed;
         results_[i].failure = "cannot start a process: " + e.code().message();
@@ -291,25 +313,12 @@ class Scheduler {
     const fs::path dir = directoryOf(done.run);
     const double wall = secondsSince(done.start);
     finished_work_.push_back({progressOf(done.run), wall});
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    if (r.exit_code == 0 && readRunMetrics(dir.string())) {
-      run_files::writeDoneMarker(dir.string(), wall);
-      r.status = RunStatus::kOk;
-      readRunOutputs(dir.string(), r);
-    } else if (stopping_) {
-      r.status = RunStatus::kNotRun;  // stopped by Ctrl-C: not a failure of the run
-      r.failure = "interrupted";
-      run_files::writeFailedMarker(dir.string(), r.failure);
-    } else {
-      r.status = RunStatus::kFailed;
-      r.failure = r.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(status);
-      r.wall_time_s = wall;
-      run_files::writeFailedMarker(dir.string(), r.failure);
-      ++failed_;
-      const std::string last = lastLine(run_files::readTextFile(dir / run_files::kRunLog));
-      progress_->say("experiment: " + plan_[done.run].directory + " failed (" + r.failure + "): " + last +
-                     "\n            full log: " + (dir / run_files::kRunLog).string());
-    }
+    recordRunEnd(dir.string(), status, wall, stopping_, r);
+    if (r.status != RunStatus::kFailed) return;
+    ++failed_;
+    const std::string last = lastLine(run_files::readTextFile(dir / run_files::kRunLog));
+    progress_->say("experiment: " + plan_[done.run].directory + " failed (" + r.failure + "): " + last +
+                   "\n            full log: " + (dir / run_files::kRunLog).string());
   }
 
   // A run's progress file; it also tells its scene's length (every controller and seed of a scene

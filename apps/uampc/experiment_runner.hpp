@@ -8,12 +8,15 @@
 // a run directory is an unfinished or failed run: its directory is emptied and the run retried.
 #pragma once
 
+#include <sys/types.h>
+
 #include <atomic>
 #include <string>
 #include <vector>
 
 #include "experiment_file.hpp"
 #include "run_results.hpp"
+#include "uampc/runtime/child_processes.hpp"
 
 namespace uampc::app {
 
@@ -38,6 +41,18 @@ struct RunnerOptions {
 };
 
 bool isRunComplete(const std::string& run_directory);
+
+// Starts one run as `executable launch ... --out directory --set domain_id=D`, its stdout and
+// stderr into the directory's run.log, after emptying the directory. Returns its pid; throws
+// std::system_error when no process can be started.
+pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
+               const std::string& directory, int domain_id);
+
+// A run's process ended with `wait_status` after `wall_time_s`: writes its done marker (exit 0 and
+// a readable metrics.json) or its failed marker, and fills result's status, exit code, failure and
+// figures. `interrupted`: the user stopped it (not a failure of the run).
+void recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
+                  RunResult& result);
 
 // Runs what is not complete yet and returns one result per planned run, in plan order.
 std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,

@@ -221,16 +221,19 @@ class UampcCli {
     CLI::App* sub =
         addCommand("experiment",
                    "uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]\n"
-                   "[--set NAME=VALUE ...] [--dry-run]",
+                   "[--set NAME=VALUE ...] [--dry-run | --plan-only] [--backend local|slurm [--partition P] [--time T] [--no-wait]]\n"
+                   "uampc experiment --collect DIR\n"
+                   "uampc experiment --run-task K --out DIR [--domain-base N]",
                    "Run every scene x controller x seed of an experiment (at most N at once, default: one per\n"
                    "CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,\n"
                    "DIR/results.md (the paper's table) and DIR/report/index.html. Finished runs are kept:\n"
                    "running it again only runs what is missing or failed. ${data_dir} in the experiment's\n"
-                   "overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.");
-    sub->add_option("EXPERIMENT.yaml", o.experiment_file, "The experiment file.")->required()->type_name("");
-    sub->add_option("--out", o.output_directory, "Write the runs, results and report into DIR.")
-        ->required()
-        ->type_name("DIR");
+                   "overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.\n"
+                   "--backend slurm submits the unfinished runs as one Slurm job array instead (DIR on a filesystem\n"
+                   "the nodes share), watches it and collects; --collect DIR builds the results from DIR's run\n"
+                   "directories wherever they ran; --run-task K runs planned run K of DIR (what an array task does).");
+    sub->add_option("EXPERIMENT.yaml", o.experiment_file, "The experiment file.")->type_name("");
+    sub->add_option("--out", o.output_directory, "Write the runs, results and report into DIR.")->type_name("DIR");
     sub->add_option(
            "--jobs", o.jobs,
            "Run at most N (1 to " + std::to_string(uampc::app::kMostJobs) + ") at once (default: one per CPU).")
@@ -241,7 +244,9 @@ class UampcCli {
     sub->add_option("--domain-base", o.domain_base,
                     "The first run's DDS domain; slot k runs on N + k (default " +
                         std::to_string(uampc::app::kDefaultDomainBase) + ", at most " +
-                        std::to_string(kHighestDomainId) + " with the slots).")
+                        std::to_string(kHighestDomainId) +
+                        " with the slots). On Slurm, each\ntask takes the first domain from N that no "
+                        "other task on its node holds.")
         ->check(CLI::Range(0, kHighestDomainId).description(""))
         ->type_name("N");
     sub->add_option("--set", o.overrides,
@@ -250,6 +255,28 @@ class UampcCli {
         ->allow_extra_args(false)
         ->type_name("NAME=VALUE");
     sub->add_flag("--dry-run", o.dry_run, "Only validate the experiment and its scenes and list the runs.");
+    sub->add_option("--backend", o.backend,
+                    "local (default): runs as child processes here; slurm: one Slurm job array, one task per run.")
+        ->check(CLI::IsMember({"local", "slurm"}).description(""))
+        ->type_name("local|slurm");
+    sub->add_option("--partition", o.partition, "Slurm: the partition to submit to (default: the cluster's).")
+        ->type_name("P");
+    sub->add_option("--time", o.time_limit, "Slurm: the time limit of each run's task, as sbatch --time takes it.")
+        ->type_name("T");
+    sub->add_option("--sbatch-option", o.sbatch_options,
+                    "Slurm: one more sbatch option for the job array, e.g. --sbatch-option=--mem=2G. Repeatable.")
+        ->allow_extra_args(false)
+        ->type_name("OPTION");
+    sub->add_flag("--plan-only", o.plan_only,
+                  "Write DIR/experiment.json and run nothing: for a scheduler that runs --run-task K itself\n"
+                  "(docker/k8s/experiment-indexed-job.yaml).");
+    sub->add_flag("--no-wait", o.no_wait, "Slurm: submit and return; --collect DIR builds the results later.");
+    sub->add_option("--collect", o.collect_directory,
+                    "Build DIR/results.json, results.md and the report from DIR's finished run directories.")
+        ->type_name("DIR");
+    sub->add_option("--run-task", o.run_task, "Run planned run K of --out DIR (what a Slurm array task runs).")
+        ->check(CLI::Range(0L, 1000000L).description(""))
+        ->type_name("K");
     commands_.push_back({sub, [this] {
                            const std::string error = uampc::app::experimentOptionsError(options_.experiment);
                            if (!error.empty()) return commandLineError(given(), error);

@@ -1,9 +1,5 @@
 #include "security_command.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <chrono>
 #include <cstring>
 #include <ctime>
@@ -13,14 +9,13 @@
 #include <sstream>
 #include <vector>
 
+#include "external_command.hpp"
 #include "svg_plot.hpp"  // svg::escapeXml
 #include "uampc/run_files/text_file.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/scene.hpp"
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -35,31 +30,13 @@ struct OpensslError : std::runtime_error {
 
 // Runs `openssl ARGS` in `directory`, its output in a log that is shown when it fails.
 void openssl(const fs::path& directory, const std::vector<std::string>& args) {
-  const fs::path log = directory / "openssl.log";
-  std::vector<std::string> argv_text = {"openssl"};
-  argv_text.insert(argv_text.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, "openssl", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  std::string command;
-  for (const auto& a : argv_text) command += (command.empty() ? "" : " ") + a;
-  if (spawned != 0) {
-    throw OpensslError("cannot run openssl (" + std::string(std::strerror(spawned)) +
-                       "); install Debian's openssl package (docker/install-deps.sh does)");
+  std::vector<std::string> argv = {"openssl"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const ExternalCommandResult r = runExternalCommand(argv, (directory / "openssl.log").string());
+  if (!r.started) {
+    throw OpensslError("cannot run openssl (" + r.error + "); install Debian's openssl package (docker/install-deps.sh does)");
   }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  const std::string said = run_files::readTextFile(log);
-  fs::remove(log);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw OpensslError(command + " failed:\n" + said);
+  if (!r.ok()) throw OpensslError(commandText(argv) + " failed:\n" + r.output);
 }
 
 // "2026-05-01T12:00:00", UTC, `days` from now (negative: before).

@@ -28,6 +28,7 @@ enum class DomainBlock {
   kSecurity,
   kDynamixel,
   kRigScene,
+  kSlurmExperiment,
 };
 
 inline constexpr int kDomainsPerTest = 12;

@@ -1,0 +1,145 @@
+// `uampc experiment --backend slurm` against a real Slurm: a one-node cluster (Debian's slurm-wlm
+// and munge, tests/slurm/start_cluster.sh) runs a 2 x 2 matrix as a job array; the collected
+// results equal a local run's, figure for figure and trajectory for trajectory (lockstep runs are
+// deterministic, whatever DDS transport carries them); a run that lost its done marker is the only
+// one resubmitted; --collect rebuilds the same results.json. Skipped (not passed) where the
+// cluster cannot start for lack of root.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "../e2e/command_runner.hpp"
+#include "../e2e/test_domains.hpp"
+
+namespace uampc::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kSkipped = 77;  // start_cluster.sh: "needs root"
+
+// The cluster of one test, stopped however the test ends.
+class OneNodeCluster {
+ public:
+  explicit OneNodeCluster(const std::string& directory) : directory_(directory) {
+    fs::create_directories(directory_);
+    const CommandResult r = runShell("bash " + sourcePath("tests/slurm/start_cluster.sh") + " " + directory_);
+    started_ = r.exit_code == 0;
+    exit_code_ = r.exit_code;
+    output_ = r.output;
+  }
+  ~OneNodeCluster() {
+    if (started_) runShell("bash " + sourcePath("tests/slurm/stop_cluster.sh") + " " + directory_);
+  }
+  bool started() const { return started_; }
+  int exitCode() const { return exit_code_; }
+  const std::string& output() const { return output_; }
+  // `uampc ARGS` with the cluster's client environment.
+  CommandResult uampc(const std::string& args) const {
+    return runShell(". " + directory_ + "/env.sh && UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
+                    binaryPath("bin/uampc") + " " + args);
+  }
+
+ private:
+  std::string directory_, output_;
+  bool started_ = false;
+  int exit_code_ = -1;
+};
+
+YAML::Node runsOf(const std::string& out) { return YAML::LoadFile(out + "/results.json")["runs"]; }
+
+// The figures of every run, which do not depend on where or how fast it ran.
+void expectSameFigures(const std::string& a, const std::string& b) {
+  const YAML::Node runs_a = runsOf(a), runs_b = runsOf(b);
+  ASSERT_EQ(runs_a.size(), runs_b.size());
+  for (std::size_t i = 0; i < runs_a.size(); ++i) {
+    const std::string directory = runs_a[i]["directory"].as<std::string>();
+    EXPECT_EQ(directory, runs_b[i]["directory"].as<std::string>());
+    for (const char* figure : {"ate_m", "ate_aligned_m", "cmplt", "rpe_10m_m", "sim_time_s", "mean_speed"}) {
+      EXPECT_EQ(YAML::Dump(runs_a[i][figure]), YAML::Dump(runs_b[i][figure])) << directory << " " << figure;
+    }
+    EXPECT_EQ(readFile(a + "/" + directory + "/estimate.tum"), readFile(b + "/" + directory + "/estimate.tum"))
+        << directory;
+  }
+}
+
+std::vector<std::string> statuses(const std::string& out) {
+  std::vector<std::string> s;
+  for (const auto& run : runsOf(out)) s.push_back(run["status"].as<std::string>());
+  return s;
+}
+
+TEST(SlurmExperiment, AJobArrayOnARealClusterGivesTheLocalResultsAndResumes) {
+  const std::string dir = freshDirectory("slurm_experiment_test");
+  const OneNodeCluster cluster(dir + "/cluster");
+  if (cluster.exitCode() == kSkipped) GTEST_SKIP() << cluster.output();
+  ASSERT_TRUE(cluster.started()) << cluster.output();
+
+  const std::string experiment = dir + "/experiment.yaml";
+  std::ofstream(experiment) << "name: slurm_e2e\nduration: 3\nseeds: [1, 2]\nscenes:\n"
+                               "  - {name: campus, scene: " +
+                                   sourcePath("config/scenes/campus_ua_mpc.yaml") +
+                                   "}\n"
+                                   "controllers:\n  - {name: ua_mpc, overrides: [controller.mode=ua_mpc]}\n"
+                                   "  - {name: zero, overrides: [controller.mode=zero]}\n"
+                                   "compare: {baseline: zero}\n";
+  const std::string on_slurm = dir + "/slurm_out", here = dir + "/local_out";
+  const std::string slurm_command = "experiment " + experiment + " --out " + on_slurm + " --backend slurm --domain-base " +
+                                    std::to_string(testDomain(DomainBlock::kSlurmExperiment, 0));
+
+  const CommandResult submitted = cluster.uampc(slurm_command);
+  ASSERT_EQ(submitted.exit_code, 0) << submitted.output;
+  EXPECT_NE(submitted.output.find("4 array task(s) of 4 runs"), std::string::npos) << submitted.output;
+  EXPECT_NE(submitted.output.find("4/4 done, 0 failed"), std::string::npos) << submitted.output;
+  EXPECT_EQ(statuses(on_slurm), std::vector<std::string>(4, "ok"));
+  // Each run kept its DDS traffic on the host, and says where it ran.
+  const std::string log = readFile(on_slurm + "/runs/campus/zero/seed2/scene.yaml");
+  EXPECT_NE(log.find("host_only_dds.xml"), std::string::npos) << log;
+
+  const CommandResult local = runUampc("experiment " + experiment + " --out " + here + " --jobs 2 --domain-base " +
+                                       std::to_string(testDomain(DomainBlock::kSlurmExperiment, 4)));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  expectSameFigures(on_slurm, here);
+
+  // Resume: only the run without its done marker goes to the cluster again.
+  fs::remove(on_slurm + "/runs/campus/ua_mpc/seed2/done");
+  const CommandResult resumed = cluster.uampc(slurm_command);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("1 array task(s) of 4 runs (the rest finished before)"), std::string::npos)
+      << resumed.output;
+  const std::string submissions = readFile(on_slurm + "/slurm/submissions.log");
+  EXPECT_NE(submissions.find("--array=0-3 "), std::string::npos) << submissions;
+  EXPECT_NE(submissions.find("--array=1 "), std::string::npos) << submissions;
+  expectSameFigures(on_slurm, here);
+
+  // --collect: the same results from the directories alone.
+  const std::string before = readFile(on_slurm + "/results.json");
+  fs::remove(on_slurm + "/results.json");
+  const CommandResult collected = runUampc("experiment --collect " + on_slurm);
+  ASSERT_EQ(collected.exit_code, 0) << collected.output;
+  EXPECT_NE(collected.output.find("4 of 4 runs of slurm_e2e finished"), std::string::npos) << collected.output;
+  expectSameFigures(on_slurm, here);
+  EXPECT_EQ(statuses(on_slurm), std::vector<std::string>(4, "ok"));
+}
+
+TEST(SlurmExperiment, CollectAndRunTaskSayWhatIsWrong) {
+  const std::string dir = freshDirectory("slurm_experiment_errors");
+  CommandResult r = runUampc("experiment --collect " + dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(dir + "/experiment.json: error: no such file"), std::string::npos) << r.output;
+  std::ofstream(dir + "/experiment.json") << "{\"version\": 1, \"experiment\": {\"name\": 3}}";
+  r = runUampc("experiment --run-task 0 --out " + dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(dir + "/experiment.json: error:"), std::string::npos) << r.output;
+  r = runUampc("experiment x.yaml --collect " + dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("give no EXPERIMENT.yaml"), std::string::npos) << r.output;
+  r = runUampc("experiment " + sourcePath("config/experiments/paper_core.yaml") + " --out " + dir + " --partition p");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("need --backend slurm"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace uampc::test
