@@ -29,28 +29,69 @@ struct Sample {
   Time source_time;
 };
 
-struct ReaderPort {
-  std::string component;
-  std::string port;
+struct ReaderPort;
+
+// A DDS reader and the input ports it serves. Typed inputs of one process on one topic and QoS
+// share one (Scene::readersOf): every DDS delivery costs the same whatever the sample's size (on
+// Debian's Fast DDS build, several system calls of its debug checks), and the default loop's
+// /motor/state alone has five readers in one process.
+struct SharedReader {
   std::string topic;
   DdsNode* node = nullptr;  // the participant the reader belongs to
   DataReader* reader = nullptr;
   TypeSupport type;
+  std::vector<ReaderPort*> ports;
+
+  // Takes every sample the reader holds into each port's inbox, in arrival order.
+  void poll();
+};
+
+// An input port of a component: its own view of its shared reader's samples.
+struct ReaderPort {
+  std::string component;
+  std::string port;
+  std::string topic;
+  SharedReader* shared = nullptr;
   std::function<void(const void*, Time source_time)> callback;
+  std::deque<Sample> inbox;     // taken from the DDS reader, not yet looked at by this port
   std::deque<Sample> deferred;  // lockstep: taken early, belongs to a later step
   std::uint64_t delivered = 0;  // samples handed to the callback so far
 
-  // Takes every sample the reader holds, in arrival order.
+  // Every sample taken for this port since the last call, in arrival order.
   void takeAll(std::deque<Sample>& out) {
-    for (;;) {
-      std::shared_ptr<void> data(type->createData(), [t = type](void* p) { t->deleteData(p); });
-      SampleInfo info;
-      if (reader->take_next_sample(data.get(), &info) != ReturnCode_t::RETCODE_OK) return;
-      if (!info.valid_data) continue;
-      const auto& ts = info.source_timestamp;
-      out.push_back({std::move(data), Time{static_cast<std::int64_t>(ts.seconds()) * 1000000000 + ts.nanosec()}});
-    }
+    shared->poll();
+    for (auto& s : inbox) out.push_back(std::move(s));
+    inbox.clear();
   }
+};
+
+void SharedReader::poll() {
+  for (;;) {
+    std::shared_ptr<void> data(type->createData(), [t = type](void* p) { t->deleteData(p); });
+    SampleInfo info;
+    if (reader->take_next_sample(data.get(), &info) != ReturnCode_t::RETCODE_OK) return;
+    if (!info.valid_data) continue;
+    const auto& ts = info.source_timestamp;
+    const Sample sample{std::move(data), Time{static_cast<std::int64_t>(ts.seconds()) * 1000000000 + ts.nanosec()}};
+    for (ReaderPort* port : ports) port->inbox.push_back(sample);  // the data is shared, read-only
+  }
+}
+
+// A reader with one port of its own: the clock's protocol topics.
+struct ProtocolReader {
+  SharedReader shared;
+  ReaderPort port;
+  ProtocolReader(DdsNode& node, const std::string& topic, const char* type_name, TypeSupportMaker type_support,
+                 Wakeup* wakeup) {
+    shared.topic = port.topic = topic;
+    shared.node = &node;
+    shared.type = TypeSupport(type_support());
+    shared.reader = node.createReader(topic, type_name, type_support, QosPreset::kControl, wakeup);
+    shared.ports.push_back(&port);
+    port.shared = &shared;
+  }
+  ~ProtocolReader() { shared.node->deleteReader(shared.reader); }
+  void takeAll(std::deque<Sample>& out) { port.takeAll(out); }
 };
 
 struct TimerEntry {
@@ -67,7 +108,9 @@ struct ProcessState {
   Time now;
   Time step;
   Wakeup wakeup;
-  std::vector<std::unique_ptr<ReaderPort>> readers;
+  std::vector<std::unique_ptr<ReaderPort>> readers;  // in the order components opened them
+  std::vector<std::unique_ptr<SharedReader>> dds_readers;
+  std::map<std::pair<std::string, QosPreset>, SharedReader*> typed_readers;  // by topic and QoS
   std::vector<TimerEntry> timers;
 };
 
@@ -190,6 +233,10 @@ class ContextImpl : public Context {
   void addReader(const std::string& port, const char* type_name, detail::TypeSupportFactory type_support,
                  std::function<void(const void*)> callback) override {
     const PortSpec& spec = checkPort(port, PortDirection::kInput, type_name);
+    if (spec.serialized) {
+      throw std::logic_error(instance_.name + ": port '" + port + "' was decided by the scene: open it with "
+                             "subscribeSerialized");
+    }
     openReader(port, dds_, type_support, spec,
                [callback = std::move(callback)](const void* sample, Time) { callback(sample); });
   }
@@ -204,6 +251,10 @@ class ContextImpl : public Context {
   void addSerializedReader(const std::string& port,
                            std::function<void(const SerializedMessage&, Time)> callback) override {
     const PortSpec& spec = checkPort(port, PortDirection::kInput, nullptr);
+    if (!spec.serialized) {
+      throw std::logic_error(instance_.name + ": port '" + port + "' is declared in describe(): subscribe to it typed "
+                             "(serialized inputs are those the scene decides, ComponentSpec::scenePorts)");
+    }
     openReader(port, serialized_dds_(), serializedTypeSupport(spec), spec,
                [callback = std::move(callback)](const void* sample, Time published) {
                  callback(*static_cast<const SerializedMessage*>(sample), published);
@@ -235,11 +286,28 @@ class ContextImpl : public Context {
     r->component = instance_.name;
     r->port = port;
     r->topic = topicOf(port);
-    r->node = &node;
-    r->type = TypeSupport(type_support());
     r->callback = std::move(callback);
-    r->reader = node.createReader(r->topic, spec.type_name, type_support, spec.qos, &state_.wakeup);
+    r->shared = spec.serialized ? newDdsReader(node, r->topic, type_support, spec) : typedReader(r->topic, type_support, spec);
+    r->shared->ports.push_back(r.get());
     state_.readers.push_back(std::move(r));
+  }
+
+  SharedReader* newDdsReader(DdsNode& node, const std::string& topic, const TypeSupportMaker& type_support,
+                             const PortSpec& spec) {
+    auto reader = std::make_unique<SharedReader>();
+    reader->topic = topic;
+    reader->node = &node;
+    reader->type = TypeSupport(type_support());
+    reader->reader = node.createReader(topic, spec.type_name, type_support, spec.qos, &state_.wakeup);
+    state_.dds_readers.push_back(std::move(reader));
+    return state_.dds_readers.back().get();
+  }
+
+  // The process's typed reader of the topic with the port's QoS, made on first use.
+  SharedReader* typedReader(const std::string& topic, const TypeSupportMaker& type_support, const PortSpec& spec) {
+    SharedReader*& reader = state_.typed_readers[{topic, spec.qos}];
+    if (!reader) reader = newDdsReader(dds_, topic, type_support, spec);
+    return reader;
   }
 
   static TypeSupportMaker serializedTypeSupport(const PortSpec& spec) {
@@ -289,11 +357,11 @@ class ProcessRunner {
 
   ~ProcessRunner() {
     components_.clear();
-    for (auto& r : state_.readers) r->node->deleteReader(r->reader);
+    for (auto& r : state_.dds_readers) r->node->deleteReader(r->reader);
     writers_.clear();  // each deletes its DDS writer
-    if (clock_reader_) dds_.deleteReader(clock_reader_->reader);
+    clock_reader_.reset();
     ack_writer_.reset();
-    if (ack_reader_) dds_.deleteReader(ack_reader_->reader);
+    ack_reader_.reset();
   }
 
   int run(const std::atomic<bool>& stop) {
@@ -433,7 +501,7 @@ class ProcessRunner {
                      std::to_string(want) + " readers";
         }
       }
-      for (const auto& r : state_.readers) {
+      for (const auto& r : state_.dds_readers) {
         SubscriptionMatchedStatus s;
         r->reader->get_subscription_matched_status(s);
         const int want = scene_.writersOf(r->topic);
@@ -443,14 +511,14 @@ class ProcessRunner {
         }
       }
       SubscriptionMatchedStatus clock_status;
-      clock_reader_->reader->get_subscription_matched_status(clock_status);
+      clock_reader_->shared.reader->get_subscription_matched_status(clock_status);
       if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
       const int processes = static_cast<int>(scene_.processes().size());
       PublicationMatchedStatus ack_status;
       ack_writer_->dds()->get_publication_matched_status(ack_status);
       if (ack_status.current_count < 1 + processes) missing += "\n  the acknowledgement readers";
       SubscriptionMatchedStatus ack_reader_status;
-      ack_reader_->reader->get_subscription_matched_status(ack_reader_status);
+      ack_reader_->shared.reader->get_subscription_matched_status(ack_reader_status);
       if (ack_reader_status.current_count < processes) missing += "\n  the other processes' acknowledgements";
       if (missing.empty()) return true;
       if (stop) return false;
@@ -531,7 +599,7 @@ class ProcessRunner {
   // this one (the clock checks the acknowledgements' writers the same way).
   std::string anotherClock() const {
     SubscriptionMatchedStatus status;
-    clock_reader_->reader->get_subscription_matched_status(status);
+    clock_reader_->shared.reader->get_subscription_matched_status(status);
     if (status.total_count <= 1) return {};
     return "another lockstep run is on DDS domain " + std::to_string(scene_.domain_id) + ": " +
            std::to_string(status.total_count) + " clocks were heard on " + kClockTopic +
@@ -540,24 +608,16 @@ class ProcessRunner {
 
   int runLockstep(const std::atomic<bool>& stop) {
     // The clock's protocol topics are reliable and keep every sample, like the loop's own.
-    clock_reader_ = std::make_unique<ReaderPort>();
-    clock_reader_->topic = kClockTopic;
-    clock_reader_->type = TypeSupport(detail::makeTypeSupport<rosgraph_msgs::msg::Clock>());
-    clock_reader_->reader =
-        dds_.createReader(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                          &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl, &state_.wakeup);
+    clock_reader_ = std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                                     &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, &state_.wakeup);
     ack_writer_ = std::make_unique<DdsWriter>(
         dds_,
         dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                           &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
         kStepAckTopic, QosPreset::kControl, state_);
     // Every process reads every acknowledgement: they say how many samples to wait for.
-    ack_reader_ = std::make_unique<ReaderPort>();
-    ack_reader_->topic = kStepAckTopic;
-    ack_reader_->type = TypeSupport(detail::makeTypeSupport<uampc::msg::StepAck>());
-    ack_reader_->reader =
-        dds_.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
-                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &state_.wakeup);
+    ack_reader_ = std::make_unique<ProtocolReader>(dds_, kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                                                   &detail::makeTypeSupport<uampc::msg::StepAck>, &state_.wakeup);
     if (!waitForMatches(stop)) return stop ? 0 : 1;
     state_.started = true;
     sendAck(-1, Time{0});  // ready
@@ -611,9 +671,9 @@ class ProcessRunner {
   std::vector<std::shared_ptr<DdsWriter>> writers_;
   std::vector<std::unique_ptr<ContextImpl>> contexts_;
   std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
-  std::unique_ptr<ReaderPort> clock_reader_;
+  std::unique_ptr<ProtocolReader> clock_reader_;
   std::unique_ptr<DdsWriter> ack_writer_;
-  std::unique_ptr<ReaderPort> ack_reader_;
+  std::unique_ptr<ProtocolReader> ack_reader_;
   // Acknowledged sample counts: process -> step -> counts per topic.
   std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;
   std::string failure_;

@@ -44,18 +44,32 @@ std::vector<std::string> Scene::processes() const {
   return out;
 }
 
-static int countPorts(const Scene& scene, const std::string& topic, PortDirection direction) {
-  int n = 0;
-  for (const auto& c : scene.components) {
+// DDS readers of a topic: in each process, the typed inputs with one QoS share one reader
+// (process_group.cpp); each serialized input has its own.
+int Scene::readersOf(const std::string& topic) const {
+  std::set<std::pair<std::string, QosPreset>> shared;
+  int own = 0;
+  for (const auto& c : components) {
     for (const auto& port : c.ports) {
-      if (port.direction == direction && c.topics.at(port.name) == topic) ++n;
+      if (port.direction != PortDirection::kInput || c.topics.at(port.name) != topic) continue;
+      if (port.serialized)
+        ++own;
+      else
+        shared.insert({c.process, port.qos});
+    }
+  }
+  return static_cast<int>(shared.size()) + own;
+}
+
+int Scene::writersOf(const std::string& topic) const {
+  int n = 0;
+  for (const auto& c : components) {
+    for (const auto& port : c.ports) {
+      if (port.direction == PortDirection::kOutput && c.topics.at(port.name) == topic) ++n;
     }
   }
   return n;
 }
-
-int Scene::readersOf(const std::string& topic) const { return countPorts(*this, topic, PortDirection::kInput); }
-int Scene::writersOf(const std::string& topic) const { return countPorts(*this, topic, PortDirection::kOutput); }
 
 const PortSpec* ComponentInstance::findPort(const std::string& port) const {
   for (const auto& p : ports) {

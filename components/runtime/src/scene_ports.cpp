@@ -173,6 +173,7 @@ void resolveScenePorts(Scene& scene, std::vector<std::string>& errors) {
       }
       for (auto& port : decided) {
         port.default_topic = port.name;
+        port.serialized = true;
         const std::string problem = checkScenePort(c, port);
         if (!problem.empty()) {
           if (round == 1)

@@ -22,6 +22,10 @@ struct PortSpec {
   std::string default_topic;  // ROS 2 topic name, e.g. "/lidar/points"
   QosPreset qos = QosPreset::kControl;
   std::string doc;
+  // Decided by the scene (ComponentSpec::scenePorts) and opened serialized. An input opened
+  // serialized has a DDS reader of its own; typed inputs of one process on one topic and QoS share
+  // one (Scene::readersOf counts them so).
+  bool serialized = false;
 };
 
 // What a component that decides its ports from the scene (ComponentSpec::scenePorts) is given.

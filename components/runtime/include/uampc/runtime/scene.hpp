@@ -84,8 +84,10 @@ struct Scene {
   std::vector<std::string> warnings;
 
   std::vector<std::string> processes() const;  // in order of first appearance
-  // Number of input (readers) or output (writers) ports bound to a topic, over the whole scene.
+  // DDS readers of a topic over the whole scene: one per process and QoS for its typed inputs,
+  // one per serialized input (PortSpec::serialized).
   int readersOf(const std::string& topic) const;
+  // Output ports (each its own DDS writer) bound to a topic, over the whole scene.
   int writersOf(const std::string& topic) const;
   const ComponentInstance* find(const std::string& name) const;
 };

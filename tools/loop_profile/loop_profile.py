@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""Where the whole loop's time goes, per simulated second (issue 17).
+
+Runs a scene twice under `perf record` (software clock sampling with DWARF call stacks: this VM has
+no hardware counters), a short and a long run on one core (`taskset -c CORE`), and prints the CPU
+time per simulated second of each part of the system: the difference between the two runs divided
+by the difference of their simulated durations, so that start-up (loading libraries, building the
+world, DDS discovery) drops out; start-up is shown on its own line.
+
+Each sample goes to the part that owns its stack: walking from the leaf towards the root, past
+frames of the C library, libm, libstdc++, the kernel, Ceres, PCL and Embree's internals (they run on
+someone's behalf), the first frame in one of ours decides:
+  libuampc_<component>.so          the component (its own work and the libraries it calls)
+  libfastcdr, libuampc_msgs        serialisation (CDR)
+  libfastrtps                      DDS (Fast DDS: its threads, queues, transports)
+  libuampc_runtime, the uampc binary   runtime (lockstep steps, dispatch, logging, the launcher)
+  ld-linux                         start-up (dynamic loading)
+A sample with none of these is "kernel and other" (mostly the scheduler and futex waits of
+threads that are none of the above).
+
+  tools/loop_profile/loop_profile.py [--scene config/scenes/default.yaml] [--short 10] [--long 40]
+                                     [--core 0] [--frequency 499] [--set NAME=VALUE ...]
+
+Needs perf (Debian: linux-perf) and a built build/bin/uampc. Prints a Markdown table.
+"""
+import argparse
+import collections
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PASS_THROUGH = re.compile(r"kernel|libc\.so|libm\.so|libstdc\+\+|libgcc|libceres|libpcl|libembree|libtbb|"
+                          r"libglog|libgomp|vdso|unknown|libpthread|libyaml|libcrypto|libssl")
+
+
+def part_of(dso):
+    """The part a frame's shared object names, or None to look further up the stack."""
+    name = os.path.basename(dso)
+    m = re.match(r"libuampc_(.+)\.so", name)
+    if m:
+        if m.group(1) == "msgs":
+            return "serialisation (CDR)"
+        if m.group(1) in ("runtime", "run_files"):
+            return "runtime (lockstep, dispatch, logging)"
+        return "component: " + m.group(1)
+    if name.startswith("libfastcdr"):
+        return "serialisation (CDR)"
+    if name.startswith("libfastrtps"):
+        return "DDS (Fast DDS)"
+    if name == "uampc":
+        return "runtime (lockstep, dispatch, logging)"
+    if name.startswith("ld-linux"):
+        return "start-up (dynamic loading)"
+    if PASS_THROUGH.search(name):
+        return None
+    return None
+
+
+def record(scene, duration, core, frequency, overrides, directory):
+    data = os.path.join(directory, "perf_%g.data" % duration)
+    command = ["taskset", "-c", str(core), "perf", "record", "-q", "-e", "cpu-clock", "-F", str(frequency),
+               "--call-graph", "dwarf,16384", "-o", data, "--", os.path.join(ROOT, "build/bin/uampc"), "launch",
+               scene, "--set", "clock.duration=%g" % duration, "--out", os.path.join(directory, "run_%g" % duration)]
+    for o in overrides:
+        command += ["--set", o]
+    run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    summary = re.search(r"uampc: ([0-9.]+) s of sim time in ([0-9.]+) s", run.stdout)
+    if run.returncode != 0 or not summary:
+        sys.exit("loop_profile: the run failed:\n" + run.stdout[-3000:])
+    return data, float(summary.group(2))
+
+
+def samples_by_part(data):
+    script = subprocess.run(["perf", "script", "-i", data, "-F", "comm,tid,ip,sym,dso"], stdout=subprocess.PIPE,
+                            stderr=subprocess.DEVNULL, text=True).stdout
+    counts = collections.Counter()
+    for block in script.split("\n\n"):
+        frames = [line for line in block.splitlines()[1:] if line.strip()]
+        if not frames:
+            continue
+        part = None
+        for frame in frames:
+            dso = frame[frame.rfind("(") + 1:frame.rfind(")")]
+            part = part_of(dso)
+            if part:
+                break
+        counts[part or "kernel and other"] += 1
+    return counts
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--scene", default=os.path.join(ROOT, "config/scenes/default.yaml"))
+    parser.add_argument("--short", type=float, default=10.0, help="s of sim time of the short run")
+    parser.add_argument("--long", type=float, default=40.0, help="s of sim time of the long run")
+    parser.add_argument("--core", type=int, default=0)
+    parser.add_argument("--frequency", type=int, default=499, help="samples per CPU second")
+    parser.add_argument("--set", action="append", default=[], dest="overrides", metavar="NAME=VALUE")
+    args = parser.parse_args()
+    if not args.long > args.short:
+        sys.exit("loop_profile: --long must be longer than --short")
+    with tempfile.TemporaryDirectory(prefix="loop_profile.") as directory:
+        short_data, short_wall = record(args.scene, args.short, args.core, args.frequency, args.overrides, directory)
+        long_data, long_wall = record(args.scene, args.long, args.core, args.frequency, args.overrides, directory)
+        short_counts, long_counts = samples_by_part(short_data), samples_by_part(long_data)
+    seconds = args.long - args.short
+    ms_per_sample = 1000.0 / args.frequency
+    rows = []
+    for part in set(short_counts) | set(long_counts):
+        per_s = (long_counts[part] - short_counts[part]) * ms_per_sample / seconds
+        rows.append((part, per_s))
+    rows.sort(key=lambda r: -r[1])
+    total = sum(r[1] for r in rows)
+    startup = (sum(short_counts.values()) * ms_per_sample - total * args.short) / 1000.0
+    print("| part | CPU ms per simulated s | share |")
+    print("|---|---|---|")
+    for part, per_s in rows:
+        print("| %s | %.1f | %.0f %% |" % (part, per_s, 100.0 * per_s / total if total else 0.0))
+    print("| **all** | **%.1f** (%.1fx real time on one core) | |" % (total, 1000.0 / total if total else 0.0))
+    print("\nStart-up (the short run's CPU time less its share of the per-second cost): %.1f s of CPU."
+          % startup)
+    print("Wall time: %g s of sim time in %.2f s, %g s in %.2f s: %.1fx real time between the two."
+          % (args.short, short_wall, args.long, long_wall, seconds / (long_wall - short_wall)))
+
+
+if __name__ == "__main__":
+    main()
