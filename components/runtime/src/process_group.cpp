@@ -365,6 +365,7 @@ class ProcessRunner {
   }
 
   int run(const std::atomic<bool>& stop) {
+    stop_ = &stop;
     if (!createComponents()) return 1;
     const int code = state_.lockstep ? runLockstep(stop) : runRealtime(stop);
     for (auto& [name, component] : components_) {
@@ -460,6 +461,8 @@ class ProcessRunner {
       std::uint64_t have = r.delivered;
       for (const auto& s : samples) have += s.source_time < state_.now ? 1 : 0;
       if (have >= want) return true;
+      // Stopped (Ctrl-C, or the launcher died): the samples may never come; not a failure.
+      if (*stop_) return false;
       if (SteadyClock::now() > deadline) {
         failure_ = "input '" + r.port + "' of component '" + r.component + "' (" + r.topic + ") expected " +
                    std::to_string(want) + " samples by t=" + std::to_string(state_.now.seconds()) + " s but got " +
@@ -516,10 +519,12 @@ class ProcessRunner {
       const int processes = static_cast<int>(scene_.processes().size());
       PublicationMatchedStatus ack_status;
       ack_writer_->dds()->get_publication_matched_status(ack_status);
-      if (ack_status.current_count < 1 + processes) missing += "\n  the acknowledgement readers";
-      SubscriptionMatchedStatus ack_reader_status;
-      ack_reader_->shared.reader->get_subscription_matched_status(ack_reader_status);
-      if (ack_reader_status.current_count < processes) missing += "\n  the other processes' acknowledgements";
+      if (ack_status.current_count < 1 + (ack_reader_ ? processes : 0)) missing += "\n  the acknowledgement readers";
+      if (ack_reader_) {
+        SubscriptionMatchedStatus ack_reader_status;
+        ack_reader_->shared.reader->get_subscription_matched_status(ack_reader_status);
+        if (ack_reader_status.current_count < processes) missing += "\n  the other processes' acknowledgements";
+      }
       if (missing.empty()) return true;
       if (stop) return false;
       if (SteadyClock::now() > deadline) {
@@ -552,6 +557,7 @@ class ProcessRunner {
       c.count(count);
       ack.written().push_back(c);
     }
+    if (!ack_reader_) acks_[process_][step] = ack.written();  // alone: what the others would have read
     ack.failed(!failure_.empty());
     ack.message(failure_);
     ack_writer_->write(&ack);
@@ -565,7 +571,7 @@ class ProcessRunner {
     const auto deadline = SteadyClock::now() + std::chrono::duration<double>(0.9 * scene_.clock.ack_timeout_s);
     for (;;) {
       std::deque<Sample> acks;
-      ack_reader_->takeAll(acks);
+      if (ack_reader_) ack_reader_->takeAll(acks);
       for (const auto& a : acks) {
         const auto* ack = static_cast<const uampc::msg::StepAck*>(a.data.get());
         acks_[ack->process()][ack->step()] = ack->written();
@@ -615,8 +621,11 @@ class ProcessRunner {
         dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                           &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
         kStepAckTopic, QosPreset::kControl, state_);
-    // Every process reads every acknowledgement: they say how many samples to wait for.
-    ack_reader_ = std::make_unique<ProtocolReader>(dds_, kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+    // Every process reads every acknowledgement: they say how many samples to wait for. A process
+    // alone in its scene knows what it wrote: its acknowledgements go to the clock only (a delivery
+    // to itself cost about as much as one to the clock, every step).
+    if (scene_.processes().size() > 1)
+      ack_reader_ = std::make_unique<ProtocolReader>(dds_, kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                                                    &detail::makeTypeSupport<uampc::msg::StepAck>, &state_.wakeup);
     if (!waitForMatches(stop)) return stop ? 0 : 1;
     state_.started = true;
@@ -638,6 +647,7 @@ class ProcessRunner {
         std::map<std::string, std::uint64_t> expected;
         if (!awaitAcks(step - 1, expected, stop)) return stop ? 0 : 1;
         const bool ok = deliverInputs(&expected) && fireTimers();
+        if (!ok && stop) return 0;  // stopped while waiting for samples that will not come
         sendAck(step, t);
         if (!ok) return 1;
       }
@@ -677,6 +687,7 @@ class ProcessRunner {
   // Acknowledged sample counts: process -> step -> counts per topic.
   std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;
   std::string failure_;
+  const std::atomic<bool>* stop_ = nullptr;  // run()'s
 };
 
 }  // namespace
