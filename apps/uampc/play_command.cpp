@@ -128,7 +128,9 @@ class Player {
     DataWriter* writer = writers_[sample.topic];
     if (!writer) return;
     const auto t0 = SteadyClock::now();
-    if (options_.restamp) restamper_.restamp(playback_.topics()[sample.topic].type, sample.data);
+    if (options_.restamp) {
+      restamper_.restamp(playback_.topics()[sample.topic].topic, playback_.topics()[sample.topic].type, sample.data);
+    }
     if (writer->write(&sample.data) != true) {
       throw std::runtime_error("publishing on " + playback_.topics()[sample.topic].topic + " failed");
     }

@@ -9,7 +9,6 @@
 #include "dynamixel_backend.hpp"
 #include "sim_backend.hpp"
 #include "uampc/dynamixel/control_table.hpp"
-#include "uampc/dynamixel/serial_port.hpp"
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/runtime/component.hpp"
@@ -100,13 +99,9 @@ class MotorBridge : public Component {
     // A real motor turns in wall time; simulated time would run it at the wrong speed.
     if (ctx.lockstep())
       throw std::runtime_error("backend 'dynamixel' drives a real motor and needs clock.mode: realtime");
-    const int baud_rate = static_cast<int>(ctx.paramInt("baud_rate"));
-    if (!dynamixel::isSupportedBaudRate(baud_rate))
-      throw std::runtime_error("baud_rate " + std::to_string(baud_rate) + " is not one of " +
-                               dynamixel::supportedBaudRates());
     DynamixelBackendOptions o;
     o.servo.port = ctx.paramString("port");
-    o.servo.baud_rate = baud_rate;
+    o.servo.baud_rate = static_cast<int>(ctx.paramInt("baud_rate"));  // SerialPort names the port if unsupported
     o.servo.id = static_cast<std::uint8_t>(ctx.paramInt("id"));
     o.servo.model = ctx.paramString("model");
     o.servo.reply_timeout_s = ctx.paramDouble("reply_timeout");

@@ -82,9 +82,14 @@ double absoluteTimeScale(const sensor_msgs::msg::PointCloud2& cloud, const TimeF
 
 }  // namespace
 
-void shiftAbsoluteTimes(sensor_msgs::msg::PointCloud2& cloud, double offset_s) {
+bool hasAbsoluteTimes(const sensor_msgs::msg::PointCloud2& cloud) {
   const auto* f = find(cloud, "timestamp");
-  if (!f || f->datatype() != kFloat64) return;
+  return f && f->datatype() == kFloat64;
+}
+
+void shiftAbsoluteTimes(sensor_msgs::msg::PointCloud2& cloud, double offset_s) {
+  if (!hasAbsoluteTimes(cloud)) return;
+  const auto* f = find(cloud, "timestamp");
   const TimeField field{"timestamp", f->offset(), kFloat64, 1.0, true};
   const double offset = offset_s / absoluteTimeScale(cloud, field);  // in the field's unit
   const std::size_t n = static_cast<std::size_t>(cloud.width()) * cloud.height();

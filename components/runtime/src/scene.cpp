@@ -106,6 +106,12 @@ namespace {
 constexpr std::size_t kMaxNameLength = 63;
 constexpr double kMinRealTimeFactor = 0.001;
 
+// A ROS 2 topic name, as the scene's `topics:` and `external_topics:` take it.
+const std::regex& topicPattern() {
+  static const std::regex pattern("(/[A-Za-z_][A-Za-z0-9_]*)+");
+  return pattern;
+}
+
 // Collects errors so that one run of the validator reports every problem in the file.
 class SceneValidator {
  public:
@@ -678,11 +684,10 @@ void SceneValidator::readExternalTopics(const YAML::Node& node, Scene& scene) {
     error(node, "external_topics must be a list of topics, e.g. [/livox/lidar]");
     return;
   }
-  static const std::regex topic_pattern("(/[A-Za-z_][A-Za-z0-9_]*)+");
   for (const auto& item : node) {
     const auto topic = scalar<std::string>(item, "an external topic");
     if (!topic) continue;
-    if (!std::regex_match(*topic, topic_pattern))
+    if (!std::regex_match(*topic, topicPattern()))
       error(item, "external topic '" + *topic + "' is not a ROS topic name (e.g. /livox/lidar)");
     else if (std::find(scene.external_topics.begin(), scene.external_topics.end(), *topic) !=
              scene.external_topics.end())
@@ -701,7 +706,6 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
     error(node, "'topics' of component '" + instance.name + "' must map port names to topics");
     return;
   }
-  static const std::regex topic_pattern("(/[A-Za-z_][A-Za-z0-9_]*)+");
   static const std::regex reference_pattern("[A-Za-z][A-Za-z0-9_]*/[A-Za-z_][A-Za-z0-9_]*");
   for (const auto& kv : node) {
     const std::string port = kv.first.as<std::string>();
@@ -722,7 +726,7 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
       // /clock crashed the process).
       error(kv.second, "topic " + *target + " is the runtime's own (the lockstep clock); map port '" + port +
                            "' to another topic");
-    } else if (std::regex_match(*target, topic_pattern)) {
+    } else if (std::regex_match(*target, topicPattern())) {
       instance.topics[port] = *target;
     } else if (std::regex_match(*target, reference_pattern)) {
       references.push_back({0, port, *target, locationOf(kv.second)});

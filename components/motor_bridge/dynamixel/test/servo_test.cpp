@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <iostream>
 #include <thread>
 
 #include "servo_emulator.hpp"
@@ -150,9 +149,7 @@ TEST(DynamixelServo, RetriesACorruptReplyAndGivesUpAfterItsTries) {
   EXPECT_NO_THROW(servo.readState());
   EXPECT_EQ(servo.bus().counters().corrupt, 1u);
   emulator.corruptReplies(3);  // 1 + max_retries
-  const auto start = SteadyClock::now();
   EXPECT_THROW(servo.readState(), BusFault);
-  std::cout << "three corrupt replies detected in " << seconds(SteadyClock::now() - start) * 1e3 << " ms\n";
   EXPECT_EQ(servo.bus().counters().corrupt, 4u);
   EXPECT_NO_THROW(servo.readState());  // and the bus works again
 }
@@ -160,11 +157,10 @@ TEST(DynamixelServo, RetriesACorruptReplyAndGivesUpAfterItsTries) {
 TEST(DynamixelServo, ASilentServoIsAFaultWithinItsTimeouts) {
   ServoEmulator emulator(emulated("silent"));
   ServoOptions options = servoOn(emulator);
-  options.reply_timeout_s = 0.02;  // the figure for README: a real bus answers in microseconds
+  options.reply_timeout_s = 0.02;  // a real bus answers in microseconds (dynamixel_bench times it)
   options.bus_watchdog_s = 0;
   Servo servo(options);
   emulator.setSilent(true);
-  const auto start = SteadyClock::now();
   try {
     servo.readState();
     FAIL() << "a silent servo read";
@@ -172,7 +168,6 @@ TEST(DynamixelServo, ASilentServoIsAFaultWithinItsTimeouts) {
     EXPECT_NE(std::string(e.what()).find("failed after 3 tries: no status packet within 20000 us"), std::string::npos)
         << e.what();
   }
-  std::cout << "silence detected in " << seconds(SteadyClock::now() - start) * 1e3 << " ms (3 x 20 ms timeouts)\n";
   EXPECT_EQ(servo.bus().counters().timeouts, 3u);
   emulator.setSilent(false);
   EXPECT_TRUE(answersWithin(servo, 10));
@@ -233,10 +228,6 @@ TEST(DynamixelServo, BusBudgetOfAnEncoderReadAndACommand) {
   EXPECT_EQ(read.bytes_received - start.bytes_received, 19u);
   EXPECT_EQ(command.bytes_sent - read.bytes_sent, 16u);
   EXPECT_EQ(command.bytes_received - read.bytes_received, 11u);
-  const double read_bits = 10.0 * 33, command_bits = 10.0 * 27;  // 8N1: 10 bits a byte
-  std::cout << "bus at 1 Mbps: encoder read " << read_bits << " us, command " << command_bits
-            << " us on the wire; 200 Hz reads + 10 Hz commands use "
-            << (200 * read_bits + 10 * command_bits) / 1e6 * 100 << " % of the bus (plus the servo's return delay)\n";
 }
 
 }  // namespace

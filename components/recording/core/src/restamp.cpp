@@ -15,10 +15,15 @@ namespace {
 constexpr std::size_t kEncapsulation = 4;  // CDR's representation header
 constexpr std::int64_t kNsPerSecond = 1'000'000'000;
 
-// A PointCloud2 with absolute point times: shifted through the real type, as its data says.
-void shiftPointTimes(SerializedMessage& sample, Time offset) {
+sensor_msgs::msg::PointCloud2 decodeCloud(const SerializedMessage& sample) {
   sensor_msgs::msg::PointCloud2 cloud;
   if (!decodeSample(sample, cloud)) throw std::runtime_error("a PointCloud2 sample that does not decode");
+  return cloud;
+}
+
+// A PointCloud2 with absolute point times: shifted through the real type, as its data says.
+void shiftPointTimes(SerializedMessage& sample, Time offset) {
+  sensor_msgs::msg::PointCloud2 cloud = decodeCloud(sample);
   pointcloud::shiftAbsoluteTimes(cloud, offset.seconds());
   sample = encodeSample(cloud);
 }
@@ -40,11 +45,19 @@ bool Restamper::startsWithHeader(const std::string& ros_type) {
   return starts_with_header_[ros_type] = header;
 }
 
-bool Restamper::restamp(const std::string& ros_type, SerializedMessage& sample) {
+bool Restamper::hasAbsolutePointTimes(const std::string& topic, const SerializedMessage& cloud) {
+  auto cached = absolute_point_times_.find(topic);
+  if (cached != absolute_point_times_.end()) return cached->second;
+  return absolute_point_times_[topic] = pointcloud::hasAbsoluteTimes(decodeCloud(cloud));
+}
+
+bool Restamper::restamp(const std::string& topic, const std::string& ros_type, SerializedMessage& sample) {
   if (!startsWithHeader(ros_type)) return false;
   if (sample.data.size() < kEncapsulation + 8 || !(sample.data[1] & 1))
     throw std::runtime_error("a " + ros_type + " sample too short for its header, or not little-endian CDR");
-  if (ros_type == "sensor_msgs/msg/PointCloud2") shiftPointTimes(sample, offset_);  // before its stamp moves
+  if (ros_type == "sensor_msgs/msg/PointCloud2" && hasAbsolutePointTimes(topic, sample)) {
+    shiftPointTimes(sample, offset_);  // before its stamp moves
+  }
   std::int32_t sec = 0;
   std::uint32_t nanosec = 0;
   std::memcpy(&sec, &sample.data[kEncapsulation], 4);

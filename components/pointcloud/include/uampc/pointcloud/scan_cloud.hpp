@@ -61,6 +61,8 @@ constexpr double kMaxTimeOffset = 10.0;
 // field), in the field's own unit; nothing for times relative to the header stamp. For a player
 // that moves a recording to the present (its header stamps shift by the same offset).
 void shiftAbsoluteTimes(sensor_msgs::msg::PointCloud2& cloud, double offset_s);
+// Whether the cloud's point times are absolute (a float64 timestamp field).
+bool hasAbsoluteTimes(const sensor_msgs::msg::PointCloud2& cloud);
 
 // Reads x, y, z (float32 required), and intensity, ring and time where present. Throws
 // std::runtime_error on an inconsistent cloud (data shorter than width*height*point_step, fields

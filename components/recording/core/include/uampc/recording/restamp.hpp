@@ -21,13 +21,17 @@ class Restamper {
   // first field, as in every stamped ROS message), and to the absolute point times of a
   // PointCloud2 that has them (livox_ros_driver2's layout). Samples without a header are left as
   // they are; false then. Throws std::runtime_error for a sample too short for its header.
-  bool restamp(const std::string& ros_type, SerializedMessage& sample);
+  // Decision: a topic's point layout does not change (drivers publish one), so whether its clouds
+  // have absolute times is decoded once per topic; the others are never decoded.
+  bool restamp(const std::string& topic, const std::string& ros_type, SerializedMessage& sample);
 
  private:
   bool startsWithHeader(const std::string& ros_type);
+  bool hasAbsolutePointTimes(const std::string& topic, const SerializedMessage& cloud);
 
   Time offset_;
-  std::map<std::string, bool> starts_with_header_;  // by ROS type name
+  std::map<std::string, bool> starts_with_header_;       // by ROS type name
+  std::map<std::string, bool> absolute_point_times_;     // by topic, for PointCloud2 topics
 };
 
 }  // namespace uampc::recording
