@@ -15,11 +15,7 @@ namespace uampc::app {
 std::vector<RunResult> collectRuns(const ExperimentSnapshot& snapshot, const std::string& output_directory) {
   std::vector<RunResult> results;
   for (const PlannedRun& run : snapshot.plan) {
-    RunResult r;
-    r.scene = snapshot.experiment.scenes[run.scene].name;
-    r.controller = snapshot.experiment.controllers[run.controller].name;
-    r.seed = run.seed;
-    r.directory = run.directory;
+    RunResult r = plannedResult(snapshot.experiment, run);
     const std::string dir = (fs::path(output_directory) / run.directory).string();
     if (isRunComplete(dir)) {
       r.status = RunStatus::kOk;

@@ -168,6 +168,15 @@ bool isRunComplete(const std::string& run_directory) {
   return run_files::readDoneMarker(run_directory).has_value() && readRunMetrics(run_directory).has_value();
 }
 
+RunResult plannedResult(const Experiment& experiment, const PlannedRun& run) {
+  RunResult r;
+  r.scene = experiment.scenes[run.scene].name;
+  r.controller = experiment.controllers[run.controller].name;
+  r.seed = run.seed;
+  r.directory = run.directory;
+  return r;
+}
+
 pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
                const std::string& directory, int domain_id) {
   fs::remove_all(directory);  // no stale file of an earlier attempt may pass for this one's
@@ -244,11 +253,7 @@ class Scheduler {
   // Complete runs of before are read, not run again; the others are pending.
   void reuseCompleteRuns() {
     for (std::size_t i = 0; i < plan_.size(); ++i) {
-      RunResult& r = results_[i];
-      r.scene = experiment_.scenes[plan_[i].scene].name;
-      r.controller = experiment_.controllers[plan_[i].controller].name;
-      r.seed = plan_[i].seed;
-      r.directory = plan_[i].directory;
+      RunResult& r = results_[i] = plannedResult(experiment_, plan_[i]);
       const fs::path dir = directoryOf(i);
       if (isRunComplete(dir.string())) {
         r.status = RunStatus::kReused;

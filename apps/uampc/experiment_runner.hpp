@@ -42,6 +42,9 @@ struct RunnerOptions {
 
 bool isRunComplete(const std::string& run_directory);
 
+// A run's result before anything is known of it: which scene, controller, seed and directory.
+RunResult plannedResult(const Experiment& experiment, const PlannedRun& run);
+
 // Starts one run as `executable launch ... --out directory --set domain_id=D`, its stdout and
 // stderr into the directory's run.log, after emptying the directory. Returns its pid; throws
 // std::system_error when no process can be started.

@@ -32,10 +32,6 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-PASS_THROUGH = re.compile(r"kernel|libc\.so|libm\.so|libstdc\+\+|libgcc|libceres|libpcl|libembree|libtbb|"
-                          r"libglog|libgomp|vdso|unknown|libpthread|libyaml|libcrypto|libssl")
-
-
 def part_of(dso):
     """The part a frame's shared object names, or None to look further up the stack."""
     name = os.path.basename(dso)
@@ -54,9 +50,7 @@ def part_of(dso):
         return "runtime (lockstep, dispatch, logging)"
     if name.startswith("ld-linux"):
         return "start-up (dynamic loading)"
-    if PASS_THROUGH.search(name):
-        return None
-    return None
+    return None  # the C library, libm, Ceres, PCL, Embree, the kernel: whoever called them
 
 
 def record(scene, duration, core, frequency, overrides, directory):

@@ -57,11 +57,15 @@ struct ReaderPort {
   std::deque<Sample> deferred;  // lockstep: taken early, belongs to a later step
   std::uint64_t delivered = 0;  // samples handed to the callback so far
 
-  // Every sample taken for this port since the last call, in arrival order.
-  void takeAll(std::deque<Sample>& out) {
-    shared->poll();
+  // The samples its shared reader has taken for it so far, in arrival order.
+  void drainInbox(std::deque<Sample>& out) {
     for (auto& s : inbox) out.push_back(std::move(s));
     inbox.clear();
+  }
+  // The same after taking what arrived since (a take costs DDS calls even on an empty reader).
+  void takeAll(std::deque<Sample>& out) {
+    shared->poll();
+    drainInbox(out);
   }
 };
 
@@ -432,10 +436,11 @@ class ProcessRunner {
   // components therefore takes exactly one step, in one process or in several, which is what
   // makes runs deterministic.
   bool deliverInputs(const std::map<std::string, std::uint64_t>* expected) {
+    for (auto& reader : state_.dds_readers) reader->poll();  // once per reader, not per port
     for (auto& r : state_.readers) {
       std::deque<Sample> samples;
       samples.swap(r->deferred);
-      r->takeAll(samples);
+      r->drainInbox(samples);
       if (expected && !awaitSamples(*r, samples, *expected)) return false;
       for (auto& s : samples) {
         if (state_.lockstep && s.source_time >= state_.now) {

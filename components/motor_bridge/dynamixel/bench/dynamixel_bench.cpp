@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -82,42 +83,39 @@ void roundTrips(int reads) {
               reads, ms[ms.size() / 2], ms[ms.size() * 99 / 100], ms.back());
 }
 
+// How long a read takes to fail, ms; throws if it does not fail (the figure would be a lie).
+double msUntilReadFails(Servo& servo, const char* fault) {
+  const auto start = Clock::now();
+  try {
+    servo.readState();
+  } catch (const BusFault&) {
+    return msSince(start);
+  }
+  throw std::runtime_error(std::string("a read succeeded despite ") + fault);
+}
+
 void faults() {
   {
     ServoEmulator emulator(emulated("corrupt"));
     Servo servo(servoOn(emulator, 0.1));
     emulator.corruptReplies(3);  // 1 + max_retries
-    const auto start = Clock::now();
-    try {
-      servo.readState();
-    } catch (const BusFault&) {
-    }
-    std::printf("three corrupt replies: the read fails after %.1f ms\n", msSince(start));
+    std::printf("three corrupt replies: the read fails after %.1f ms\n", msUntilReadFails(servo, "corrupt replies"));
   }
   {
     ServoEmulator emulator(emulated("silent"));
     Servo servo(servoOn(emulator, 0.02));
     emulator.setSilent(true);
-    const auto start = Clock::now();
-    try {
-      servo.readState();
-    } catch (const BusFault&) {
-    }
-    std::printf("a silent servo (reply_timeout 20 ms, 2 retries): detected after %.1f ms\n", msSince(start));
+    std::printf("a silent servo (reply_timeout 20 ms, 2 retries): detected after %.1f ms\n",
+                msUntilReadFails(servo, "a silent servo"));
   }
   {
     ServoEmulator emulator(emulated("unplug"));
     Servo servo(servoOn(emulator, 0.1));
     servo.readState();
     emulator.unplug();
-    auto start = Clock::now();
-    try {
-      servo.readState();
-    } catch (const BusFault&) {
-    }
-    std::printf("a pulled cable: the next read fails after %.2f ms\n", msSince(start));
+    std::printf("a pulled cable: the next read fails after %.2f ms\n", msUntilReadFails(servo, "a pulled cable"));
     emulator.replug();
-    start = Clock::now();
+    const auto start = Clock::now();
     servo.reconnect();
     std::printf("  the cable back: reconnected (ping, model, set-up, torque on) in %.1f ms\n", msSince(start));
   }
