@@ -5,6 +5,7 @@
 //             [--motor RAD_PER_S] [--seed N] [--attitude from_file|yaw_only|identity] [--every N]
 //             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
 //             [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1]
+//             [--frame-velocity-std-linear V] [--frame-velocity-std-angular W]
 //             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
 //             [--measurement-variance M2] [--profile rich|mixed|poor] [--open-fraction F]
 //             [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M]
@@ -55,7 +56,7 @@ int replay(int argc, char** argv) {
         "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor "
         "RAD_PER_S] "
         "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
-        "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+        "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] [--frame-velocity-std-linear V] [--frame-velocity-std-angular W] "
         "[--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] "
         "[--profile rich|mixed|poor] [--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] "
         "[--plane-distance M] [--path-speed M_PER_S] [--poor-rows N]\n");
@@ -121,6 +122,10 @@ int replay(int argc, char** argv) {
       config.degeneracy_scales.period = tools::number(flag, value);
     else if (flag == "--degeneracy-aware")
       config.degeneracy_aware = static_cast<int>(tools::number(flag, value)) != 0;
+    else if (flag == "--frame-velocity-std-linear")
+      config.frame_velocity_std_linear = tools::number(flag, value);
+    else if (flag == "--frame-velocity-std-angular")
+      config.frame_velocity_std_angular = tools::number(flag, value);
     else {
       std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
       return 2;

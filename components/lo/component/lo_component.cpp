@@ -105,6 +105,14 @@ class LoComponent : public Component {
     b.bind("degeneracy_aware", c.degeneracy_aware,
            "leave the state directions a scan does not constrain to the motion prior (suits wheeled platforms; "
            "see README)");
+    b.bind("frame_velocity_std_linear", c.frame_velocity_std_linear,
+           "how far a frame's deskew velocity may differ from the filter's, m/s; 0 with frame_velocity_std_angular "
+           "0: the paper's LO, the filter's velocity deskews every frame (see README)")
+        .between(0.0, 100.0);
+    b.bind("frame_velocity_std_angular", c.frame_velocity_std_angular,
+           "how far a frame's deskew angular velocity may differ from the filter's, rad/s (see "
+           "frame_velocity_std_linear)")
+        .between(0.0, 100.0);
     b.bind("degeneracy_threshold", c.degeneracy_threshold,
            "a direction with fewer effective points than this is degenerate (reported in /lo/metrics)")
         .between(0.0, 1e6);

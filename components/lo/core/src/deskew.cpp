@@ -1,6 +1,6 @@
 #include "uampc/lo/deskew.hpp"
 
-#include "uampc/lo/so3.hpp"
+#include <algorithm>
 
 namespace uampc::lo {
 
@@ -18,16 +18,25 @@ Eigen::Isometry3d BaseState::poseAt(double tau) const {
   return T;
 }
 
-std::vector<Eigen::Vector3d> deskewToWorld(const std::vector<TimedPoint>& points,
-                                           const BaseState& state) {
+FrameDeskew::FrameDeskew(const BaseState& state, const FrameDeviation* deviation)
+    : state_(state),
+      deviation_(deviation),
+      to_middle_(deviation ? Eigen::Vector3d(state.w_B * deviation->tau_mid) : Eigen::Vector3d::Zero()) {}
+
+std::vector<Eigen::Vector3d> deskewToWorld(const std::vector<TimedPoint>& points, const BaseState& state,
+                                           const FrameDeviation* deviation) {
+  const FrameDeskew deskew(state, deviation);
   std::vector<Eigen::Vector3d> out;
   out.reserve(points.size());
-  for (const TimedPoint& point : points) {
-    // Eq. 1, outer part, with T_WB at the point's own time.
-    out.push_back(state.R_WB * (ExpSO3(state.w_B * point.tau) * point.p_B) + state.r_WB +
-                  state.v_W * point.tau);
-  }
+  for (const TimedPoint& point : points) out.push_back(deskew.toWorld(point));
   return out;
+}
+
+double middleTime(const std::vector<TimedPoint>& points) {
+  if (points.empty()) return 0.0;
+  const auto [earliest, latest] = std::minmax_element(
+      points.begin(), points.end(), [](const TimedPoint& a, const TimedPoint& b) { return a.tau < b.tau; });
+  return 0.5 * (earliest->tau + latest->tau);
 }
 
 }  // namespace uampc::lo

@@ -160,12 +160,15 @@ struct Correspondence {
 };
 
 // Jacobian of the residuals, dz/d(error state), one row per correspondence; row-major so that a
-// row is written contiguously.
-using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, 12, Eigen::RowMajor>;
+// row is written contiguously. 12 columns, or 18 with the frame's deviation e = (dv, dw) from the
+// state's velocity: one matrix, so that one symmetric rank update gives every product.
+using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using Matrix18d = Eigen::Matrix<double, 18, 18>;
+using Vector18d = Eigen::Matrix<double, 18, 1>;
 
 // Data association at the iterate x: each point with the plane through its k nearest map points,
 // if they are near enough, planar, and (options.match_seen_side_only) seen from the point's side.
-void associate(const std::vector<TimedPoint>& points, const BaseState& x, const LocalMap& map,
+void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew, const LocalMap& map,
                const UpdateOptions& options, std::vector<Correspondence>& correspondences) {
   const double max_neighbour_distance2 = options.max_neighbour_distance * options.max_neighbour_distance;
   std::vector<Eigen::Vector3d> neighbours;
@@ -174,39 +177,46 @@ void associate(const std::vector<TimedPoint>& points, const BaseState& x, const 
   views.reserve(options.nearest_neighbours);
   correspondences.clear();
   for (const TimedPoint& point : points) {
-    const Eigen::Vector3d q = x.R_WB * (ExpSO3(x.w_B * point.tau) * point.p_B) + x.r_WB + x.v_W * point.tau;
+    const Eigen::Vector3d q = deskew.toWorld(point);
     if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
     if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
     const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance);
     if (!plane) continue;
     // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
     // within centimetres of it, and nothing that near is seen), at the point's time.
-    if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, x.r_WB + x.v_W * point.tau)) continue;
+    if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, deskew.originAt(point.tau))) continue;
     correspondences.push_back({&point, *plane});
   }
 }
 
-// The measurement model h(x) linearised at x: one row of H and one residual z per plane.
-void linearise(const std::vector<Correspondence>& correspondences, const BaseState& x, Jacobian& H,
-               Eigen::VectorXd& z) {
-  H.resize(static_cast<Eigen::Index>(correspondences.size()), 12);
+// The measurement model h(x) linearised at x: one row of H and one residual z per plane; with a
+// frame deviation, H's columns 12-17 are the deviation's.
+void linearise(const std::vector<Correspondence>& correspondences, const BaseState& x,
+               const FrameDeviation* deviation, Jacobian& H, Eigen::VectorXd& z) {
+  H.resize(static_cast<Eigen::Index>(correspondences.size()), deviation ? 18 : 12);
   z.resize(static_cast<Eigen::Index>(correspondences.size()));
+  const FrameDeskew deskew(x, deviation);
   const Eigen::Matrix3d R_BW = x.R_WB.transpose();
   for (std::size_t i = 0; i < correspondences.size(); ++i) {
     const Correspondence& c = correspondences[i];
     const TimedPoint& point = *c.point;
     const Eigen::Vector3d& n = c.plane.normal;
-    const ExpSO3 E(x.w_B * point.tau);        // deskew rotation, Exp(w tau)
-    const Eigen::Vector3d s = E * point.p_B;  // point in B at the scan end
-    const Eigen::Vector3d q = x.R_WB * s + x.r_WB + x.v_W * point.tau;
+    const FrameDeskew::Rotation E = deskew.rotation(point.tau);  // deskew rotation, Exp(w tau)
+    const Eigen::Vector3d s = E * point.p_B;                      // point in B at the scan end
+    const Eigen::Vector3d q = x.R_WB * s + x.r_WB + deskew.translation(point.tau);
     const Eigen::Vector3d n_B = R_BW * n;
     const auto row = static_cast<Eigen::Index>(i);
     z(row) = n.dot(q) + c.plane.offset;                 // residual
     H.block<1, 3>(row, 0) = s.cross(n_B).transpose();   // rotation (right)
     H.block<1, 3>(row, 3) = n.transpose();              // position
-    H.block<1, 3>(row, 6) = point.tau * n.transpose();  // linear velocity
-    H.block<1, 3>(row, 9) =                             // angular velocity
-        point.tau * point.p_B.cross(E.transposeTimes(n_B)).transpose();
+    const Eigen::Vector3d p_x_n = point.p_B.cross(E.transposeTimes(n_B));
+    H.block<1, 3>(row, 6) = point.tau * n.transpose();   // linear velocity
+    H.block<1, 3>(row, 9) = point.tau * p_x_n.transpose();  // angular velocity
+    if (deviation) {  // the same within the frame, about its middle
+      const double within = point.tau - deviation->tau_mid;
+      H.block<1, 3>(row, 12) = within * n.transpose();
+      H.block<1, 3>(row, 15) = within * p_x_n.transpose();
+    }
   }
 }
 
@@ -237,11 +247,24 @@ std::size_t applyGate(double gate, Jacobian& H, Eigen::VectorXd& z) {
 }
 
 // H^T H through a symmetric rank update: half the work of the general product.
-Matrix12d gramian(const Jacobian& H) {
-  Matrix12d HtH = Matrix12d::Zero();
+Eigen::MatrixXd gramian(const Jacobian& H) {
+  Eigen::MatrixXd HtH = Eigen::MatrixXd::Zero(H.cols(), H.cols());
   HtH.selfadjointView<Eigen::Upper>().rankUpdate(H.transpose());
   HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
   return HtH;
+}
+
+// The Gauss-Newton step with the frame's deviation e as 6 more unknowns (see the header): the
+// system [A_xx A_xe; A_xe^T A_ee] (dx, de) = (b_x, b_e). state_information: the state's
+// information with e marginalised out, A_xx - A_xe A_ee^-1 A_xe^T.
+Vector18d stepWithDeviation(const Matrix12d& A_xx, const Eigen::Matrix<double, 12, 6>& A_xe, const Matrix6d& A_ee,
+                            const Vector12d& b_x, const Vector6d& b_e, Matrix12d& state_information) {
+  Matrix18d A;
+  A << A_xx, A_xe, A_xe.transpose(), A_ee;
+  Vector18d b;
+  b << b_x, b_e;
+  state_information = A_xx - A_xe * A_ee.ldlt().solve(A_xe.transpose());
+  return A.ldlt().solve(b);
 }
 
 }  // namespace
@@ -260,6 +283,17 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   // Query the map in spatial (Morton) order: successive queries then share most of their map
   // blocks, which stay in cache. Same result as scan order, fewer cache misses.
   const std::vector<TimedPoint> ordered = spatialOrder(points, map.voxelSize());
+  // The frame's own velocity, when asked for (see the header): its deviation from the state's
+  // and that deviation's prior information, diag(1 / std^2); a std of 0 ties that part.
+  std::optional<FrameDeviation> deviation;
+  Vector6d deviation_prior = Vector6d::Zero();
+  if (options.frame_velocity_std_linear > 0.0 || options.frame_velocity_std_angular > 0.0) {
+    deviation = FrameDeviation{middleTime(points), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    auto information = [](double std) { return std > 0.0 ? 1.0 / (std * std) : 1e12; };
+    deviation_prior << Eigen::Vector3d::Constant(information(options.frame_velocity_std_linear)),
+        Eigen::Vector3d::Constant(information(options.frame_velocity_std_angular));
+  }
+  const FrameDeviation* frame = deviation ? &*deviation : nullptr;
   bool reassociate = true;
   bool gated = false;  // the residual gate is applied once the ungated iterations converged
   double gate = std::numeric_limits<double>::infinity();
@@ -271,19 +305,23 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     if (reassociate) {
       rotation_since_association = translation_since_association = 0.0;
-      associate(ordered, x, map, options, correspondences);
+      associate(ordered, FrameDeskew(x, frame), map, options, correspondences);
       summary.correspondences = correspondences.size();
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
     }
-    linearise(correspondences, x, H, z);
+    linearise(correspondences, x, frame, H, z);
     // The gate is set once, when the gated iterations start, so that they converge on a fixed
     // set of residuals.
     if (gated && !std::isfinite(gate)) gate = residualGate(z, options.min_residual_gate);
     const std::size_t used = std::isfinite(gate) ? applyGate(gate, H, z) : correspondences.size();
     summary.correspondences = used;
     if (used < options.min_correspondences) break;
-    Matrix12d HtH = gramian(H);
-    Vector12d Htz = H.transpose() * z;
+    const Eigen::MatrixXd gram = gramian(H);
+    const Eigen::VectorXd Hz = H.transpose() * z;
+    Matrix12d HtH = gram.topLeftCorner<12, 12>();
+    Vector12d Htz = Hz.head<12>();
+    Eigen::Matrix<double, 12, 6> HtHe;  // with a frame deviation: the state's and e's cross terms
+    if (frame) HtHe = gram.topRightCorner<12, 6>();
     information = HtH;
     // Directions the scan cannot see get none of its information (Zhang et al. 2016): in them,
     // noise and the few wrong matches every scan has would otherwise move the pose freely. The
@@ -295,20 +333,34 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
         const Matrix12d& pi = summary.state_degeneracy.projector;
         HtH = (pi.transpose() * HtH * pi).eval();
         Htz = (pi.transpose() * Htz).eval();
+        if (frame) HtHe = (pi.transpose() * HtHe).eval();
       }
     }
 
     // Gauss-Newton step of the IEKF (information form, see header).
     const Matrix12d A = prior_information + inverse_variance * HtH;
     const Vector12d b = -inverse_variance * Htz - prior_information * boxMinus(x, prior);
-    const Vector12d dx = A.ldlt().solve(b);
-    if (!dx.allFinite()) {
+    Vector12d dx;
+    if (frame) {  // with the frame's deviation as 6 more unknowns
+      Vector6d e;
+      e << deviation->dv_W, deviation->dw_B;
+      const Matrix6d A_ee = Matrix6d(deviation_prior.asDiagonal()) + inverse_variance * gram.bottomRightCorner<6, 6>();
+      const Vector6d b_e = -inverse_variance * Hz.tail<6>() - deviation_prior.cwiseProduct(e);
+      const Vector18d step =
+          stepWithDeviation(A, inverse_variance * HtHe, A_ee, b, b_e, posterior_information);
+      dx = step.head<12>();
+      deviation->dv_W += step.segment<3>(12);
+      deviation->dw_B += step.segment<3>(15);
+    } else {
+      dx = A.ldlt().solve(b);
+      posterior_information = A;
+    }
+    if (!dx.allFinite() || (frame && !(deviation->dv_W.allFinite() && deviation->dw_B.allFinite()))) {
       summary.applied = false;
       state_ = prior;
       return summary;
     }
     x = boxPlus(x, dx);
-    posterior_information = A;
     summary.applied = true;
     summary.iterations = iteration + 1;
     const double step_rotation = dx.segment<3>(0).norm();
@@ -339,7 +391,9 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     return summary;
   }
   state_ = x;
-  // Covariance update P+ = (I - K H) P- = (P-^-1 + H^T H / sigma^2)^-1.
+  summary.frame_deviation = deviation;
+  // Covariance update P+ = (I - K H) P- = (P-^-1 + H^T H / sigma^2)^-1 (with a frame deviation, the
+  // information of the state with the deviation marginalised out).
   covariance_ = posterior_information.ldlt().solve(Matrix12d::Identity());
   covariance_ = 0.5 * (covariance_ + covariance_.transpose()).eval();
   return summary;

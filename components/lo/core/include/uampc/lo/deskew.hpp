@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "uampc/lo/scan.hpp"
+#include "uampc/lo/so3.hpp"
 
 namespace uampc::lo {
 
@@ -24,8 +25,70 @@ struct BaseState {
   Eigen::Isometry3d poseAt(double tau) const;
 };
 
+// The frame's own velocity, where it may differ from the filter's constant velocity
+// (OdometryConfig::frame_velocity_std_linear and _angular): the base moves with the state's
+// velocity up to the frame's middle, and with the state's velocity plus this deviation within
+// the frame, about its middle:
+//   T_WB(tau) = ( R_WB Exp(w_B tau_mid) Exp((w_B + dw_B)(tau - tau_mid)),
+//                 r_WB + v_W tau + dv_W (tau - tau_mid) ).
+struct FrameDeviation {
+  double tau_mid = 0.0;                              // s, relative to the state's time
+  Eigen::Vector3d dv_W = Eigen::Vector3d::Zero();  // m/s
+  Eigen::Vector3d dw_B = Eigen::Vector3d::Zero();  // rad/s
+};
+
+// How a frame's points are placed at a state: each with the base pose at its own time, from the
+// state's constant velocity, and the frame's deviation from it when there is one.
+class FrameDeskew {
+ public:
+  // The base's rotation from the state's time to a point's, E = Exp(w tau) (or the product of
+  // the two above), kept in Rodrigues form.
+  class Rotation {
+   public:
+    Rotation(const ExpSO3* to_middle, const Eigen::Vector3d& phi) : to_middle_(to_middle), within_(phi) {}
+    Eigen::Vector3d operator*(const Eigen::Vector3d& v) const {
+      const Eigen::Vector3d u = within_ * v;
+      return to_middle_ ? *to_middle_ * u : u;
+    }
+    Eigen::Vector3d transposeTimes(const Eigen::Vector3d& v) const {
+      return within_.transposeTimes(to_middle_ ? to_middle_->transposeTimes(v) : v);
+    }
+
+   private:
+    const ExpSO3* to_middle_;  // null without a deviation
+    ExpSO3 within_;
+  };
+
+  // deviation may be null (the frame moves with the state's velocity); it must outlive this.
+  explicit FrameDeskew(const BaseState& state, const FrameDeviation* deviation = nullptr);
+
+  // Inline: called for every point in every iteration of the update.
+  Rotation rotation(double tau) const {
+    if (!deviation_) return Rotation(nullptr, state_.w_B * tau);
+    return Rotation(&to_middle_, (state_.w_B + deviation_->dw_B) * (tau - deviation_->tau_mid));
+  }
+  Eigen::Vector3d translation(double tau) const {  // r_WB(tau) - r_WB
+    if (!deviation_) return state_.v_W * tau;
+    return state_.v_W * tau + deviation_->dv_W * (tau - deviation_->tau_mid);
+  }
+  // The point in the world frame (Eq. 1, outer part, with T_WB at the point's own time), and the
+  // base origin at the point's time.
+  Eigen::Vector3d toWorld(const TimedPoint& point) const {
+    return state_.R_WB * (rotation(point.tau) * point.p_B) + state_.r_WB + translation(point.tau);
+  }
+  Eigen::Vector3d originAt(double tau) const { return state_.r_WB + translation(tau); }
+
+ private:
+  const BaseState& state_;
+  const FrameDeviation* deviation_;
+  ExpSO3 to_middle_;  // Exp(w tau_mid)
+};
+
 // Every point moved to the world frame with the base pose at its own time.
-std::vector<Eigen::Vector3d> deskewToWorld(const std::vector<TimedPoint>& points,
-                                           const BaseState& state);
+std::vector<Eigen::Vector3d> deskewToWorld(const std::vector<TimedPoint>& points, const BaseState& state,
+                                           const FrameDeviation* deviation = nullptr);
+
+// The middle of the points' time span, (earliest + latest) / 2; 0 for no points.
+double middleTime(const std::vector<TimedPoint>& points);
 
 }  // namespace uampc::lo

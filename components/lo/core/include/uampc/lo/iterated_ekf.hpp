@@ -23,6 +23,23 @@
 // of x_j (-) x- in the rotation is taken as identity, as FAST-LIO and I2EKF-LO do.
 // The posterior covariance is P+ = (I - K H) P- = (P-^-1 + H^T H / sigma^2)^-1.
 //
+// The frame's own velocity (UpdateOptions::frame_velocity_std_*: off here, the odometry's config
+// turns it on). The model above
+// makes each frame's deskew velocity the filter's velocity, so what a frame says of its velocity
+// from its points' times goes into the state at full weight. That view is the weakest part of a
+// scan, and its errors are not independent per point: a wall seen at one instant of the frame
+// carries its 2 cm of map error into every point on it, which reads as 0.4 m/s (README, "The LO
+// in degenerate geometry"). With the option, the frame's deskew velocity is the state's plus a
+// deviation e = (dv_W, dw_B), about the frame's middle tau_mid (FrameDeviation), with a prior
+// e ~ N(0, diag(std^2)):
+//   z_i = n^T ( R Exp(w tau_mid) Exp((w + dw)(tau_i - tau_mid)) p_i + r + v tau_i
+//              + dv (tau_i - tau_mid) ) + d
+// The iterated update then solves for the 18 unknowns (dx, e) and keeps the 12 of the state, with
+// the information of e marginalised out (Schur complement). A frame whose points say its velocity
+// differs, in a fast turn, still deskews itself with what they say; the state learns from that at
+// most one std per frame, and otherwise from how the pose at the frame's middle moves from frame
+// to frame (the frame's middle keeps that pose out of the deviation's reach).
+//
 // Outliers: the iterations first converge with every correspondence, then a residual gate
 // (3 robust standard deviations, at least min_residual_gate) drops wrong planes and the
 // iterations converge again. Gating from the start would drop the inliers of whatever direction
@@ -39,6 +56,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "uampc/lo/degeneracy.hpp"
@@ -71,6 +89,11 @@ struct UpdateOptions {
   // degenerate directions of the whole state get no information from the measurements and the
   // motion prior decides them; either way both analyses are reported in the summary.
   bool project_degenerate = false;
+  // The frame's own velocity (OdometryConfig::frame_velocity_std_linear and _angular): standard
+  // deviations of its deviation from the filter's velocity within the frame; both 0 (the paper's
+  // LO): no deviation, the filter's velocity deskews the frame.
+  double frame_velocity_std_linear = 0.0;   // m/s
+  double frame_velocity_std_angular = 0.0;  // rad/s
   double degeneracy_threshold = 20.0;
   DegeneracyScales degeneracy_scales;
 };
@@ -87,6 +110,9 @@ struct UpdateSummary {
   // whole state (the directions the measurements were kept out of).
   PoseDegeneracy pose_degeneracy;
   StateDegeneracy state_degeneracy;
+  // The frame's deviation from the updated velocity, when UpdateOptions ask for one: the deskew
+  // of this frame's points (deskewToWorld) takes it.
+  std::optional<FrameDeviation> frame_deviation;
 };
 
 class IteratedEkf {

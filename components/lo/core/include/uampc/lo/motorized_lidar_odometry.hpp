@@ -2,8 +2,9 @@
 //
 // registerScan: de-rotate every point with the encoder angle at its own time (Eq. 1), voxel
 // downsample, predict with the constant-velocity model, register to the local map with the
-// iterated EKF (point-to-plane, deskew inside the measurement model), then add the registered
-// scan to the map and drop what is now out of range.
+// iterated EKF (point-to-plane, deskew inside the measurement model, each frame with its own
+// velocity about the filter's), then add the registered scan to the map and drop what is now out
+// of range.
 //
 // The pose refers to the scan end: the time of the latest usable point (Result::time).
 #pragma once
@@ -67,6 +68,21 @@ struct OdometryConfig {
   double degeneracy_threshold = 20.0;
   DegeneracyScales degeneracy_scales;
   bool degeneracy_aware = false;
+  // The frame's own velocity (iterated_ekf.hpp): standard deviations of how far a frame's deskew
+  // velocity may differ from the filter's constant velocity, about the frame's middle. A frame
+  // deskews itself with what its points say, but the state learns from that view at most about
+  // one std per frame, and otherwise from how the pose moves from frame to frame. 0 and 0: the
+  // filter's velocity deskews every frame, so what a frame says of its velocity goes into the
+  // state at full weight (the paper's LO and ours until this option); where the walls are weak
+  // that view is map error, and the yaw rate ran away (README, "The LO in degenerate geometry").
+  // 0.1 m/s and 0.2 rad/s were chosen with tools/lo_replay at constant motor speeds, before any
+  // controller ran with them (README, "The LO in degenerate geometry"): MCD KTH at 1.8 rad/s, lost
+  // at 324 s with 0 and 0, holds within 0.21 m; 0.3 and 0.05 still lose it; linear 1 m/s also
+  // holds it but lets the corridor with doors drift 3.3 m along its axis (0.96 m with 0 and 0).
+  // Not applied to a frame the IMU predicted (use_imu): its readings measured the frame's motion;
+  // nor with degeneracy_aware, which leaves weak velocity directions to the prior its own way.
+  double frame_velocity_std_linear = 0.1;   // m/s
+  double frame_velocity_std_angular = 0.2;  // rad/s
   // Warning: position standard deviation above this.
   double max_position_std = 1.0;  // m
   // Motion that cannot be: an update that changes the velocity by more than these accelerations
