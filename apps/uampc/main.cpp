@@ -332,7 +332,7 @@ class UampcCli {
     CLI::App* sub = addCommand(
         "record",
         "uampc record -o FILE.mcap [--domain N] [--compression zstd|lz4|none] [--chunk-size BYTES]\n"
-        "[--duration S] [TOPIC ...]",
+        "[--duration S] [--security DIR] [TOPIC ...]",
         "Record the topics of a running system (every ROS topic discovered on the domain, of uampc or any\n"
         "other DDS vendor, by default) to an MCAP file as rosbag2 writes it (Foxglove, ros2 bag, uampc play).\n"
         "Ctrl-C stops it and completes the file. Inside a scene, use the recorder component.");
@@ -351,6 +351,10 @@ class UampcCli {
     sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
         ->check(CLI::NonNegativeNumber)
         ->type_name("S");
+    sub->add_option("--security", o.security_dir,
+                    "Join a secured domain with the observer identity of DIR (uampc security init), which may\n"
+                    "read every topic.")
+        ->type_name("DIR");
     commands_.push_back({sub, [this] { return uampc::app::recordCommand(options_.record); }});
   }
 
@@ -359,7 +363,7 @@ class UampcCli {
     CLI::App* sub = addCommand(
         "play",
         "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] "
-        "[--wait-for-readers] [--restamp]",
+        "[--wait-for-readers] [--restamp] [--security DIR]",
         "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
         "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
         "use the player component instead (config/scenes/replay_lo.yaml).");
@@ -383,6 +387,10 @@ class UampcCli {
                   "Move every header stamp (and a PointCloud2's absolute point times) to the present, as if the\n"
                   "recording were happening now: for a real-time system that pairs the played samples with live ones\n"
                   "by stamp (a recorded LiDAR beside a live motor, docs/hardware.md).");
+    sub->add_option("--security", o.security_dir,
+                    "Join a secured domain with the player identity of DIR (uampc security init), which may\n"
+                    "publish every topic, the motor's commands too.")
+        ->type_name("DIR");
     commands_.push_back({sub, [this] { return uampc::app::playCommand(options_.play); }});
   }
 

@@ -158,7 +158,7 @@ int playCommand(const PlayOptions& options) {
     recording::Playback playback(options.file, options.topics);
     for (const auto& warning : playback.warnings()) std::cerr << "uampc play: warning: " << warning << "\n";
     if (playback.topics().empty()) throw std::runtime_error(options.file + ": the recording has no topics");
-    DdsNode dds(domain, "", false, "uampc/play");
+    DdsNode dds(domain, "", false, "uampc/play", checkedSecurityIdentity(options.security_dir, kPlayerIdentity));
     Player player(options, playback, dds);
     std::cerr << "uampc play: " << options.file << ": " << playback.topics().size() << " topics, "
               << playback.sampleCount() << " samples, " << (playback.end() - playback.start()).seconds()

@@ -19,6 +19,7 @@ struct PlayOptions {
   bool clock = false;             // publish /clock with the recording's time
   bool wait_for_readers = false;  // start once every topic has a reader (a recorder, the system under test)
   bool restamp = false;           // move stamps to the present (recording/restamp.hpp)
+  std::string security_dir;       // a secured domain: DIR of uampc security init (its player identity)
 };
 
 // Exit codes: 0 at the end of the recording, 1 for a bad recording or DDS failure, 130 on Ctrl-C.

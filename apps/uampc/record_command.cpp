@@ -44,7 +44,9 @@ struct Arrival {
 class Recorder {
  public:
   Recorder(const RecordOptions& options, int domain)
-      : options_(options), discovery_(domain), writer_(options.output, recordingOptions(options)) {}
+      : options_(options),
+        discovery_(domain, checkedSecurityIdentity(options.security_dir, kObserverIdentity)),
+        writer_(options.output, recordingOptions(options)) {}
 
   // Subscribes to the topics discovered since the last call that are to be recorded.
   void subscribeNewTopics() {

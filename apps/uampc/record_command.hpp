@@ -16,6 +16,7 @@ struct RecordOptions {
   std::string compression = "zstd";
   std::uint64_t chunk_size = 4 * 1024 * 1024;
   double duration_s = 0.0;  // 0: until Ctrl-C
+  std::string security_dir;  // a secured domain: DIR of uampc security init (its observer identity)
 };
 
 // Exit codes: 0 when stopped by Ctrl-C, SIGTERM or --duration (the file is complete), 1 on errors.

@@ -182,6 +182,8 @@ std::map<std::string, TopicGrant> topicGrants(const Scene& scene) {
   TopicGrant& launcher = grants[kLauncherIdentity];
   launcher.publish.insert(ddsTopicName(kClockTopic));
   launcher.subscribe.insert(ddsTopicName(kStepAckTopic));
+  grants[kObserverIdentity].subscribe.insert("*");
+  grants[kPlayerIdentity].publish.insert("*");
   return grants;
 }
 
@@ -233,6 +235,8 @@ int securityInitCommand(const SecurityInitOptions& options) {
   }
   std::cout << "Add to the scene:   security: {directory: " << dir.string() << "}\n"
             << "or run it with:     uampc launch SCENE.yaml --set 'security={directory: " << dir.string() << "}'\n"
+            << "Tools beside it:    uampc topic|record ... --security " << dir.string()
+            << " (reads every topic), uampc play ... --security " << dir.string() << " (publishes every topic)\n"
             << dir.string()
             << "/ca.key.pem signs identities and permissions: keep it away from the machines that run.\n";
   return 0;

@@ -30,7 +30,9 @@ struct TopicGrant {
 
 // Every identity the scene's run needs (its processes and kLauncherIdentity) with its topics: a
 // process's components' outputs and inputs, and the lockstep clock's /clock and step
-// acknowledgements (granted whatever the scene's clock mode, so that --set clock.mode works).
+// acknowledgements (granted whatever the scene's clock mode, so that --set clock.mode works);
+// and uampc's tools beside the run: kObserverIdentity reads every topic, kPlayerIdentity
+// publishes every topic (the pattern "*").
 std::map<std::string, TopicGrant> topicGrants(const Scene& scene);
 
 // Exit codes: 0 done, 1 openssl failed or DIR cannot be written, 2 bad scene or DIR already used.

@@ -110,7 +110,7 @@ void printList(const TopicDiscovery& discovery, bool verbose, int domain_id, dou
 }
 
 int list(const TopicOptions& options, int domain_id) {
-  TopicDiscovery discovery(domain_id);
+  TopicDiscovery discovery(domain_id, checkedSecurityIdentity(options.security_dir, kObserverIdentity));
   sleepUntil(after(options.wait_s));  // Ctrl-C: list what was found so far
   printList(discovery, options.verbose, domain_id, options.wait_s);
   return 0;
@@ -255,7 +255,7 @@ int measure(TopicDiscovery& discovery, const DiscoveredTopic& topic, const Topic
 }
 
 int oneTopic(const TopicOptions& options, int domain_id) {
-  TopicDiscovery discovery(domain_id);
+  TopicDiscovery discovery(domain_id, checkedSecurityIdentity(options.security_dir, kObserverIdentity));
   const std::optional<DiscoveredTopic> topic =
       waitForWriter(discovery, ddsTopicFromUser(options.topic), options.wait_s);
   if (stopRequested()) return 0;
@@ -315,14 +315,18 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
                         std::string(" (default ") + secondsText(kDefaultWaitS) + " s).")
         ->check(CLI::Range(0.0, 3600.0).description(""))
         ->type_name("S");
+    sub->add_option("--security", options.security_dir,
+                    "Join a secured domain with the observer identity of DIR (uampc security init), which may read "
+                    "every topic.")
+        ->type_name("DIR");
     return sub;
   };
-  CLI::App* list_command = add("list", TopicAction::kList, "uampc topic list [--domain N] [--wait S] [-v]",
+  CLI::App* list_command = add("list", TopicAction::kList, "uampc topic list [--domain N] [--wait S] [-v] [--security DIR]",
                                "Every topic on the domain with its type and its number of writers and readers.");
   list_command->add_flag("-v,--verbose", options.verbose,
                          "Also each writer and reader: its participant's name, GUID prefix and vendor, and its QoS.");
   CLI::App* echo_command =
-      add("echo", TopicAction::kEcho, "uampc topic echo TOPIC [--domain N] [--wait S] [-n N] [--full]",
+      add("echo", TopicAction::kEcho, "uampc topic echo TOPIC [--domain N] [--wait S] [-n N] [--full] [--security DIR]",
           "Print TOPIC's samples as YAML (types this uampc knows; of others, the size). Ctrl-C stops.");
   echo_command->add_option("-n", options.count, "Stop after N samples.")
       ->check(CLI::PositiveNumber.description(""))
@@ -334,7 +338,7 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
        {std::tuple{"hz", TopicAction::kHz, "rate (min/max/std dev of the period)", kDefaultHzWindow},
         std::tuple{"bw", TopicAction::kBw, "bandwidth (mean/min/max sample size)", kDefaultBwWindow}}) {
     CLI::App* sub =
-        add(name, action, std::string("uampc topic ") + name + " TOPIC [--domain N] [--wait S] [--window N]",
+        add(name, action, std::string("uampc topic ") + name + " TOPIC [--domain N] [--wait S] [--window N] [--security DIR]",
             std::string("Print TOPIC's ") + what + " every second, over the last N samples. Ctrl-C stops.");
     sub->add_option("--window", options.window,
                     "Samples the figures are over (default " + std::to_string(default_window) + ").")

@@ -32,6 +32,7 @@ struct TopicOptions {
   int count = 0;                  // echo: stop after this many samples; 0: until Ctrl-C
   bool full = false;              // echo: print byte arrays whole
   int window = 0;                 // hz, bw: samples the figures are over; 0: the action's default
+  std::string security_dir;       // a secured domain: DIR of uampc security init (its observer identity)
 };
 
 // Exit codes: 0 done (also on Ctrl-C, after the last report), 1 no writer of the topic or a DDS

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <thread>
 
 #include "command_runner.hpp"
@@ -124,6 +125,12 @@ TEST(Security, InitMakesOneIdentityPerProcessAndTheLauncherGrantingOnlyTheirTopi
   EXPECT_EQ(section(control, "subscribe").find("rt/motor/command"), std::string::npos);
   EXPECT_EQ(section(sim, "publish").find("rt/motor/command"), std::string::npos);
   EXPECT_NE(section(sim, "subscribe").find("rt/motor/command"), std::string::npos);
+  // The tools' identities: the observer reads every topic and writes none, the player writes every topic.
+  const std::string observer = readFile((dir / "tools/observer/permissions.xml").string());
+  const std::string player = readFile((dir / "tools/player/permissions.xml").string());
+  EXPECT_NE(section(observer, "subscribe").find("<topic>*</topic>"), std::string::npos) << observer;
+  EXPECT_EQ(section(observer, "publish"), "") << observer;
+  EXPECT_NE(section(player, "publish").find("<topic>*</topic>"), std::string::npos) << player;
   // The private keys are the owner's only.
   EXPECT_EQ(fs::status(dir / "ca.key.pem").permissions() & fs::perms::group_read, fs::perms::none);
   // A second init into the same directory is refused rather than mixing two CAs.
@@ -190,6 +197,58 @@ TEST(Security, AProcessNotPermittedToWriteTheMotorCommandCannotWriteIt) {
                           "/processes/sim/permissions.p7s"),
             std::string::npos)
       << r.output;
+}
+
+// uampc's tools beside a secured run, with the identities `security init` made for them: the
+// observer's echo reads a scan where the same echo without it finds no writer, record keeps the
+// scans, and play (the player identity) publishes them again to an observer on another domain.
+TEST(Security, ToolsJoinASecuredRunWithTheirIdentities) {
+  const std::string out = freshDirectory("security_tools");
+  const std::string recording = out + "/scans.mcap";
+  const std::string run_domain = " --domain " + std::to_string(domain(5));
+  const std::string observer = " --security " + keys();
+  auto echo_secured = std::async(std::launch::async, [&] {
+    return runUampc("topic echo /lidar/points -n 1 --wait 30" + run_domain + observer);
+  });
+  auto echo_plain =
+      std::async(std::launch::async, [&] { return runUampc("topic echo /lidar/points -n 1 --wait 10" + run_domain); });
+  // The recorder runs until the run has ended (the test makes the stop file), then stops as at Ctrl-C.
+  const std::string stop = out + "/stop";
+  auto record = std::async(std::launch::async, [&] {
+    return runShell(binaryPath("bin/uampc") + " record -o " + recording + run_domain + observer + " /lidar/points > " +
+                    out + "/record.log 2>&1 & rec=$!; for i in $(seq 1200); do [ -e " + stop +
+                    " ] && break; sleep 0.1; done; kill -INT $rec; wait $rec; code=$?; cat " + out +
+                    "/record.log; exit $code");
+  });
+  // 8 s of sim time at half real time: under ASan a secured reader needs seconds to join, and the
+  // scene's 3 s left the recorder with nothing.
+  launch("security_tools_run", domain(5), securedBy(keys()) + " --set clock.duration=8");
+  std::ofstream{stop};
+  const CommandResult secured = echo_secured.get(), plain = echo_plain.get(), recorded = record.get();
+  if (HasFailure()) return;  // the run failed: the recording below would be empty, and play would wait for nothing
+  EXPECT_EQ(secured.exit_code, 0) << secured.output;
+  EXPECT_NE(secured.output.find("point_step:"), std::string::npos) << secured.output;
+  EXPECT_EQ(plain.exit_code, 1) << plain.output;
+  EXPECT_NE(plain.output.find("no writer of /lidar/points"), std::string::npos) << plain.output;
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.output;
+
+  const std::string play_domain = " --domain " + std::to_string(domain(6));
+  auto echo_played = std::async(std::launch::async, [&] {
+    return runUampc("topic echo /lidar/points -n 1 --wait 30" + play_domain + observer);
+  });
+  // play waits for its readers without a limit, as a user would want; the test bounds it.
+  const CommandResult played = runShell("timeout -s INT 120 " + binaryPath("bin/uampc") + " play " + recording +
+                                        " --rate 4 --wait-for-readers" + play_domain + " --security " + keys());
+  EXPECT_EQ(played.exit_code, 0) << played.output;
+  const CommandResult heard = echo_played.get();
+  EXPECT_EQ(heard.exit_code, 0) << heard.output;
+  EXPECT_NE(heard.output.find("point_step:"), std::string::npos) << heard.output;
+
+  // A directory without the tools' identities is refused by file name, before DDS starts.
+  const std::string empty = freshDirectory("security_tools_none");
+  const CommandResult refused = runUampc("topic list --wait 0" + play_domain + " --security " + empty);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find(empty + "/tools/observer/cert.pem"), std::string::npos) << refused.output;
 }
 
 // A copy of the keys with one change, and a scene naming it, so that errors have a scene line.

@@ -88,12 +88,16 @@ std::string shownTypeName(const std::string& dds_type) {
   return ros_name.empty() ? dds_type : ros_name;
 }
 
-TopicDiscovery::TopicDiscovery(int domain_id) {
+TopicDiscovery::TopicDiscovery(int domain_id, const DdsIdentity& identity) {
   auto* factory = DomainParticipantFactory::get_instance();
   DomainParticipantQos qos = factory->get_default_participant_qos();
   qos.name("uampc topic");
+  applyDdsSecurity(qos, identity);
   participant_ = factory->create_participant(domain_id, qos, &listener_, StatusMask::none());
-  if (!participant_) throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id));
+  if (!participant_) {
+    throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id) +
+                             (identity.enabled() ? " with DDS Security identity " + identity.certificate : ""));
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   own_prefix_ = prefixText(participant_->guid().guidPrefix);
 }

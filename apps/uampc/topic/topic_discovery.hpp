@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "uampc/runtime/dds_security.hpp"
+
 namespace uampc::app {
 
 struct DiscoveredParticipant {
@@ -46,8 +48,9 @@ std::string shownTypeName(const std::string& dds_type);
 
 class TopicDiscovery {
  public:
-  // Joins the domain with a participant named "uampc topic". Throws std::runtime_error if it cannot.
-  explicit TopicDiscovery(int domain_id);
+  // Joins the domain with a participant named "uampc topic", authenticated with identity when it
+  // is enabled (a secured domain, dds_security.hpp). Throws std::runtime_error if it cannot.
+  explicit TopicDiscovery(int domain_id, const DdsIdentity& identity = {});
   ~TopicDiscovery();
   TopicDiscovery(const TopicDiscovery&) = delete;
   TopicDiscovery& operator=(const TopicDiscovery&) = delete;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <regex>
+#include <stdexcept>
 
 namespace fs = std::filesystem;
 
@@ -94,7 +95,10 @@ void checkValidity(const std::string& file, const std::string& document, std::ve
 
 std::string identityFolder(const std::string& directory, const std::string& name) {
   const fs::path root(directory);
-  return (name == kLauncherIdentity ? root / "launcher" : root / "processes" / name).string();
+  if (name == kLauncherIdentity) return (root / "launcher").string();
+  if (name == kObserverIdentity) return (root / "tools" / "observer").string();
+  if (name == kPlayerIdentity) return (root / "tools" / "player").string();
+  return (root / "processes" / name).string();
 }
 
 DdsIdentity securityIdentity(const std::string& directory, const std::string& name) {
@@ -160,6 +164,16 @@ std::vector<std::string> checkSecurityIdentity(const DdsIdentity& identity) {
   const std::string permissions = verifiedDocument(identity.permissions, store.get(), problems);
   if (!permissions.empty()) checkValidity(identity.permissions, permissions, problems);
   return problems;
+}
+
+DdsIdentity checkedSecurityIdentity(const std::string& directory, const std::string& name) {
+  const DdsIdentity identity = securityIdentity(directory, name);
+  if (!identity.enabled()) return identity;
+  const std::vector<std::string> problems = checkSecurityIdentity(identity);
+  if (problems.empty()) return identity;
+  std::string text = "security directory " + directory + ", identity " + name + ":";
+  for (const auto& p : problems) text += "\n  " + p;
+  throw std::runtime_error(text);
 }
 
 }  // namespace uampc

@@ -16,6 +16,12 @@ namespace uampc {
 // letter, so no process can take it: the launcher's files live in DIR/launcher, a process's in
 // DIR/processes/NAME.
 inline constexpr const char* kLauncherIdentity = "launcher";
+// The identities of uampc's tools beside a secured run (their files in DIR/tools/observer and
+// DIR/tools/player). A hyphen keeps them apart from any process name. The observer may read every
+// topic (uampc topic, uampc record); the player may publish every topic (uampc play): it can
+// command the motor, so it is handed out like a process's key.
+inline constexpr const char* kObserverIdentity = "uampc-observer";
+inline constexpr const char* kPlayerIdentity = "uampc-player";
 
 // The files one participant authenticates and is authorized with; all empty: security off.
 struct DdsIdentity {
@@ -31,7 +37,8 @@ struct DdsIdentity {
 // Where an identity's files are in a security directory; security off (all empty) when
 // `directory` is empty. `name` is a process name or kLauncherIdentity.
 DdsIdentity securityIdentity(const std::string& directory, const std::string& name);
-// The folder of an identity inside the directory (DIR/launcher or DIR/processes/NAME).
+// The folder of an identity inside the directory (DIR/launcher, DIR/tools/observer,
+// DIR/tools/player or DIR/processes/NAME).
 std::string identityFolder(const std::string& directory, const std::string& name);
 
 // Sets the participant properties that turn on the built-in plugins with these files; does
@@ -43,5 +50,9 @@ void applyDdsSecurity(eprosima::fastdds::dds::DomainParticipantQos& qos, const D
 // certificate, a document not signed by the CA or past its validity. Empty when all is well.
 // Fast DDS would only refuse to create the participant, without saying why.
 std::vector<std::string> checkSecurityIdentity(const DdsIdentity& identity);
+
+// securityIdentity, checked: throws std::runtime_error with every problem checkSecurityIdentity
+// finds. Security off (an empty identity) when directory is empty. For the tools' --security.
+DdsIdentity checkedSecurityIdentity(const std::string& directory, const std::string& name);
 
 }  // namespace uampc
