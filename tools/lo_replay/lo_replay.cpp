@@ -45,21 +45,33 @@ double degrees(double rad) { return rad * 180.0 / M_PI; }
 
 }  // namespace
 
+void printUsage(std::FILE* out);
 int replay(int argc, char** argv);
 
 int main(int argc, char** argv) { return tools::runTool("lo_replay", replay, argc, argv); }
 
+void printUsage(std::FILE* out) {
+  std::fprintf(
+      out,
+      "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S (30)] "
+      "[--motor RAD_PER_S (3.6)] [--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] "
+      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+      "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
+      "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--profile rich|mixed|poor] "
+      "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] "
+      "[--path-speed M_PER_S] [--poor-rows N]\n"
+      "Replays the simulated motorized LiDAR at a constant motor speed into the LO, without DDS, and prints per\n"
+      "frame the errors against ground truth, then a summary line (README, \"Where the loop's time goes\"). Unset LO options take\n"
+      "the LO's defaults.\n");
+}
+
 int replay(int argc, char** argv) {
+  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
+    printUsage(stdout);
+    return 0;
+  }
   if (argc < 2 || argc % 2 != 0) {
-    std::fprintf(
-        stderr,
-        "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S] [--motor "
-        "RAD_PER_S] "
-        "[--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] [--iterations N] "
-        "[--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] [--frame-velocity-std-linear V] [--frame-velocity-std-angular W] "
-        "[--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] "
-        "[--profile rich|mixed|poor] [--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] "
-        "[--plane-distance M] [--path-speed M_PER_S] [--poor-rows N]\n");
+    printUsage(stderr);
     return 2;
   }
   const std::string source = argv[1];
