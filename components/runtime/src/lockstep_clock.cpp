@@ -94,9 +94,12 @@ std::string otherRunOnTheDomain(DataReader* ack_reader, std::size_t processes, i
 static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
                                      const std::function<std::string()>& check_processes) {
   ClockResult result;
+  // Declared before the participant, so that it outlives the reader it listens to: Fast DDS may
+  // call it until the reader is deleted, and the early returns below leave that to ~DdsNode
+  // (ThreadSanitizer saw a notify on a destroyed Wakeup).
+  Wakeup listener;
   DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock",
               securityIdentity(scene.security_directory, kLauncherIdentity));
-  Wakeup listener;
   DataWriter* clock_writer = dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
                                               &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
   DataReader* ack_reader =
