@@ -22,6 +22,14 @@ inline double number(const std::string& flag, const std::string& text) {
   return value;
 }
 
+// number(), and not negative: a duration, a noise, a standard deviation or a voxel size. A negative
+// one would be taken silently (a std of -0.3 squares to the same information as 0.3).
+inline double nonNegative(const std::string& flag, const std::string& text) {
+  const double value = number(flag, text);
+  if (value < 0.0) throw std::invalid_argument(flag + ": '" + text + "' must not be negative");
+  return value;
+}
+
 inline int runTool(const char* name, int (*run)(int, char**), int argc, char** argv) {
   try {
     return run(argc, argv);

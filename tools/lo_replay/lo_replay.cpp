@@ -85,59 +85,59 @@ int replay(int argc, char** argv) {
     const std::string flag = argv[i];
     const char* value = argv[i + 1];
     if (flag == "--start")
-      start = tools::number(flag, value);
+      start = tools::nonNegative(flag, value);
     else if (flag == "--duration")
-      duration = tools::number(flag, value);
+      duration = tools::nonNegative(flag, value);
     else if (flag == "--motor")
       motor_speed = tools::number(flag, value);
     else if (flag == "--seed")
-      settings.seed = static_cast<std::uint64_t>(tools::number(flag, value));
+      settings.seed = static_cast<std::uint64_t>(tools::nonNegative(flag, value));
     else if (flag == "--attitude")
       settings.attitude = value;
     else if (flag == "--door-spacing")
-      settings.corridor_door_spacing = tools::number(flag, value);
+      settings.corridor_door_spacing = tools::nonNegative(flag, value);
     else if (flag == "--lidar-range-noise")
-      caster_config.range_noise_stddev = tools::number(flag, value);
+      caster_config.range_noise_stddev = tools::nonNegative(flag, value);
     else if (flag == "--lidar-angular-noise-deg")
-      caster_config.angular_noise_stddev = tools::number(flag, value) * M_PI / 180.0;
+      caster_config.angular_noise_stddev = tools::nonNegative(flag, value) * M_PI / 180.0;
     else if (flag == "--path-speed")
-      settings.path_speed = tools::number(flag, value);
+      settings.path_speed = tools::nonNegative(flag, value);
     else if (flag == "--poor-rows")
-      settings.campus_poor_rows = static_cast<int>(tools::number(flag, value));
+      settings.campus_poor_rows = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--plane-distance")
-      config.plane_max_point_distance = tools::number(flag, value);
+      config.plane_max_point_distance = tools::nonNegative(flag, value);
     else if (flag == "--profile")
       settings.density_profile = value;
     else if (flag == "--open-fraction")
-      settings.open_fraction = tools::number(flag, value);
+      settings.open_fraction = tools::nonNegative(flag, value);
     else if (flag == "--every")
-      every = static_cast<int>(tools::number(flag, value));
+      every = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--linear-noise")
-      config.linear_process_noise = tools::number(flag, value);
+      config.linear_process_noise = tools::nonNegative(flag, value);
     else if (flag == "--angular-noise")
-      config.angular_process_noise = tools::number(flag, value);
+      config.angular_process_noise = tools::nonNegative(flag, value);
     else if (flag == "--iterations")
-      config.max_iterations = static_cast<int>(tools::number(flag, value));
+      config.max_iterations = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--scan-voxel")
-      config.scan_voxel_size = tools::number(flag, value);
+      config.scan_voxel_size = tools::nonNegative(flag, value);
     else if (flag == "--map-voxel")
-      config.map_voxel_size = tools::number(flag, value);
+      config.map_voxel_size = tools::nonNegative(flag, value);
     else if (flag == "--imu")
-      use_imu = static_cast<int>(tools::number(flag, value)) != 0;
+      use_imu = static_cast<int>(tools::nonNegative(flag, value)) != 0;
     else if (flag == "--degeneracy-threshold")
-      config.degeneracy_threshold = tools::number(flag, value);
+      config.degeneracy_threshold = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-length")
-      config.degeneracy_scales.length = tools::number(flag, value);
+      config.degeneracy_scales.length = tools::nonNegative(flag, value);
     else if (flag == "--measurement-variance")
-      config.measurement_variance = tools::number(flag, value);
+      config.measurement_variance = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-period")
-      config.degeneracy_scales.period = tools::number(flag, value);
+      config.degeneracy_scales.period = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-aware")
-      config.degeneracy_aware = static_cast<int>(tools::number(flag, value)) != 0;
+      config.degeneracy_aware = static_cast<int>(tools::nonNegative(flag, value)) != 0;
     else if (flag == "--frame-velocity-std-linear")
-      config.frame_velocity_std_linear = tools::number(flag, value);
+      config.frame_velocity_std_linear = tools::nonNegative(flag, value);
     else if (flag == "--frame-velocity-std-angular")
-      config.frame_velocity_std_angular = tools::number(flag, value);
+      config.frame_velocity_std_angular = tools::nonNegative(flag, value);
     else {
       std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
       return 2;
