@@ -6,6 +6,7 @@
 #include <regex>
 #include <set>
 
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/scene.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 
@@ -175,7 +176,7 @@ void ExperimentValidator::readScenes(const YAML::Node& node, Experiment& experim
         fs::path p(substitute(item["scene"], *path));
         if (p.is_relative()) p = fs::path(directory_) / p;
         scene.scene_file = p.lexically_normal().string();
-        if (!fs::is_regular_file(scene.scene_file)) error(item["scene"], "scene file not found: " + scene.scene_file);
+        if (!isRegularFile(scene.scene_file)) error(item["scene"], "scene file not found: " + scene.scene_file);
       }
     }
     scene.overrides = overrides(item["overrides"]);
@@ -272,7 +273,7 @@ std::vector<ExperimentController> defaultControllers() {
 
 Experiment loadExperiment(const std::string& path, const std::map<std::string, std::string>& variables) {
   const std::string file = fs::absolute(path).lexically_normal().string();
-  if (!fs::is_regular_file(file)) throw ExperimentError({path + ": error: experiment file not found"});
+  if (!isRegularFile(file)) throw ExperimentError({path + ": error: experiment file not found"});
   YAML::Node root;
   try {
     root = YAML::LoadFile(file);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/run_files/text_file.hpp"
 
 namespace fs = std::filesystem;
@@ -88,7 +89,7 @@ void writeExperimentSnapshot(const std::string& output_directory, const Experime
 
 ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory) {
   const std::string path = (fs::path(output_directory) / kExperimentSnapshotFile).string();
-  if (!fs::is_regular_file(path)) {
+  if (!isRegularFile(path)) {
     throw ExperimentError({path + ": error: no such file (is " + output_directory +
                            " the --out directory of a `uampc experiment`?)"});
   }

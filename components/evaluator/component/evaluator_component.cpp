@@ -18,6 +18,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/evaluator/completeness.hpp"
@@ -224,7 +225,7 @@ class EvaluatorComponent : public Component {
   // scene); none when the process was started otherwise, e.g. `uampc run-process` by hand.
   std::optional<run_files::RunInfo> readRunInfo(const std::string& out) const {
     const std::string path = run_files::inDirectory(out, run_files::kRunInfoFile);
-    if (!std::filesystem::exists(path)) {
+    if (!pathExists(path)) {
       ctx_.log().info("no ", path, " (the run was not started by uampc launch --out): metrics.json will not say ",
                       "what the run was");
       return std::nullopt;

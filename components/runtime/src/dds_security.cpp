@@ -13,6 +13,8 @@
 #include <regex>
 #include <stdexcept>
 
+#include "uampc/runtime/file_checks.hpp"
+
 namespace fs = std::filesystem;
 
 namespace uampc {
@@ -132,7 +134,7 @@ std::vector<std::string> checkSecurityIdentity(const DdsIdentity& identity) {
   std::vector<std::string> problems;
   for (const std::string* file :
        {&identity.ca, &identity.certificate, &identity.private_key, &identity.governance, &identity.permissions}) {
-    if (!fs::is_regular_file(*file)) problems.push_back(*file + ": file not found");
+    if (!isRegularFile(*file)) problems.push_back(*file + ": file not found");
   }
   if (!problems.empty()) return problems;
 

@@ -13,6 +13,7 @@
 
 #include "lockstep_clock.hpp"
 #include "uampc/runtime/child_processes.hpp"
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/run_record.hpp"
 #include "uampc/runtime/shared_memory_cleanup.hpp"
@@ -140,7 +141,7 @@ class ProcessSupervisor {
 // The output directory removed (or replaced) during the run: the outputs written from then on would
 // go nowhere, and the run's results would be silently lost.
 std::string outputDirectoryProblem(const std::string& output_directory) {
-  if (output_directory.empty() || fs::is_directory(output_directory)) return {};
+  if (output_directory.empty() || isDirectory(output_directory)) return {};
   return "the output directory " + output_directory + " was removed during the run; its outputs are lost";
 }
 

@@ -15,6 +15,7 @@
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/edit_distance.hpp"
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 
@@ -342,7 +343,7 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
   if (root["dds_profile"]) {
     if (auto v = scalar<std::string>(root["dds_profile"], "dds_profile")) {
       scene.dds_profile = resolvePath(*v, directoryOf(root["dds_profile"]));
-      if (!fs::is_regular_file(scene.dds_profile)) {
+      if (!isRegularFile(scene.dds_profile)) {
         error(root["dds_profile"], "dds_profile: file not found: " + scene.dds_profile);
       }
     }
@@ -365,7 +366,7 @@ void SceneValidator::readSecurity(const YAML::Node& node, Scene& scene) {
   if (!directory) return;
   scene.security_directory = resolvePath(*directory, directoryOf(node["directory"]));
   if (!check_security_) return;
-  if (!fs::is_directory(scene.security_directory)) {
+  if (!isDirectory(scene.security_directory)) {
     error(node["directory"], "security.directory: not a directory: " + scene.security_directory +
                                  " (make it with `uampc security init DIR --scene SCENE.yaml`)");
     return;
@@ -374,7 +375,7 @@ void SceneValidator::readSecurity(const YAML::Node& node, Scene& scene) {
   if (scene.clock.mode == ClockMode::kLockstep) identities.push_back(kLauncherIdentity);
   std::set<std::string> said;  // the CA and the governance are every identity's: say their problems once
   for (const auto& name : identities) {
-    if (!fs::is_directory(identityFolder(scene.security_directory, name))) {
+    if (!isDirectory(identityFolder(scene.security_directory, name))) {
       error(node["directory"],
             "security: no identity for " +
                 (name == kLauncherIdentity ? std::string("the launcher's clock") : "process '" + name + "'") + " (" +
@@ -640,7 +641,7 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
       if (auto v = scalar<std::string>(node, what)) {
         if (v->empty()) return ParameterValue(*v);
         const std::string path = resolvePath(*v, directoryOf(node));
-        if (!fs::exists(path)) {
+        if (!pathExists(path)) {
           error(node, what + ": file not found: " + path);
           return std::nullopt;
         }
@@ -741,7 +742,7 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog,
                 bool check_security) {
   const std::string file = fs::absolute(path).lexically_normal().string();
-  if (!fs::is_regular_file(file)) throw SceneError({path + ": error: scene file not found"});
+  if (!isRegularFile(file)) throw SceneError({path + ": error: scene file not found"});
   const SceneDocument document = SceneDocument::load(file);
   SceneValidator validator(file, document, catalog);
   validator.check_security_ = check_security;

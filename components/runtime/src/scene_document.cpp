@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/scene.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 #include "yaml_walk.hpp"
@@ -88,7 +89,7 @@ YAML::Node SceneDocument::loadChain(const std::string& file, std::vector<std::st
     for (const auto& f : chain) cycle += f + " -> ";
     throw SceneError({where + ": error: extends cycle: " + cycle + base});
   }
-  if (!fs::is_regular_file(base)) throw SceneError({where + ": error: extends: scene file not found: " + base});
+  if (!isRegularFile(base)) throw SceneError({where + ": error: extends: scene file not found: " + base});
   YAML::Node own(YAML::NodeType::Map);
   for (const auto& kv : node) {
     if (!kv.first.is(key)) own.force_insert(kv.first, kv.second);
