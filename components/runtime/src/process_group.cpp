@@ -41,6 +41,7 @@ struct SharedReader {
   DataReader* reader = nullptr;
   TypeSupport type;
   std::vector<ReaderPort*> ports;
+  std::unique_ptr<ReaderActivity> activity;  // its listener; outlives the reader (deleted first)
 
   // Takes every sample the reader holds into each port's inbox, in arrival order.
   void poll();
@@ -70,6 +71,7 @@ struct ReaderPort {
 };
 
 void SharedReader::poll() {
+  if (!activity->takeMark()) return;  // nothing arrived since the last poll
   for (;;) {
     std::shared_ptr<void> data(type->createData(), [t = type](void* p) { t->deleteData(p); });
     SampleInfo info;
@@ -90,7 +92,8 @@ struct ProtocolReader {
     shared.topic = port.topic = topic;
     shared.node = &node;
     shared.type = TypeSupport(type_support());
-    shared.reader = node.createReader(topic, type_name, type_support, QosPreset::kControl, wakeup);
+    shared.activity = std::make_unique<ReaderActivity>(*wakeup);
+    shared.reader = node.createReader(topic, type_name, type_support, QosPreset::kControl, shared.activity.get());
     shared.ports.push_back(&port);
     port.shared = &shared;
   }
@@ -302,7 +305,8 @@ class ContextImpl : public Context {
     reader->topic = topic;
     reader->node = &node;
     reader->type = TypeSupport(type_support());
-    reader->reader = node.createReader(topic, spec.type_name, type_support, spec.qos, &state_.wakeup);
+    reader->activity = std::make_unique<ReaderActivity>(state_.wakeup);
+    reader->reader = node.createReader(topic, spec.type_name, type_support, spec.qos, reader->activity.get());
     state_.dds_readers.push_back(std::move(reader));
     return state_.dds_readers.back().get();
   }
