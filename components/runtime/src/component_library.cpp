@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "uampc/runtime/file_checks.hpp"
+
 namespace fs = std::filesystem;
 
 namespace uampc {
@@ -76,7 +78,7 @@ const ComponentLibrary* ComponentCatalog::find(const std::string& type) {
   if (auto it = loaded_.find(type); it != loaded_.end()) return it->second.get();
   for (const auto& dir : directories_) {
     const fs::path candidate = fs::path(dir) / (kPrefix + type + kSuffix);
-    if (!fs::is_regular_file(candidate)) continue;
+    if (!isRegularFile(candidate)) continue;  // a type name too long for a file name is unknown too
     auto library = std::make_unique<ComponentLibrary>(candidate.string());
     if (library->spec().type != type) {
       throw std::runtime_error(candidate.string() + ": file name says type '" + type + "' but it registers '" +
