@@ -202,7 +202,8 @@ int launch(const LaunchOptions& options) {
     // Stopped while the processes were starting is no failure: the user asked.
     if (!result.ok && !stopRequested()) error = result.error;
     std::cerr << "uampc: " << result.sim_seconds << " s of sim time in " << result.wall_seconds << " s ("
-              << (result.wall_seconds > 0 ? result.sim_seconds / result.wall_seconds : 0.0) << "x real time)\n";
+              << (result.wall_seconds > 0 ? result.sim_seconds / result.wall_seconds : 0.0)
+              << "x real time), after a start of " << result.startup_seconds << " s\n";
   } else {
     const auto start = std::chrono::steady_clock::now();
     while (!stopRequested()) {

@@ -14,7 +14,8 @@ struct ClockResult {
   bool ok = true;
   std::string error;       // why the run stopped early
   double sim_seconds = 0;  // sim time reached
-  double wall_seconds = 0;
+  double wall_seconds = 0;     // of the loop, from the first step on
+  double startup_seconds = 0;  // from the clock's start until every process was ready
 };
 
 // check_processes is called while waiting; a non-empty answer (e.g. "process 'sim' died") stops
