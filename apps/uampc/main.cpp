@@ -345,7 +345,7 @@ class UampcCli {
         ->check(CLI::IsMember({"zstd", "lz4", "none"}).description(""))
         ->type_name("zstd|lz4|none");
     sub->add_option("--chunk-size", o.chunk_size,
-                    "Bytes of samples per chunk (default 4 MiB); a killed recorder loses at most the last chunk.")
+                    "Bytes of samples per chunk (default 4 MiB); a killed recorder loses at most the last three chunks.")
         ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 30))
         ->type_name("BYTES");
     sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")

@@ -1,8 +1,11 @@
 #include <algorithm>
+#include <atomic>
 #include <iostream>
 #include <limits>
+#include <memory>
 
 #include "chunk_builder.hpp"
+#include "chunk_hand_off.hpp"
 #include "chunk_loader.hpp"
 #include "compression.hpp"
 #include "crc32.hpp"
@@ -22,6 +25,10 @@ class Writer::Impl {
     Bytes header;
     encode(header, HeaderRecord{options_.profile, options_.library});
     file_.write(header);
+    bytes_written_ = file_.bytesWritten();
+    if (options_.background) {
+      hand_off_ = std::make_unique<ChunkHandOff>([this](const ChunkBuilder& chunk) { storeChunk(chunk); });
+    }
   }
 
   std::uint16_t addSchema(const std::string& name, const std::string& encoding, const std::string& data) {
@@ -59,14 +66,16 @@ class Writer::Impl {
     if (closed_) return;
     closed_ = true;  // a failure below is reported once, not again by the destructor
     writeChunk();
+    if (hand_off_) hand_off_->finish();
     Bytes tail;
     encodeDataEnd(tail, 0);  // 0: no data section CRC (as rosbag2 writes)
     file_.write(tail);
     writeSummaryAndFooter();
     file_.close();
+    bytes_written_ = file_.bytesWritten();
   }
 
-  std::uint64_t bytesWritten() const { return file_.bytesWritten(); }
+  std::uint64_t bytesWritten() const { return bytes_written_; }
   bool closed() const { return closed_; }
   const std::string& path() const { return file_.path(); }
 
@@ -90,10 +99,20 @@ class Writer::Impl {
     ++channel_message_counts_[channel_id];
   }
 
-  // Chunk record (compressed records), then one Message Index record per channel in it.
+  // The chunk being filled goes to the file, or to the worker that stores it; either way chunk_ is
+  // then empty.
   void writeChunk() {
     if (chunk_.empty()) return;
-    const Bytes& records = chunk_.records();
+    if (hand_off_) return hand_off_->handOver(chunk_);
+    storeChunk(chunk_);
+    chunk_.clear();
+  }
+
+  // Chunk record (compressed records), then one Message Index record per channel in it. On the
+  // worker thread when options_.background: it alone touches file_, compressor_ and chunk_indexes_
+  // until close() has joined it.
+  void storeChunk(const ChunkBuilder& full) {
+    const Bytes& records = full.records();
     ByteView stored;
     try {
       stored = compressor_.compress(records);
@@ -109,8 +128,8 @@ class Writer::Impl {
       compression.clear();
     }
     ChunkRecord chunk;
-    chunk.message_start_time = chunk_.startTime();
-    chunk.message_end_time = chunk_.endTime();
+    chunk.message_start_time = full.startTime();
+    chunk.message_end_time = full.endTime();
     chunk.uncompressed_size = records.size();
     chunk.uncompressed_crc = crc32(records.data(), records.size());
     chunk.compression = compression;
@@ -131,7 +150,7 @@ class Writer::Impl {
     index.chunk_length = file_.bytesWritten() - index.chunk_start_offset;
 
     Bytes message_indexes;
-    for (const auto& [channel_id, entries] : chunk_.messageIndex()) {
+    for (const auto& [channel_id, entries] : full.messageIndex()) {
       index.message_index_offsets[channel_id] = file_.bytesWritten() + message_indexes.size();
       MessageIndexRecord message_index{channel_id, entries};
       std::stable_sort(message_index.entries.begin(), message_index.entries.end(),
@@ -143,7 +162,7 @@ class Writer::Impl {
     file_.flush();  // a recorder killed from here on leaves this chunk readable
 
     chunk_indexes_.push_back(std::move(index));
-    chunk_.clear();
+    bytes_written_ = file_.bytesWritten();
   }
 
   // Summary (groups of Schema, Channel, Statistics, Chunk Index records), one Summary Offset record
@@ -205,6 +224,8 @@ class Writer::Impl {
   StatisticsRecord statistics_;  // message count and time range; the rest is filled in at close
   std::map<std::uint16_t, std::uint64_t> channel_message_counts_;
   bool closed_ = false;
+  std::atomic<std::uint64_t> bytes_written_ = 0;  // read by any thread while the worker writes
+  std::unique_ptr<ChunkHandOff> hand_off_;        // last: stopped before what its worker uses goes
 };
 
 Writer::Writer(const std::string& path, WriterOptions options)

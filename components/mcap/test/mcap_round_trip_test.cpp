@@ -263,6 +263,24 @@ TEST(RoundTrip, ChunkCompressingOver64TimesIsStoredUncompressed) {
   }
 }
 
+// The worker thread of WriterOptions::background stores the same chunks in the same order: the file
+// is the same, byte for byte, with many chunks in flight or one.
+TEST(RoundTrip, BackgroundWriterWritesTheSameBytes) {
+  TempDir dir("background");
+  for (const Compression compression : {Compression::kZstd, Compression::kLz4, Compression::kNone}) {
+    for (const std::uint64_t chunk_size : {std::uint64_t{1}, std::uint64_t{4096}, std::uint64_t{4 * 1024 * 1024}}) {
+      WriterOptions options;
+      options.compression = compression;
+      options.chunk_size = chunk_size;
+      writeSample(dir.file("inline.mcap"), options, 600);
+      options.background = true;
+      writeSample(dir.file("background.mcap"), options, 600);
+      EXPECT_TRUE(readBytes(dir.file("inline.mcap")) == readBytes(dir.file("background.mcap")))
+          << "compression " << static_cast<int>(compression) << ", chunk size " << chunk_size;
+    }
+  }
+}
+
 TEST(WriterErrors, NameTheFile) {
   TempDir dir("writer_errors");
   const std::string unwritable = dir.file("no_such_directory/x.mcap");
@@ -278,11 +296,17 @@ TEST(WriterErrors, NameTheFile) {
   EXPECT_THROW(writer.addChannel(3, "/a", "cdr"), McapError);                         // no schema 3
 }
 
-TEST(WriterErrors, FullDiskIsAnErrorNamingTheFile) {
+class FullDisk : public ::testing::TestWithParam<bool> {};
+
+// With a worker thread (GetParam()), its error reaches the caller at a later write() or at close(),
+// and the writer neither hangs nor crashes.
+TEST_P(FullDisk, IsAnErrorNamingTheFile) {
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
   const Bytes payload(64 * 1024, 7);
   try {
-    Writer writer("/dev/full", WriterOptions{});
+    WriterOptions options;
+    options.background = GetParam();
+    Writer writer("/dev/full", options);
     const std::uint16_t channel = writer.addChannel(0, "/a", "x");
     for (int i = 0; i < 200; ++i)
       writer.write(channel, 0, static_cast<std::uint64_t>(i), 0, payload.data(), payload.size());
@@ -292,6 +316,8 @@ TEST(WriterErrors, FullDiskIsAnErrorNamingTheFile) {
     EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(InlineAndBackground, FullDisk, ::testing::Bool());
 
 }  // namespace
 }  // namespace uampc::mcap::test

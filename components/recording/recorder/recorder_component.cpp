@@ -23,7 +23,7 @@ class RecorderComponent : public Component {
                "the file; a relative path is taken from the run's output directory (--out), or from the current "
                "directory without one (as ros2 bag record does)");
     spec.param("compression", "zstd", "chunk compression").oneOf({"zstd", "lz4", "none"});
-    spec.param("chunk_size", 4 * 1024 * 1024, "bytes of samples per chunk (a killed recorder loses the last chunk)")
+    spec.param("chunk_size", 4 * 1024 * 1024, "bytes of samples per chunk (a killed recorder loses at most the last three)")
         .between(1024, 1 << 30);
     spec.scenePorts("one input per recorded topic", &recordedPorts);
   }

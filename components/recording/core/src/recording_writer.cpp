@@ -24,6 +24,9 @@ mcap::WriterOptions writerOptions(const RecordingOptions& options) {
   w.chunk_size = options.chunk_size;
   w.profile = "ros2";
   w.library = "uampc";
+  // Compression and the file write on their own thread: the recorder's part of a running system's
+  // step is then only copying the sample (README, "Recordings": size and cost).
+  w.background = true;
   return w;
 }
 

@@ -28,6 +28,10 @@ struct WriterOptions {
   std::uint64_t chunk_size = 4 * 1024 * 1024;  // bytes of uncompressed records per chunk
   std::string profile = "ros2";
   std::string library;  // e.g. "uampc 0.3.0"; written in the Header record
+  // Compress and store full chunks on a worker thread (write() then only copies the message into
+  // the chunk). The file is the same byte for byte; an error of the worker is thrown by the next
+  // write() or by close(), and a process killed loses the chunks still queued (at most two).
+  bool background = false;
 };
 
 struct Schema {
