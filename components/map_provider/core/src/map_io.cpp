@@ -87,6 +87,29 @@ bool parseCount(const std::string& word, std::size_t& value) {
   return true;
 }
 
+// PCL's header reader does not stop at DATA: it goes on reading lines (empty ones and comments
+// skipped) for as long as their first word starts with a header keyword, and acts on them. Binary
+// data whose first line reads "POINTS 357913941" made it allocate 4 GB. This finds the first such
+// line after `pos`, as PCL 1.13 would read it; empty if PCL stops at once.
+std::string headerLineInData(const std::string& bytes, std::size_t pos) {
+  static const char* const kKeywords[] = {"FIELDS", "COLUMNS", "SIZE",  "TYPE", "COUNT",
+                                          "WIDTH",  "HEIGHT",  "VIEWPOINT", "POINTS", "DATA"};
+  while (pos < bytes.size()) {
+    std::size_t eol = bytes.find('\n', pos);
+    if (eol == std::string::npos) eol = bytes.size();
+    std::istringstream in(bytes.substr(pos, std::min<std::size_t>(eol - pos, 4096)));
+    pos = eol + 1;
+    std::string word;
+    if (!(in >> word)) continue;  // an empty line
+    if (word[0] == '#' || word.rfind("VERSION", 0) == 0) continue;
+    for (const char* keyword : kKeywords) {
+      if (word.rfind(keyword, 0) == 0) return keyword;
+    }
+    return {};
+  }
+  return {};
+}
+
 PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
   auto bad = [&](const std::string& what) { return std::runtime_error(path + ": not a valid PCD file: " + what); };
   PcdLayout layout;
@@ -133,6 +156,9 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
     }
   }
   layout.header_bytes = pos;
+  if (const std::string keyword = headerLineInData(bytes, pos); !keyword.empty()) {
+    throw bad("the data after DATA starts with a line PCL reads as the header line '" + keyword + " ...'");
+  }
   if (fields == 0 || sizes.size() != fields || types.size() != fields || (!counts.empty() && counts.size() != fields)) {
     throw bad("FIELDS, SIZE, TYPE and COUNT disagree");
   }

@@ -154,6 +154,24 @@ TEST(MapIo, DeclaredSizesBeyondTheBudgetAreRefusedBeforeAllocation) {
   expectLoadError(dir.write("liar.pcd", liar), "more than LZF can expand to");
 }
 
+// PCL 1.13 keeps reading header lines after DATA until a line that is not one: binary data whose
+// first line reads "POINTS 357913941" made it allocate 4 GB (found by fuzz_pcd in its hour run).
+TEST(MapIo, BinaryDataThatReadsAsAHeaderLineIsRefused) {
+  TempDir dir;
+  const std::string header = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                             "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA binary\n";
+  std::string data = "POINTS\x01\x02 357913941\n";
+  data.resize(24, '\0');
+  expectLoadError(dir.write("points_in_data.pcd", header + data),
+                  "the data after DATA starts with a line PCL reads as the header line 'POINTS");
+  // A comment-like line is skipped by PCL, and the one after it read: refused the same way.
+  expectLoadError(dir.write("comment_then_width.pcd", header + std::string("#\nWIDTH 9\n") + std::string(13, '\0')),
+                  "PCL reads as the header line 'WIDTH");
+  // Data that PCL stops at is read as always (two points of zeros, the first byte a '#' or not).
+  std::string zeros = header + std::string(24, '\0');
+  EXPECT_EQ(loadMap(dir.write("zeros.pcd", zeros), {}).points.size(), 2u);
+}
+
 // A binary little-endian PLY of a mesh, written byte by byte (float xyz, uchar count, int index).
 std::string binaryPly(const TriangleMesh& mesh) {
   std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(mesh.vertices.size()) +
