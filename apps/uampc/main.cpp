@@ -79,6 +79,7 @@ struct CommandLine {
   uampc::LaunchOptions scene;                // launch, validate, graph, run-process, clock
   std::vector<std::string> overrides;        // --set, as given, parsed into scene.overrides
   std::string process;                       // run-process
+  bool own_clock = false;                    // run-process
   std::string graph_format = "mermaid";      // graph
   bool json = false;                         // components
   uampc::app::ExperimentOptions experiment;  // experiment
@@ -293,17 +294,22 @@ class UampcCli {
 
   void addRunProcess() {
     CLI::App* sub =
-        addCommand("run-process", "uampc run-process SCENE.yaml --process NAME [--set NAME=VALUE ...] [--out DIR]",
+        addCommand("run-process",
+                   "uampc run-process SCENE.yaml --process NAME [--own-clock] [--set NAME=VALUE ...] [--out DIR]",
                    "Run one process group of a scene (launch does this for every group; use it to spread a\n"
                    "scene over containers or hosts).");
     addScene(sub);
     sub->add_option("--process", options_.process, "The process group to run (a process: of the scene).")
         ->required()
         ->type_name("NAME");
+    sub->add_flag("--own-clock", options_.own_clock,
+                  "Step the scene in this process (its only process group) instead of following `uampc clock`; "
+                  "launch passes it when clock.in_process is true, and then only watches the acknowledgements.");
     addOverrides(sub);
     addOutput(sub);
-    commands_.push_back(
-        {sub, withOverrides([this] { return uampc::runProcessCommand(options_.scene, options_.process); })});
+    commands_.push_back({sub, withOverrides([this] {
+                           return uampc::runProcessCommand(options_.scene, options_.process, options_.own_clock);
+                         })});
   }
 
   void addClock() {

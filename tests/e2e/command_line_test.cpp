@@ -25,7 +25,7 @@ const std::vector<CommandOptions> kCommands = {
      {"EXPERIMENT.yaml", "--out DIR", "--jobs N", "--data-dir DIR", "--domain-base N", "--set NAME=VALUE",
       "--dry-run"}},
     {"components", {"--json"}},
-    {"run-process", {"SCENE.yaml", "--process NAME", "--set NAME=VALUE", "--out DIR"}},
+    {"run-process", {"SCENE.yaml", "--process NAME", "--own-clock", "--set NAME=VALUE", "--out DIR"}},
     {"clock", {"SCENE.yaml", "--set NAME=VALUE"}},
 };
 
@@ -84,6 +84,11 @@ TEST(CommandLine, MissingRequiredArgumentsExit2AndAreNamed) {
   r = runUampc("run-process " + sourcePath("config/scenes/default_split.yaml"));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_TRUE(contains(r.output, "--process is required")) << r.output;
+  // Its own clock only for a scene of one process group: two would each step the run.
+  r = runUampc("run-process " + sourcePath("config/scenes/default_split.yaml") + " --process motor --own-clock");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(contains(r.output, "--own-clock runs the lockstep clock inside the process of a scene of one process"))
+      << r.output;
   r = runUampc("experiment " + sourcePath("config/experiments/paper_core.yaml"));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_TRUE(contains(r.output, "--out is required")) << r.output;

@@ -14,10 +14,10 @@ namespace uampc::test {
 namespace {
 
 // Runs a scene in lockstep into a fresh output directory; returns the directory.
-std::string runScene(const std::string& scene, const std::string& name, int domain) {
+std::string runScene(const std::string& scene, const std::string& name, int domain, const std::string& more = "") {
   const std::string out = freshDirectory(name);
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/" + scene) + " --out " + out +
-                                   " --set domain_id=" + std::to_string(domain));
+                                   " --set domain_id=" + std::to_string(domain) + more);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return out;
 }
@@ -50,17 +50,19 @@ TEST(Lockstep, ThetaIsTheIntegralOfTheCommandWithinEncoderResolutionOver60Second
   for (const auto& s : states) EXPECT_NEAR(std::remainder(s[1], kResolution), 0.0, 1e-9);
 }
 
-TEST(Lockstep, SameSceneTwiceAndSplitOverTwoProcessesGiveIdenticalOutputs) {
+// One process stepping itself (the default for a scene of one process), the same process driven by
+// the launcher's clock (clock.in_process: false), and the scene split over two processes.
+TEST(Lockstep, OwnClockLaunchersClockAndTwoProcessesGiveIdenticalOutputs) {
   const std::string first =
       runScene("motor_constant_speed.yaml", "lockstep_run1", testDomain(DomainBlock::kLockstep, 1));
-  const std::string second =
-      runScene("motor_constant_speed.yaml", "lockstep_run2", testDomain(DomainBlock::kLockstep, 2));
+  const std::string second = runScene("motor_constant_speed.yaml", "lockstep_run2",
+                                      testDomain(DomainBlock::kLockstep, 2), " --set clock.in_process=false");
   const std::string split =
       runScene("motor_two_processes.yaml", "lockstep_split", testDomain(DomainBlock::kLockstep, 3));
   for (const char* file : {"/recorder_motor_states.csv", "/recorder_motor_commands.csv"}) {
     const std::string a = readFile(first + file);
     EXPECT_GT(a.size(), 1000u);
-    EXPECT_EQ(a, readFile(second + file)) << file << " differs between two runs";
+    EXPECT_EQ(a, readFile(second + file)) << file << " differs between the process's clock and the launcher's";
     EXPECT_EQ(a, readFile(split + file)) << file << " differs between one and two processes";
   }
 }

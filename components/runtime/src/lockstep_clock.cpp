@@ -89,10 +89,63 @@ std::string otherRunOnTheDomain(DataReader* ack_reader, std::size_t processes, i
          "domain_id (--set domain_id=N)";
 }
 
+// The acknowledgements the clock reads: takes what arrived and hands each valid one of a process of
+// the scene to `on_ack`. Returns why the run must stop (a process that failed, another run on the
+// domain), empty if nothing.
+class AckFollower {
+ public:
+  AckFollower(const Scene& scene, DataReader* reader) : scene_(scene), reader_(reader), processes_(scene.processes()) {}
+
+  template <class OnAck>
+  std::string take(OnAck&& on_ack) {
+    if (std::string other = otherRunOnTheDomain(reader_, processes_.size(), scene_.domain_id); !other.empty()) {
+      stayUntilTheOtherRunNotices();
+      return other;
+    }
+    uampc::msg::StepAck ack;
+    SampleInfo info;
+    while (reader_->take_next_sample(&ack, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      if (std::find(processes_.begin(), processes_.end(), ack.process()) == processes_.end()) continue;
+      if (ack.failed()) return "process '" + ack.process() + "': " + ack.message();
+      on_ack(ack);
+    }
+    return {};
+  }
+
+  const std::vector<std::string>& processes() const { return processes_; }
+
+ private:
+  const Scene& scene_;
+  DataReader* reader_;
+  std::vector<std::string> processes_;
+};
+
+std::string noAcknowledgement(const char* what, const std::string& late, SteadyClock::duration timeout) {
+  return std::string("no ") + what + " from process(es) " + late + " within " +
+         std::to_string(std::chrono::duration<double>(timeout).count()) +
+         " s of wall time (clock.ack_timeout; at least 30 s at the start); a component is hung or far too slow";
+}
+
 }  // namespace
 
+bool paceTo(SteadyClock::time_point wall_start, Time t, double factor, const std::atomic<bool>& stop) {
+  if (factor <= 0) return !stop;
+  const auto due =
+      wall_start + std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(t.seconds() / factor));
+  while (!stop && SteadyClock::now() < due) {
+    std::this_thread::sleep_until(std::min(due, SteadyClock::now() + std::chrono::milliseconds(100)));
+  }
+  return !stop;
+}
+
+std::int64_t lastStep(const ClockSettings& clock) {
+  if (clock.duration_s <= 0) return -1;
+  return Time::fromSeconds(clock.duration_s).ns / clock.step.ns;
+}
+
 static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
-                                     const std::function<std::string()>& check_processes) {
+                                     const std::function<std::string()>& check_processes, ClockHost host) {
   ClockResult result;
   // Declared before the participant, so that it outlives the reader it listens to: Fast DDS may
   // call it until the reader is deleted, and the early returns below leave that to ~DdsNode
@@ -100,15 +153,28 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   Wakeup listener;
   DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock",
               securityIdentity(scene.security_directory, kLauncherIdentity));
-  DataWriter* clock_writer = dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
+  // With the clock in the process, /clock is that process's to write.
+  DataWriter* clock_writer =
+      host == ClockHost::kHere
+          ? dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                             &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl)
+          : nullptr;
   DataReader* ack_reader =
       dds.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                        &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &listener);
-  const std::vector<std::string> processes = scene.processes();
+  AckFollower acks(scene, ack_reader);
+  const std::vector<std::string>& processes = acks.processes();
   const auto clock_start = SteadyClock::now();
   const auto ack_timeout =
       std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(scene.clock.ack_timeout_s));
+  // Every wait below ends on a failure: an error, a process gone, the deadline passed.
+  auto waitProblem = [&](SteadyClock::time_point deadline, const std::string& late, const char* what,
+                         SteadyClock::duration timeout) -> std::string {
+    if (std::string problem = check_processes(); !problem.empty()) return problem;
+    if (SteadyClock::now() > deadline) return noAcknowledgement(what, late, timeout);
+    listener.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
+    return {};
+  };
 
   // Waits until every process acknowledged `step`; false (with result.error) on failure.
   std::set<std::string> acked;
@@ -117,47 +183,24 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     const auto timeout = step < 0 ? std::chrono::duration_cast<SteadyClock::duration>(
                                         std::chrono::duration<double>(scene.clock.startupTimeout()))
                                   : ack_timeout;
-    auto deadline = SteadyClock::now() + timeout;
-    uampc::msg::StepAck ack;
-    SampleInfo info;
-    while (acked.size() < processes.size()) {
-      if (std::string other = otherRunOnTheDomain(ack_reader, processes.size(), scene.domain_id); !other.empty()) {
-        result.error = other;
-        stayUntilTheOtherRunNotices();
-        return false;
-      }
-      while (ack_reader->take_next_sample(&ack, &info) == ReturnCode_t::RETCODE_OK) {
-        if (!info.valid_data || ack.step() != step) continue;
-        if (std::find(processes.begin(), processes.end(), ack.process()) == processes.end()) continue;
-        if (ack.failed()) {
-          result.error = "process '" + ack.process() + "': " + ack.message();
-          return false;
-        }
-        acked.insert(ack.process());
-      }
-      if (acked.size() == processes.size()) break;
+    const auto deadline = SteadyClock::now() + timeout;
+    for (;;) {
+      result.error = acks.take([&](const uampc::msg::StepAck& ack) {
+        if (ack.step() == step) acked.insert(ack.process());
+      });
+      if (!result.error.empty()) return false;
+      if (acked.size() == processes.size()) return true;
       if (stop) {
         result.error = "stopped";
         return false;
       }
-      if (std::string problem = check_processes(); !problem.empty()) {
-        result.error = problem;
-        return false;
+      std::string late;
+      for (const auto& p : processes) {
+        if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
       }
-      if (SteadyClock::now() > deadline) {
-        std::string late;
-        for (const auto& p : processes) {
-          if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
-        }
-        result.error = std::string("no ") + what + " from process(es) " + late + " within " +
-                       std::to_string(std::chrono::duration<double>(timeout).count()) +
-                       " s of wall time (clock.ack_timeout; at least 30 s at the start); " +
-                       "a component is hung or far too slow";
-        return false;
-      }
-      listener.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
+      result.error = waitProblem(deadline, late, what, timeout);
+      if (!result.error.empty()) return false;
     }
-    return true;
   };
 
   if (!waitFor(-1, "ready message")) {
@@ -165,7 +208,7 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     return result;
   }
   // The processes' clock readers are matched (they said ready); make sure this side sees them too.
-  for (;;) {
+  while (clock_writer) {
     PublicationMatchedStatus s;
     clock_writer->get_publication_matched_status(s);
     if (s.current_count >= static_cast<int>(processes.size())) break;
@@ -178,19 +221,36 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   const auto wall_start = SteadyClock::now();
   result.startup_seconds = std::chrono::duration<double>(wall_start - clock_start).count();
   Progress progress(scene.clock.duration_s);
-  const Time duration = Time::fromSeconds(scene.clock.duration_s);
-  for (std::int64_t step = 0;; ++step) {
-    const Time t{step * scene.clock.step.ns};
-    if (scene.clock.duration_s > 0 && t > duration) break;
-    if (stop) break;
-    if (scene.clock.real_time_factor > 0) {
-      const auto due = wall_start + std::chrono::duration_cast<SteadyClock::duration>(
-                                        std::chrono::duration<double>(t.seconds() / scene.clock.real_time_factor));
-      // In slices, so that Ctrl-C is heard during a long pause.
-      while (!stop && SteadyClock::now() < due) {
-        std::this_thread::sleep_until(std::min(due, SteadyClock::now() + std::chrono::milliseconds(100)));
+  auto reached = [&](Time t) {
+    result.sim_seconds = t.seconds();
+    result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
+    progress.update(result.sim_seconds, result.wall_seconds);
+  };
+  if (host == ClockHost::kInTheProcess) {
+    // The process acknowledges a step every 0.1 s of wall time and its last one: each resets the
+    // deadline, so that a hung component is named after clock.ack_timeout as with this clock.
+    const std::int64_t last = lastStep(scene.clock);
+    std::int64_t step = -1;
+    auto deadline = wall_start + ack_timeout;
+    while (!stop && (last < 0 || step < last)) {
+      result.error = acks.take([&](const uampc::msg::StepAck& ack) {
+        if (ack.step() <= step) return;
+        step = ack.step();
+        deadline = SteadyClock::now() + ack_timeout;
+        reached(fromMsg(ack.stamp()));
+      });
+      if (result.error.empty() && (last < 0 || step < last))
+        result.error = waitProblem(deadline, processes.front(), "acknowledgement of a step", ack_timeout);
+      if (!result.error.empty()) {
+        result.ok = false;
+        break;
       }
     }
+  }
+  for (std::int64_t step = 0; host == ClockHost::kHere; ++step) {
+    const Time t{step * scene.clock.step.ns};
+    if (step > lastStep(scene.clock) && lastStep(scene.clock) >= 0) break;
+    if (!paceTo(wall_start, t, scene.clock.real_time_factor, stop)) break;
     rosgraph_msgs::msg::Clock tick;
     tick.clock(toMsg(t));
     clock_writer->write(&tick);
@@ -199,14 +259,13 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
       result.ok = false;
       break;
     }
-    result.sim_seconds = t.seconds();
-    result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
-    progress.update(result.sim_seconds, result.wall_seconds);
+    reached(t);
   }
+  if (result.error == "stopped") result.error.clear();
   result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
   progress.update(result.sim_seconds, result.wall_seconds, true);
   progress.finish();
-  dds.deleteWriter(clock_writer);
+  if (clock_writer) dds.deleteWriter(clock_writer);
   dds.deleteReader(ack_reader);
   return result;
 }
@@ -216,9 +275,9 @@ void stayUntilTheOtherRunNotices() { std::this_thread::sleep_for(std::chrono::mi
 // A participant Fast DDS refuses (DDS Security's certificates, a profile's transports) is a failed
 // run with its reason, not an exception out of the launcher.
 ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
-                             const std::function<std::string()>& check_processes) {
+                             const std::function<std::string()>& check_processes, ClockHost host) {
   try {
-    return runClockUnguarded(scene, stop, check_processes);
+    return runClockUnguarded(scene, stop, check_processes, host);
   } catch (const std::exception& e) {
     ClockResult result;
     result.ok = false;

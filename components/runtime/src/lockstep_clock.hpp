@@ -3,6 +3,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -18,10 +20,23 @@ struct ClockResult {
   double startup_seconds = 0;  // from the clock's start until every process was ready
 };
 
+// Who steps the scene: this clock, ticking every process, or the scene's only process itself
+// (Scene::clockInsideTheProcess(); `run-process --own-clock`), whose acknowledgements this side then
+// only follows, for progress, hangs and the end of the run.
+enum class ClockHost { kHere, kInTheProcess };
+
 // check_processes is called while waiting; a non-empty answer (e.g. "process 'sim' died") stops
 // the run with that error.
 ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
-                             const std::function<std::string()>& check_processes);
+                             const std::function<std::string()>& check_processes, ClockHost host = ClockHost::kHere);
+
+// clock.real_time_factor: sleeps until sim time `t` is due at `factor` times real time from
+// `wall_start` (in slices, so that a stop is heard during a long pause); false if stopped.
+bool paceTo(std::chrono::steady_clock::time_point wall_start, Time t, double factor, const std::atomic<bool>& stop);
+
+// The last lockstep step of a run of `clock.duration` (steps are 0, 1, ... while their time is
+// within it); -1 for a run without end.
+std::int64_t lastStep(const ClockSettings& clock);
 
 // Two runs on one domain: the side that notices the other first stays on the bus a moment (1.5 s)
 // before it leaves. Discovery is not symmetric in time; without the pause a busy machine can let

@@ -350,10 +350,11 @@ class ContextImpl : public Context {
 // Drives the components of one process.
 class ProcessRunner {
  public:
-  ProcessRunner(const Scene& scene, std::string process, std::string output_directory)
+  ProcessRunner(const Scene& scene, std::string process, std::string output_directory, bool own_clock)
       : scene_(scene),
         process_(std::move(process)),
         output_directory_(std::move(output_directory)),
+        own_clock_(own_clock),
         dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_,
              securityIdentity(scene.security_directory, process_)),
         log_(process_, [this] { return state_.now.seconds(); }) {
@@ -368,6 +369,7 @@ class ProcessRunner {
     for (auto& r : state_.dds_readers) r->node->deleteReader(r->reader);
     writers_.clear();  // each deletes its DDS writer
     clock_reader_.reset();
+    if (clock_writer_) dds_.deleteWriter(clock_writer_);
     ack_writer_.reset();
     ack_reader_.reset();
   }
@@ -537,9 +539,11 @@ class ProcessRunner {
                      std::to_string(want) + " writers";
         }
       }
-      SubscriptionMatchedStatus clock_status;
-      clock_reader_->shared.reader->get_subscription_matched_status(clock_status);
-      if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
+      if (clock_reader_) {
+        SubscriptionMatchedStatus clock_status;
+        clock_reader_->shared.reader->get_subscription_matched_status(clock_status);
+        if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
+      }
       const int processes = static_cast<int>(scene_.processes().size());
       PublicationMatchedStatus ack_status;
       ack_writer_->dds()->get_publication_matched_status(ack_status);
@@ -564,23 +568,30 @@ class ProcessRunner {
     }
   }
 
+  // The samples this process has written on each topic by the end of `step`. The ready message
+  // (step -1) counts nothing: samples written while the components were constructed (latched
+  // ones) carry time 0 and are delivered at step 1, counted by step 0's acknowledgement.
+  std::vector<uampc::msg::TopicCount> writtenBy(std::int64_t step) const {
+    std::map<std::string, std::uint64_t> written;
+    if (step >= 0) {
+      for (const auto& w : writers_) written[w->topic()] += w->written();
+    }
+    std::vector<uampc::msg::TopicCount> counts;
+    for (const auto& [topic, count] : written) {
+      uampc::msg::TopicCount c;
+      c.topic(topic);
+      c.count(count);
+      counts.push_back(c);
+    }
+    return counts;
+  }
+
   void sendAck(std::int64_t step, Time stamp) {
     uampc::msg::StepAck ack;
     ack.process(process_);
     ack.step(step);
     ack.stamp(toMsg(stamp));
-    // The ready message counts nothing: samples written while the components were constructed
-    // (latched ones) carry time 0 and are delivered at step 1, counted by step 0's acknowledgement.
-    std::map<std::string, std::uint64_t> written;
-    if (step >= 0) {
-      for (const auto& w : writers_) written[w->topic()] += w->written();
-    }
-    for (const auto& [topic, count] : written) {
-      uampc::msg::TopicCount c;
-      c.topic(topic);
-      c.count(count);
-      ack.written().push_back(c);
-    }
+    ack.written() = writtenBy(step);
     if (!ack_reader_) acks_[process_][step] = ack.written();  // alone: what the others would have read
     ack.failed(!failure_.empty());
     ack.message(failure_);
@@ -638,8 +649,14 @@ class ProcessRunner {
 
   int runLockstep(const std::atomic<bool>& stop) {
     // The clock's protocol topics are reliable and keep every sample, like the loop's own.
-    clock_reader_ = std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                                     &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, &state_.wakeup);
+    if (own_clock_) {
+      clock_writer_ = dds_.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                        &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
+    } else {
+      clock_reader_ = std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                                       &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
+                                                       &state_.wakeup);
+    }
     ack_writer_ = std::make_unique<DdsWriter>(
         dds_,
         dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
@@ -654,6 +671,7 @@ class ProcessRunner {
     if (!waitForMatches(stop)) return stop ? 0 : 1;
     state_.started = true;
     sendAck(-1, Time{0});  // ready
+    if (own_clock_) return runOwnClock(stop);
 
     while (!stop) {
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
@@ -680,6 +698,39 @@ class ProcessRunner {
     return 0;
   }
 
+  // The scene's only process steps itself (Scene::clockInsideTheProcess()): the same steps as with
+  // the launcher's clock, and the same outputs (lockstep_test), without a tick and an
+  // acknowledgement crossing processes every step, four thread wake-ups (README, "Where the loop's
+  // time goes"). It still publishes /clock for outside tools, and acknowledges a step to the
+  // launcher every 0.1 s of wall time and at the last step, for progress and hang detection; after
+  // the last step it waits, like a process of the launcher's clock, until the launcher stops it.
+  int runOwnClock(const std::atomic<bool>& stop) {
+    const std::int64_t last = lastStep(scene_.clock);
+    const auto wall_start = SteadyClock::now();
+    auto next_ack = wall_start;
+    for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
+      const Time t{step * scene_.clock.step.ns};
+      if (!paceTo(wall_start, t, scene_.clock.real_time_factor, stop)) return 0;
+      rosgraph_msgs::msg::Clock tick;
+      tick.clock(toMsg(t));
+      clock_writer_->write(&tick);
+      state_.now = t;
+      std::map<std::string, std::uint64_t> expected;
+      if (!awaitAcks(step - 1, expected, stop)) return stop ? 0 : 1;
+      const bool ok = deliverInputs(&expected) && fireTimers();
+      if (!ok && stop) return 0;
+      if (!ok || step == last || SteadyClock::now() >= next_ack) {
+        sendAck(step, t);
+        next_ack = SteadyClock::now() + std::chrono::milliseconds(100);
+      } else {
+        acks_[process_][step] = writtenBy(step);  // what the next step waits for
+      }
+      if (!ok) return 1;
+    }
+    while (!stop) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
+    return 0;
+  }
+
   int runRealtime(const std::atomic<bool>& stop) {
     while (!stop) {
       state_.now = wallNow();
@@ -698,6 +749,7 @@ class ProcessRunner {
   const Scene& scene_;
   std::string process_;
   std::string output_directory_;
+  bool own_clock_;
   DdsNode dds_;
   std::unique_ptr<DdsNode> serialized_dds_;  // declared after dds_: destroyed before it
   ProcessState state_;
@@ -705,7 +757,8 @@ class ProcessRunner {
   std::vector<std::shared_ptr<DdsWriter>> writers_;
   std::vector<std::unique_ptr<ContextImpl>> contexts_;
   std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
-  std::unique_ptr<ProtocolReader> clock_reader_;
+  std::unique_ptr<ProtocolReader> clock_reader_;  // ticks of the launcher's clock
+  DataWriter* clock_writer_ = nullptr;           // or this process's own (own_clock_)
   std::unique_ptr<DdsWriter> ack_writer_;
   std::unique_ptr<ProtocolReader> ack_reader_;
   // Acknowledged sample counts: process -> step -> counts per topic.
@@ -717,9 +770,9 @@ class ProcessRunner {
 }  // namespace
 
 int runProcessGroup(const Scene& scene, const std::string& process, const std::string& output_directory,
-                    const std::atomic<bool>& stop) {
+                    const std::atomic<bool>& stop, bool own_clock) {
   try {
-    ProcessRunner runner(scene, process, output_directory);
+    ProcessRunner runner(scene, process, output_directory, own_clock);
     return runner.run(stop);
   } catch (const std::exception& e) {
     Logger(process, {}).error(e.what());

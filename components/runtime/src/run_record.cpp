@@ -54,6 +54,7 @@ void emitClock(YAML::Emitter& out, const ClockSettings& clock) {
   out << YAML::Key << "duration" << YAML::Value << formatNumber(clock.duration_s);
   out << YAML::Key << "ack_timeout" << YAML::Value << formatNumber(clock.ack_timeout_s);
   out << YAML::Key << "real_time_factor" << YAML::Value << formatNumber(clock.real_time_factor);
+  out << YAML::Key << "in_process" << YAML::Value << clock.in_process;
   out << YAML::EndMap;
 }
 

@@ -45,6 +45,10 @@ std::vector<std::string> Scene::processes() const {
   return out;
 }
 
+bool Scene::clockInsideTheProcess() const {
+  return clock.mode == ClockMode::kLockstep && clock.in_process && processes().size() == 1;
+}
+
 // DDS readers of a topic: in each process, the typed inputs with one QoS share one reader
 // (process_group.cpp); each serialized input has its own.
 int Scene::readersOf(const std::string& topic) const {
@@ -391,10 +395,13 @@ void SceneValidator::readSecurity(const YAML::Node& node, Scene& scene) {
 
 void SceneValidator::readClock(const YAML::Node& node, Scene& scene) {
   if (!node.IsMap()) {
-    error(node, "'clock' must be a mapping (mode, step, duration, ack_timeout, real_time_factor)");
+    error(node, "'clock' must be a mapping (mode, step, duration, ack_timeout, real_time_factor, in_process)");
     return;
   }
-  checkKeys(node, {"mode", "step", "duration", "ack_timeout", "real_time_factor"}, "clock");
+  checkKeys(node, {"mode", "step", "duration", "ack_timeout", "real_time_factor", "in_process"}, "clock");
+  if (node["in_process"]) {
+    if (auto v = scalar<bool>(node["in_process"], "clock.in_process")) scene.clock.in_process = *v;
+  }
   if (node["mode"]) {
     if (auto v = scalar<std::string>(node["mode"], "clock.mode")) {
       if (*v == "lockstep")

@@ -25,8 +25,9 @@ struct LaunchOptions {
 int launch(const LaunchOptions& options);
 
 // `uampc run-process`: one process group of a scene. The launcher starts one per group; for runs
-// spread over containers or hosts, start them by hand (see docker/compose.yaml).
-int runProcessCommand(const LaunchOptions& options, const std::string& process);
+// spread over containers or hosts, start them by hand (see docker/compose.yaml). own_clock: the
+// process steps itself (the launcher passes it for a scene of one process, clock.in_process).
+int runProcessCommand(const LaunchOptions& options, const std::string& process, bool own_clock = false);
 
 // `uampc clock`: only the lockstep clock of a scene whose process groups run elsewhere.
 int runClockCommand(const LaunchOptions& options);

@@ -14,8 +14,9 @@ constexpr const char* kClockTopic = "/clock";
 constexpr const char* kStepAckTopic = "/uampc/lockstep/ack";
 
 // Returns the process exit code: 0 after a clean stop, 1 when a component failed.
-// Stops when `stop` becomes true (a signal handler sets it).
+// Stops when `stop` becomes true (a signal handler sets it). own_clock: the lockstep clock runs in
+// this process (only for a scene where Scene::clockInsideTheProcess(); the launcher then follows).
 int runProcessGroup(const Scene& scene, const std::string& process, const std::string& output_directory,
-                    const std::atomic<bool>& stop);
+                    const std::atomic<bool>& stop, bool own_clock = false);
 
 }  // namespace uampc
