@@ -90,17 +90,20 @@ bool parseCount(const std::string& word, std::size_t& value) {
 // PCL's header reader does not stop at DATA: it goes on reading lines (empty ones and comments
 // skipped) for as long as their first word starts with a header keyword, and acts on them. Binary
 // data whose first line reads "POINTS 357913941" made it allocate 4 GB. This finds the first such
-// line after `pos`, as PCL 1.13 would read it; empty if PCL stops at once.
+// line after `pos`, as PCL 1.13 would read it; empty if PCL stops at once. PCL skips only lines
+// that are empty; one of blanks ends its header.
 std::string headerLineInData(const std::string& bytes, std::size_t pos) {
   static const char* const kKeywords[] = {"FIELDS", "COLUMNS", "SIZE",  "TYPE", "COUNT",
                                           "WIDTH",  "HEIGHT",  "VIEWPOINT", "POINTS", "DATA"};
   while (pos < bytes.size()) {
     std::size_t eol = bytes.find('\n', pos);
     if (eol == std::string::npos) eol = bytes.size();
-    std::istringstream in(bytes.substr(pos, std::min<std::size_t>(eol - pos, 4096)));
+    const std::string line = bytes.substr(pos, std::min<std::size_t>(eol - pos, 4096));
     pos = eol + 1;
+    if (line.empty()) continue;
+    std::istringstream in(line);
     std::string word;
-    if (!(in >> word)) continue;  // an empty line
+    if (!(in >> word)) return {};
     if (word[0] == '#' || word.rfind("VERSION", 0) == 0) continue;
     for (const char* keyword : kKeywords) {
       if (word.rfind(keyword, 0) == 0) return keyword;
@@ -116,19 +119,30 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
   std::vector<std::string> sizes, types, counts;
   std::size_t fields = 0, width = 0, height = 0;
   bool have_width = false, have_height = false, have_points = false;
-  std::size_t pos = 0;
+  std::size_t pos = 0, line_number = 0;
   while (layout.data.empty()) {
     const std::size_t eol = bytes.find('\n', pos);
     if (eol == std::string::npos || eol - pos > 4096) throw bad("header has no DATA line");
     std::string line = bytes.substr(pos, eol - pos);
     pos = eol + 1;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+    ++line_number;
+    // Read as PCL reads it, or PCL decodes another header than the one checked here: PCL skips
+    // empty lines only, stops its header at a line of blanks (a fuzzed file then crashed it), and
+    // splits words at spaces, tabs and carriage returns only.
+    if (line.empty()) continue;
+    if (line.find_first_of("\v\f") != std::string::npos) {
+      throw bad("header line " + std::to_string(line_number) + " has a vertical tab or form feed");
+    }
+    if (line.find_first_not_of(" \t\r") == std::string::npos) {
+      throw bad("header line " + std::to_string(line_number) + " is blank before DATA (PCL ends the header there)");
+    }
+    if (line.back() == '\r') line.pop_back();
     std::istringstream in(line);
     std::string key;
     in >> key;
     std::vector<std::string> w;
     for (std::string x; in >> x;) w.push_back(x);
-    if (key.empty() || key[0] == '#') continue;
+    if (key[0] == '#') continue;
     if (key == "VERSION") continue;
     if (key == "FIELDS")
       fields = w.size();

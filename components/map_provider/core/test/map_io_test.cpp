@@ -170,6 +170,11 @@ TEST(MapIo, BinaryDataThatReadsAsAHeaderLineIsRefused) {
   // Data that PCL stops at is read as always (two points of zeros, the first byte a '#' or not).
   std::string zeros = header + std::string(24, '\0');
   EXPECT_EQ(loadMap(dir.write("zeros.pcd", zeros), {}).points.size(), 2u);
+  // A line of blanks ends PCL's header (it skips empty lines only): PCL then read a header without
+  // points and crashed on the data (fuzz_pcd). Refused before PCL sees it.
+  expectLoadError(dir.write("blank_line.pcd", "\r \r\n" + header + std::string(24, '\0')),
+                  "header line 1 is blank before DATA");
+  EXPECT_EQ(loadMap(dir.write("empty_line.pcd", "\n" + header + std::string(24, '\0')), {}).points.size(), 2u);
 }
 
 // A binary little-endian PLY of a mesh, written byte by byte (float xyz, uchar count, int index).
