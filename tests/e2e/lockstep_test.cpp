@@ -67,6 +67,20 @@ TEST(Lockstep, OwnClockLaunchersClockAndTwoProcessesGiveIdenticalOutputs) {
   }
 }
 
+// A process with the clock inside may finish a short run before the launcher has read its ready
+// message: the launcher must see the last step among what it reads then (it waited for a step
+// that never came, until clock.ack_timeout, in EveryShippedSceneStartsAndSteps).
+TEST(Lockstep, ARunShorterThanTheStartEndsWithoutWaiting) {
+  for (int i = 0; i < 3; ++i) {
+    const std::string out = freshDirectory("lockstep_short_" + std::to_string(i));
+    const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_constant_speed.yaml") + " --out " +
+                                     out + domainOverride(DomainBlock::kLockstep, 8) +
+                                     " --set clock.duration=0.01 --set clock.ack_timeout=5");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("uampc: 0.01 s of sim time"), std::string::npos) << r.output;
+  }
+}
+
 TEST(Lockstep, OverridesApplyAndShowInTheOutput) {
   // A different commanded speed must show in the output: the comparison above is not vacuous.
   const std::string out = freshDirectory("lockstep_override");

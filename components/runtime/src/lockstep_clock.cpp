@@ -176,6 +176,16 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     return {};
   };
 
+  // The latest step acknowledged, with its time: a process with the clock inside may have run
+  // far, even to its end, before its ready message is read here.
+  std::int64_t latest = -1;
+  Time latest_time{0};
+  auto note = [&](const uampc::msg::StepAck& ack) {
+    if (ack.step() <= latest) return false;
+    latest = ack.step();
+    latest_time = fromMsg(ack.stamp());
+    return true;
+  };
   // Waits until every process acknowledged `step`; false (with result.error) on failure.
   std::set<std::string> acked;
   auto waitFor = [&](std::int64_t step, const char* what) -> bool {
@@ -186,7 +196,8 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     const auto deadline = SteadyClock::now() + timeout;
     for (;;) {
       result.error = acks.take([&](const uampc::msg::StepAck& ack) {
-        if (ack.step() == step) acked.insert(ack.process());
+        if (ack.step() >= step) acked.insert(ack.process());  // later: a process with the clock inside
+        note(ack);
       });
       if (!result.error.empty()) return false;
       if (acked.size() == processes.size()) return true;
@@ -230,16 +241,15 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     // The process acknowledges a step every 0.1 s of wall time and its last one: each resets the
     // deadline, so that a hung component is named after clock.ack_timeout as with this clock.
     const std::int64_t last = lastStep(scene.clock);
-    std::int64_t step = -1;
     auto deadline = wall_start + ack_timeout;
-    while (!stop && (last < 0 || step < last)) {
+    if (latest >= 0) reached(latest_time);
+    while (!stop && (last < 0 || latest < last)) {
       result.error = acks.take([&](const uampc::msg::StepAck& ack) {
-        if (ack.step() <= step) return;
-        step = ack.step();
+        if (!note(ack)) return;
         deadline = SteadyClock::now() + ack_timeout;
-        reached(fromMsg(ack.stamp()));
+        reached(latest_time);
       });
-      if (result.error.empty() && (last < 0 || step < last))
+      if (result.error.empty() && (last < 0 || latest < last))
         result.error = waitProblem(deadline, processes.front(), "acknowledgement of a step", ack_timeout);
       if (!result.error.empty()) {
         result.ok = false;
