@@ -22,7 +22,7 @@ Eigen::Vector3f reportedDirection(const Eigen::Vector3f& d, const Eigen::Vector2
 
 RayCaster::RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points,
                      RayCasterConfig config)
-    : config_(std::move(config)), scene_(mesh, points, config_.point_radius) {
+    : config_(std::move(config)), scene_(mesh, points, config_.point_radius), pattern_generator_(config_.model) {
   if (!(config_.model.max_range > config_.model.min_range) || config_.model.min_range < 0.0) {
     throw std::invalid_argument("RayCaster: need 0 <= min_range < max_range");
   }
@@ -46,7 +46,7 @@ double lastTimeOffset(const std::vector<PatternPoint>& points) {
 const std::vector<PatternPoint>& RayCaster::pattern(std::uint64_t frame_index) {
   const bool repeats = config_.model.kind == lidar::ScanPatternKind::kSpinning;
   if (cached_pattern_.empty() || (!repeats && frame_index != cached_frame_)) {
-    cached_pattern_ = scanPattern(config_.model, frame_index);
+    pattern_generator_.generate(frame_index, cached_pattern_);
     cached_frame_ = frame_index;
   }
   return cached_pattern_;
@@ -66,9 +66,11 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const B
   });
   rays_.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Isometry3d T_WL = lidar_pose_(frame_start + static_cast<double>(points[k].time_offset));
-    rays_[k].origin = T_WL.translation().cast<float>();
-    rays_[k].direction = (T_WL.linear() * points[k].direction.cast<double>()).normalized().cast<float>();
+    Eigen::Vector3d origin, direction;
+    lidar_pose_.placeRay(frame_start + static_cast<double>(points[k].time_offset), points[k].direction.cast<double>(),
+                         origin, direction);
+    rays_[k].origin = origin.cast<float>();
+    rays_[k].direction = direction.cast<float>().normalized();
     rays_[k].max_distance = max_range;
   }
   if (config_.use_packets) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace uampc::raycaster {
 namespace {
@@ -46,8 +47,29 @@ std::size_t pointsPerFrame(const lidar::LidarModel& m) {
 }
 
 std::vector<PatternPoint> scanPattern(const lidar::LidarModel& m, std::uint64_t frame_index) {
-  const std::size_t n = pointsPerFrame(m);
-  std::vector<PatternPoint> pattern(n);
+  std::vector<PatternPoint> pattern;
+  ScanPatternGenerator(m).generate(frame_index, pattern);
+  return pattern;
+}
+
+ScanPatternGenerator::ScanPatternGenerator(lidar::LidarModel model)
+    : model_(std::move(model)), points_(pointsPerFrame(model_)) {
+  if (model_.kind != lidar::ScanPatternKind::kZigzag) return;
+  cos_azimuth_.resize(points_);
+  sin_azimuth_.resize(points_);
+  for (std::size_t k = 0; k < points_; ++k) {
+    const double t = static_cast<double>(k) / model_.points_per_second;
+    // One head turn per frame.
+    const double azimuth = 2.0 * M_PI * t * model_.frame_rate_hz;
+    cos_azimuth_[k] = std::cos(azimuth);
+    sin_azimuth_[k] = std::sin(azimuth);
+  }
+}
+
+void ScanPatternGenerator::generate(std::uint64_t frame_index, std::vector<PatternPoint>& pattern) const {
+  const lidar::LidarModel& m = model_;
+  const std::size_t n = points_;
+  pattern.resize(n);
   const double frame_period = 1.0 / m.frame_rate_hz;
   switch (m.kind) {
     case lidar::ScanPatternKind::kSpinning: {
@@ -56,7 +78,7 @@ std::vector<PatternPoint> scanPattern(const lidar::LidarModel& m, std::uint64_t 
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t column = k / rings, ring = k % rings;
         // Lasers of a column fire one after another, evenly within the column's time slot.
-        const double t = (static_cast<double>(column) + static_cast<double>(ring) / rings) /
+        const double t = (static_cast<double>(column) + static_cast<double>(ring) / static_cast<double>(rings)) /
                          static_cast<double>(columns) * frame_period;
         const double azimuth = 2.0 * M_PI * static_cast<double>(column) / columns;
         pattern[k] = {direction(azimuth, m.elevations_deg[ring] * kDegToRad), static_cast<float>(t),
@@ -69,13 +91,15 @@ std::vector<PatternPoint> scanPattern(const lidar::LidarModel& m, std::uint64_t 
       for (std::size_t k = 0; k < n; ++k) {
         const double t = static_cast<double>(k) / m.points_per_second;
         const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
-        // One head turn per frame; the lasers sweep the elevation band as triangle waves.
-        const double azimuth = 2.0 * M_PI * t * m.frame_rate_hz;
+        // The lasers sweep the elevation band as triangle waves.
         const double p =
             frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) + static_cast<double>(laser) / m.lasers);
         const double wave = p < 0.5 ? 2.0 * p : 2.0 - 2.0 * p;
-        pattern[k] = {direction(azimuth, lo + (hi - lo) * wave), static_cast<float>(t),
-                      static_cast<std::uint16_t>(laser)};
+        const double elevation = lo + (hi - lo) * wave;
+        const double c = std::cos(elevation);
+        // direction(azimuth, elevation), with the azimuth's cosine and sine of the constructor.
+        pattern[k] = {Eigen::Vector3d(c * cos_azimuth_[k], c * sin_azimuth_[k], std::sin(elevation)).cast<float>(),
+                      static_cast<float>(t), static_cast<std::uint16_t>(laser)};
       }
       break;
     }
@@ -96,7 +120,6 @@ std::vector<PatternPoint> scanPattern(const lidar::LidarModel& m, std::uint64_t 
       break;
     }
   }
-  return pattern;
 }
 
 }  // namespace uampc::raycaster

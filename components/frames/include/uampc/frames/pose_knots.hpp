@@ -40,21 +40,44 @@ class PoseKnots {
 
   // The pose at t; outside [t0, t1] the nearest interval is extended linearly.
   Eigen::Isometry3d operator()(double t) const {
-    const double u = (t - t0_) / spacing_;
-    const std::size_t last = translations_.size() - 2;
-    const std::size_t j = u <= 0.0 ? 0 : std::min(static_cast<std::size_t>(u), last);
-    const double a = u - static_cast<double>(j);
-    Eigen::Quaterniond q;
-    q.coeffs() = (1.0 - a) * rotations_[j].coeffs() + a * rotations_[j + 1].coeffs();
+    const Blend b = blendAt(t);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = q.normalized().toRotationMatrix();
-    T.translation() = (1.0 - a) * translations_[j] + a * translations_[j + 1];
+    T.linear() = rotation(b).toRotationMatrix();
+    T.translation() = translation(b);
     return T;
+  }
+
+  // The same pose applied to a ray, for the ~20k rays of a frame: the origin and the unit
+  // direction in the world of a direction `d` of the moving frame, without building the rotation
+  // matrix (a third of the raycaster's time per frame).
+  void placeRay(double t, const Eigen::Vector3d& d, Eigen::Vector3d& origin, Eigen::Vector3d& direction) const {
+    const Blend b = blendAt(t);
+    origin = translation(b);
+    direction = rotation(b) * d;
   }
 
   std::size_t size() const { return translations_.size(); }
 
  private:
+  struct Blend {
+    std::size_t j;  // interval [j, j + 1]
+    double a;       // weight of knot j + 1
+  };
+  Blend blendAt(double t) const {
+    const double u = (t - t0_) / spacing_;
+    const std::size_t last = translations_.size() - 2;
+    const std::size_t j = u <= 0.0 ? 0 : std::min(static_cast<std::size_t>(u), last);
+    return {j, u - static_cast<double>(j)};
+  }
+  Eigen::Quaterniond rotation(const Blend& b) const {
+    Eigen::Quaterniond q;
+    q.coeffs() = (1.0 - b.a) * rotations_[b.j].coeffs() + b.a * rotations_[b.j + 1].coeffs();
+    return q.normalized();
+  }
+  Eigen::Vector3d translation(const Blend& b) const {
+    return (1.0 - b.a) * translations_[b.j] + b.a * translations_[b.j + 1];
+  }
+
   double t0_ = 0.0, spacing_ = 1.0;
   std::vector<Eigen::Vector3d> translations_;
   std::vector<Eigen::Quaterniond> rotations_;

@@ -75,6 +75,7 @@ class RayCaster {
  private:
   RayCasterConfig config_;
   RayCastScene scene_;
+  ScanPatternGenerator pattern_generator_;
   // The pattern of the last frame cast: spinning patterns never change, and a frame is often
   // cast twice (a retry, a test), so this saves regenerating it.
   std::uint64_t cached_frame_ = ~std::uint64_t{0};
