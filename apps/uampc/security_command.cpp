@@ -169,6 +169,8 @@ std::map<std::string, TopicGrant> topicGrants(const Scene& scene) {
   for (const auto& process : scene.processes()) {
     TopicGrant& grant = grants[process];
     grant.subscribe.insert(ddsTopicName(kClockTopic));
+    // The only process of a scene runs the clock itself (clock.in_process) and publishes /clock.
+    if (scene.clockInsideTheProcess()) grant.publish.insert(ddsTopicName(kClockTopic));
     grant.publish.insert(ddsTopicName(kStepAckTopic));
     grant.subscribe.insert(ddsTopicName(kStepAckTopic));  // each process waits for the others' acknowledgements
   }

@@ -171,6 +171,20 @@ TEST(Security, SecuredRunGivesIdenticalOutputsAndAStrangerNeitherReadsNorCommand
   EXPECT_NE(readFile(secured + "/scene.yaml").find("security:"), std::string::npos);
 }
 
+// A scene of one process runs the lockstep clock inside it: its permissions let it publish /clock
+// (they did not, and the secured run could not start).
+TEST(Security, ASecuredSceneOfOneProcessRunsItsOwnClock) {
+  const std::string parent = freshDirectory("security_one_process");
+  const std::string dir = parent + "/keys";
+  const std::string scene = sourcePath("tests/scenes/motor_constant_speed.yaml");
+  const CommandResult init = runUampc("security init " + dir + " --scene " + scene);
+  ASSERT_EQ(init.exit_code, 0) << init.output;
+  const CommandResult r = runUampc("launch " + scene + " --out " + parent + "/run --set domain_id=" +
+                                   std::to_string(domain(7)) + " --set clock.duration=1" + securedBy(dir));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("uampc: 1 s of sim time"), std::string::npos) << r.output;
+}
+
 TEST(Security, AProcessNotPermittedToWriteTheMotorCommandCannotWriteIt) {
   // In this process: 'sim' may read /motor/command, not write it; 'control' may write it.
   {
