@@ -167,11 +167,12 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   const auto clock_start = SteadyClock::now();
   const auto ack_timeout =
       std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(scene.clock.ack_timeout_s));
-  // Every wait below ends on a failure: an error, a process gone, the deadline passed.
-  auto waitProblem = [&](SteadyClock::time_point deadline, const std::string& late, const char* what,
-                         SteadyClock::duration timeout) -> std::string {
+  // Every wait below ends on a failure: an error, a process gone, the deadline passed. `late`
+  // names the processes waited for, asked only when the deadline has passed.
+  auto waitProblem = [&](SteadyClock::time_point deadline, const std::function<std::string()>& late,
+                         const char* what, SteadyClock::duration timeout) -> std::string {
     if (std::string problem = check_processes(); !problem.empty()) return problem;
-    if (SteadyClock::now() > deadline) return noAcknowledgement(what, late, timeout);
+    if (SteadyClock::now() > deadline) return noAcknowledgement(what, late(), timeout);
     listener.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
     return {};
   };
@@ -205,11 +206,16 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
         result.error = "stopped";
         return false;
       }
-      std::string late;
-      for (const auto& p : processes) {
-        if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
-      }
-      result.error = waitProblem(deadline, late, what, timeout);
+      result.error = waitProblem(
+          deadline,
+          [&] {
+            std::string late;
+            for (const auto& p : processes) {
+              if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
+            }
+            return late;
+          },
+          what, timeout);
       if (!result.error.empty()) return false;
     }
   };
@@ -237,10 +243,10 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
     progress.update(result.sim_seconds, result.wall_seconds);
   };
+  const std::int64_t last = lastStep(scene.clock);
   if (host == ClockHost::kInTheProcess) {
     // The process acknowledges a step every 0.1 s of wall time and its last one: each resets the
     // deadline, so that a hung component is named after clock.ack_timeout as with this clock.
-    const std::int64_t last = lastStep(scene.clock);
     auto deadline = wall_start + ack_timeout;
     if (latest >= 0) reached(latest_time);
     while (!stop && (last < 0 || latest < last)) {
@@ -250,26 +256,26 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
         reached(latest_time);
       });
       if (result.error.empty() && (last < 0 || latest < last))
-        result.error = waitProblem(deadline, processes.front(), "acknowledgement of a step", ack_timeout);
+        result.error = waitProblem(
+            deadline, [&] { return processes.front(); }, "acknowledgement of a step", ack_timeout);
       if (!result.error.empty()) {
         result.ok = false;
         break;
       }
     }
-  }
-  for (std::int64_t step = 0; host == ClockHost::kHere; ++step) {
-    const Time t{step * scene.clock.step.ns};
-    if (step > lastStep(scene.clock) && lastStep(scene.clock) >= 0) break;
-    if (!paceTo(wall_start, t, scene.clock.real_time_factor, stop)) break;
-    rosgraph_msgs::msg::Clock tick;
-    tick.clock(toMsg(t));
-    clock_writer->write(&tick);
-    if (!waitFor(step, "acknowledgement of the step")) {
-      if (result.error == "stopped") break;
-      result.ok = false;
-      break;
+  } else {
+    for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
+      const Time t{step * scene.clock.step.ns};
+      if (!paceTo(wall_start, t, scene.clock.real_time_factor, stop)) break;
+      rosgraph_msgs::msg::Clock tick;
+      tick.clock(toMsg(t));
+      clock_writer->write(&tick);
+      if (!waitFor(step, "acknowledgement of the step")) {
+        result.ok = result.error == "stopped";
+        break;
+      }
+      reached(t);
     }
-    reached(t);
   }
   if (result.error == "stopped") result.error.clear();
   result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();

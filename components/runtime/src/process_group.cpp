@@ -568,16 +568,20 @@ class ProcessRunner {
     }
   }
 
-  // The samples this process has written on each topic by the end of `step`. The ready message
-  // (step -1) counts nothing: samples written while the components were constructed (latched
-  // ones) carry time 0 and are delivered at step 1, counted by step 0's acknowledgement.
-  std::vector<uampc::msg::TopicCount> writtenBy(std::int64_t step) const {
+  // The samples this process has written on each topic so far.
+  std::map<std::string, std::uint64_t> writtenSoFar() const {
     std::map<std::string, std::uint64_t> written;
-    if (step >= 0) {
-      for (const auto& w : writers_) written[w->topic()] += w->written();
-    }
+    for (const auto& w : writers_) written[w->topic()] += w->written();
+    return written;
+  }
+
+  // The counts an acknowledgement of `step` carries. The ready message (step -1) counts nothing:
+  // samples written while the components were constructed (latched ones) carry time 0 and are
+  // delivered at step 1, counted by step 0's acknowledgement.
+  std::vector<uampc::msg::TopicCount> writtenBy(std::int64_t step) const {
     std::vector<uampc::msg::TopicCount> counts;
-    for (const auto& [topic, count] : written) {
+    if (step < 0) return counts;
+    for (const auto& [topic, count] : writtenSoFar()) {
       uampc::msg::TopicCount c;
       c.topic(topic);
       c.count(count);
@@ -592,7 +596,9 @@ class ProcessRunner {
     ack.step(step);
     ack.stamp(toMsg(stamp));
     ack.written() = writtenBy(step);
-    if (!ack_reader_) acks_[process_][step] = ack.written();  // alone: what the others would have read
+    // Alone under the launcher's clock: what the others would have read (with the clock inside,
+    // runOwnClock keeps its counts itself).
+    if (!ack_reader_ && !own_clock_) acks_[process_][step] = ack.written();
     ack.failed(!failure_.empty());
     ack.message(failure_);
     ack_writer_->write(&ack);
@@ -708,6 +714,7 @@ class ProcessRunner {
     const std::int64_t last = lastStep(scene_.clock);
     const auto wall_start = SteadyClock::now();
     auto next_ack = wall_start;
+    std::map<std::string, std::uint64_t> expected;  // written by the end of the previous step
     for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
       const Time t{step * scene_.clock.step.ns};
       if (!paceTo(wall_start, t, scene_.clock.real_time_factor, stop)) return 0;
@@ -715,17 +722,14 @@ class ProcessRunner {
       tick.clock(toMsg(t));
       clock_writer_->write(&tick);
       state_.now = t;
-      std::map<std::string, std::uint64_t> expected;
-      if (!awaitAcks(step - 1, expected, stop)) return stop ? 0 : 1;
       const bool ok = deliverInputs(&expected) && fireTimers();
       if (!ok && stop) return 0;
       if (!ok || step == last || SteadyClock::now() >= next_ack) {
         sendAck(step, t);
         next_ack = SteadyClock::now() + std::chrono::milliseconds(100);
-      } else {
-        acks_[process_][step] = writtenBy(step);  // what the next step waits for
       }
       if (!ok) return 1;
+      expected = writtenSoFar();
     }
     while (!stop) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
     return 0;

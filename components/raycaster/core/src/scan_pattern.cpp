@@ -11,9 +11,13 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 double frac(double x) { return x - std::floor(x); }
 
-Eigen::Vector3f direction(double azimuth, double elevation) {
+Eigen::Vector3f direction(double cos_azimuth, double sin_azimuth, double elevation) {
   const double c = std::cos(elevation);
-  return Eigen::Vector3d(c * std::cos(azimuth), c * std::sin(azimuth), std::sin(elevation)).cast<float>();
+  return Eigen::Vector3d(c * cos_azimuth, c * sin_azimuth, std::sin(elevation)).cast<float>();
+}
+
+Eigen::Vector3f direction(double azimuth, double elevation) {
+  return direction(std::cos(azimuth), std::sin(azimuth), elevation);
 }
 
 // Phase (in periods, [0, 1)) of a frequency f at time frame_index / frame_rate + t, computed in
@@ -95,11 +99,8 @@ void ScanPatternGenerator::generate(std::uint64_t frame_index, std::vector<Patte
         const double p =
             frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) + static_cast<double>(laser) / m.lasers);
         const double wave = p < 0.5 ? 2.0 * p : 2.0 - 2.0 * p;
-        const double elevation = lo + (hi - lo) * wave;
-        const double c = std::cos(elevation);
-        // direction(azimuth, elevation), with the azimuth's cosine and sine of the constructor.
-        pattern[k] = {Eigen::Vector3d(c * cos_azimuth_[k], c * sin_azimuth_[k], std::sin(elevation)).cast<float>(),
-                      static_cast<float>(t), static_cast<std::uint16_t>(laser)};
+        pattern[k] = {direction(cos_azimuth_[k], sin_azimuth_[k], lo + (hi - lo) * wave), static_cast<float>(t),
+                      static_cast<std::uint16_t>(laser)};
       }
       break;
     }
