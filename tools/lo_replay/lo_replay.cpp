@@ -7,7 +7,7 @@
 //             [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1]
 //             [--frame-velocity-std-linear V] [--frame-velocity-std-angular W]
 //             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
-//             [--measurement-variance M2] [--profile rich|mixed|poor] [--open-fraction F]
+//             [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] [--open-fraction F]
 //             [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M]
 //             [--path-speed M_PER_S] [--poor-rows N]
 //
@@ -57,7 +57,7 @@ void printUsage(std::FILE* out) {
       "[--motor RAD_PER_S (3.6)] [--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] "
       "[--iterations N] [--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
       "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
-      "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--profile rich|mixed|poor] "
+      "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] "
       "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] "
       "[--path-speed M_PER_S] [--poor-rows N]\n"
       "Replays the simulated motorized LiDAR at a constant motor speed into the LO, without DDS, and prints per\n"
@@ -128,6 +128,8 @@ int replay(int argc, char** argv) {
       config.degeneracy_threshold = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-length")
       config.degeneracy_scales.length = tools::nonNegative(flag, value);
+    else if (flag == "--map-mean-points")
+      config.map_mean_points = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--measurement-variance")
       config.measurement_variance = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-period")

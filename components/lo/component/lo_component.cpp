@@ -91,6 +91,9 @@ class LoComponent : public Component {
   static void bindParameters(ParameterBinding& b, lo::OdometryConfig& c) {
     b.bind("scan_voxel_size", c.scan_voxel_size, "voxel downsampling of the scan, m").between(0.01, 10.0);
     b.bind("map_voxel_size", c.map_voxel_size, "voxel size of the local map, m").between(0.01, 10.0);
+    b.bind("map_mean_points", c.map_mean_points,
+           "a map voxel's point is the mean of its first this many observations (1: the first point stays; see README)")
+        .between(1, 255);
     b.bind("map_radius", c.map_radius, "local-map points farther than this from the base are dropped, m")
         .between(1.0, 10000.0);
     b.bind("measurement_variance", c.measurement_variance, "point-to-plane measurement variance, m^2")

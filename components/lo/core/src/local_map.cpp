@@ -23,10 +23,16 @@ int indexInBlock(const Voxel& v) { return (v.x() & 1) | ((v.y() & 1) << 1) | ((v
 
 }  // namespace
 
-LocalMap::LocalMap(double voxel_size, double max_radius)
-    : voxel_size_(voxel_size), inverse_voxel_size_(1.0 / voxel_size), max_radius_(max_radius) {
+LocalMap::LocalMap(double voxel_size, double max_radius, int mean_points)
+    : voxel_size_(voxel_size),
+      inverse_voxel_size_(1.0 / voxel_size),
+      max_radius_(max_radius),
+      mean_points_(static_cast<std::uint8_t>(std::clamp(mean_points, 1, 255))) {
   if (!(voxel_size > 0.0)) {
     throw std::invalid_argument("lo::LocalMap: voxel_size must be positive (m)");
+  }
+  if (mean_points < 1 || mean_points > 255) {
+    throw std::invalid_argument("lo::LocalMap: mean_points must be within 1 and 255");
   }
   rehash(kInitialCapacity);
 }
@@ -42,6 +48,7 @@ void LocalMap::clear() {
   pool_.clear();
   times_.clear();
   views_.clear();
+  counts_.clear();
   free_.clear();
   size_ = 0;
   rehash(kInitialCapacity);
@@ -94,6 +101,7 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
           pool_.emplace_back();
           times_.emplace_back();
           views_.emplace_back();
+          counts_.emplace_back();
         }
         pool_[b].occupied = 0;
         placeKey(key, b);
@@ -112,9 +120,17 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
       // then votes for neither side.
       const Eigen::Vector3d view = (viewpoint_W - p).stableNormalized() * 127.0;
       for (int a = 0; a < 3; ++a) views_[b][index][a] = static_cast<std::int8_t>(std::lround(view[a]));
+      counts_[b][index] = 1;
       ++size_;
+    } else if (counts_[b][index] < mean_points_) {
+      // The running mean of the voxel's first mean_points_ observations (the view stays the
+      // first one's: it only tells which side of a surface was seen).
+      const float count = static_cast<float>(++counts_[b][index]);
+      block.x[index] += (static_cast<float>(p.x()) - block.x[index]) / count;
+      block.y[index] += (static_cast<float>(p.y()) - block.y[index]) / count;
+      block.z[index] += (static_cast<float>(p.z()) - block.z[index]) / count;
     }
-    times_[b][index] = time;  // the first point stays; when it was seen is refreshed
+    times_[b][index] = time;  // when it was seen is refreshed
   }
 }
 

@@ -85,7 +85,7 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
 }
 
 MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
-    : config_(config), map_(config.map_voxel_size, config.map_radius) {}
+    : config_(config), map_(config.map_voxel_size, config.map_radius, config.map_mean_points) {}
 
 OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const frames::MotorAngleTrack& motor) {
   OdometryResult result;

@@ -107,6 +107,36 @@ TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
   EXPECT_LT((coordinates[0] - Eigen::Vector3f(0.15f, 0.15f, 0.0f)).norm(), 1e-6f);
 }
 
+// With mean_points, a voxel's point is the mean of its first observations: a wall seen through 2 cm
+// of noise is held closer to where it is, and what comes after the first N changes nothing.
+TEST(LocalMap, AveragesTheFirstObservationsOfAVoxel) {
+  EXPECT_THROW(LocalMap(0.3, 10.0, 0), std::invalid_argument);
+  EXPECT_THROW(LocalMap(0.3, 10.0, 256), std::invalid_argument);
+  LocalMap first(0.3, 10.0);       // the first point stays
+  LocalMap averaged(0.3, 10.0, 4);  // the mean of the first four
+  const Eigen::Vector3d sensor(0.0, 0.0, 2.0);
+  for (const double z : {0.13, 0.17, 0.11, 0.19, 0.29}) {  // one voxel; the fifth is past the four
+    first.insert({Eigen::Vector3d(0.15, 0.15, z)}, 1.0, sensor);
+    averaged.insert({Eigen::Vector3d(0.15, 0.15, z)}, 1.0, sensor);
+  }
+  ASSERT_EQ(first.size(), 1u);
+  ASSERT_EQ(averaged.size(), 1u);
+  EXPECT_NEAR(first.points()[0].p_W.z(), 0.13, 1e-6);
+  EXPECT_NEAR(averaged.points()[0].p_W.z(), 0.15, 1e-6);
+  // The view stays the first observation's: a later one from below does not flip the side.
+  averaged.insert({Eigen::Vector3d(0.15, 0.15, 0.15)}, 2.0, Eigen::Vector3d(0.0, 0.0, -2.0));
+  std::vector<Eigen::Vector3d> neighbours;
+  std::vector<Eigen::Vector3f> views;
+  ASSERT_EQ(averaged.nearest(Eigen::Vector3d(0.15, 0.15, 0.15), 1, neighbours, &views), 1u);
+  EXPECT_GT(views[0].z(), 0.9f);
+  EXPECT_NEAR(neighbours[0].z(), 0.15, 1e-6);
+  // A voxel emptied by removeFarFrom and filled again starts a new mean.
+  averaged.removeFarFrom(Eigen::Vector3d(100.0, 0.0, 0.0));
+  EXPECT_TRUE(averaged.empty());
+  averaged.insert({Eigen::Vector3d(0.15, 0.15, 0.2)}, 3.0, sensor);
+  EXPECT_NEAR(averaged.points()[0].p_W.z(), 0.2, 1e-6);
+}
+
 // A slab seen only from below, then a sensor above it: the points of the slab's top face, 0.3 m
 // above the underside the map holds, must not be matched to the underside (they turned the pose
 // by 14 degrees in one frame on the multilevel world). Seen from below, the same face matches.

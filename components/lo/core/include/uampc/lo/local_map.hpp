@@ -1,7 +1,9 @@
 // The LO's local map: a voxel hash map holding one world point per voxel.
 //
-// Voxel downsampling of the map (0.3 m by default) is the voxel grid itself: the first point seen
-// in a voxel stays, later ones only refresh the voxel's observation time. The map is bounded:
+// Voxel downsampling of the map (0.3 m by default) is the voxel grid itself: a voxel holds one
+// point, the mean of the first mean_points points seen in it (1: the first point stays); later
+// ones only refresh the voxel's observation time. Averaging takes the sensor's noise out of the
+// map that every later scan is matched against (README, "The map's points"). The map is bounded:
 // voxels farther than max_radius from the sensor are dropped, so its size does not grow with the
 // length of the run.
 //
@@ -34,7 +36,8 @@ struct MapPoint {
 
 class LocalMap {
  public:
-  LocalMap(double voxel_size, double max_radius);
+  // mean_points: how many observations a voxel's point averages (at least 1, at most 255).
+  LocalMap(double voxel_size, double max_radius, int mean_points = 1);
 
   // Adds world points observed at time (s) by a sensor at viewpoint_W.
   void insert(const std::vector<Eigen::Vector3d>& points_W, double time, const Eigen::Vector3d& viewpoint_W);
@@ -61,6 +64,7 @@ class LocalMap {
   std::size_t memoryBytes() const {
     return slots_.capacity() * sizeof(Slot) + pool_.capacity() * sizeof(Block) +
            times_.capacity() * sizeof(times_[0]) + views_.capacity() * sizeof(views_[0]) +
+           counts_.capacity() * sizeof(counts_[0]) +
            free_.capacity() * sizeof(std::uint32_t);
   }
   bool empty() const { return size_ == 0; }
@@ -72,6 +76,7 @@ class LocalMap {
   double voxel_size_;
   double inverse_voxel_size_;
   double max_radius_;
+  std::uint8_t mean_points_;
 
   // Eight voxels, 2x2x2; bit i of occupied says whether voxel i holds a point. Points are
   // float (plenty for 0.3 m voxels within a few km of the origin) and stored as x, y and z
@@ -115,6 +120,9 @@ class LocalMap {
   // needs no more), parallel to pool_; apart from the blocks so the neighbour search stays lean.
   using View = std::array<std::int8_t, 3>;
   std::vector<std::array<View, 8>> views_;
+  // How many observations each voxel's point averages so far, parallel to pool_ (only grows to
+  // mean_points_).
+  std::vector<std::array<std::uint8_t, 8>> counts_;
   std::vector<std::uint32_t> free_;           // pool indices of removed blocks, for reuse
   std::size_t size_ = 0;                      // occupied voxels
   std::size_t blocks_used_ = 0;               // live blocks
