@@ -56,6 +56,7 @@ TEST(ComponentDefaults, MpcDeclaresItsCoresDefaults) {
   EXPECT_EQ(mpc["panorama_width"].as<int>(), core.depth_map.width);
   EXPECT_EQ(mpc["panorama_height"].as<int>(), core.depth_map.height);
   EXPECT_DOUBLE_EQ(mpc["range_weight_voxel"].as<double>(), core.range_weight_voxel);
+  EXPECT_DOUBLE_EQ(mpc["u_filter_weight"].as<double>(), core.u_filter_weight);
 }
 
 TEST(ComponentDefaults, LoDeclaresItsCoresDefaults) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "uampc/mpc/uncertainty_filter.hpp"
 #include "uampc/mpc/uncertainty_surrogate.hpp"
 #include "uampc/run_files/csv.hpp"
 
@@ -14,12 +15,6 @@ double rms(const std::vector<double>& v) {
   double sum = 0.0;
   for (std::size_t i = 1; i < v.size(); ++i) sum += (v[i] - v[i - 1]) * (v[i] - v[i - 1]);
   return v.size() > 1 ? std::sqrt(sum / double(v.size() - 1)) : 0.0;
-}
-
-// Samples at absolute angles: bin k of a turn holds the sample at angle k * step (mod 2 pi).
-int binOf(double theta, double step, int bins) {
-  const int k = static_cast<int>(std::lround(theta / step)) % bins;
-  return k < 0 ? k + bins : k;
 }
 
 }  // namespace
@@ -47,9 +42,7 @@ std::vector<ControlRecord> readControlRecords(const std::string& path) {
 }
 
 ReplayStats replayControl(const std::vector<ControlRecord>& records, const ReplayOptions& options) {
-  if (!(options.filter_weight > 0.0) || options.filter_weight > 1.0) {
-    throw std::invalid_argument("filter weight must be in (0, 1]");
-  }
+  mpc::UncertaintyFilter filter(options.filter_weight);  // throws on a weight outside (0, 1]
   if (options.sample_stride < 1) throw std::invalid_argument("sample stride must be at least 1");
   for (const ControlRecord& r : records) {
     if (r.samples.size() % static_cast<std::size_t>(options.sample_stride) != 0) {
@@ -59,18 +52,9 @@ ReplayStats replayControl(const std::vector<ControlRecord>& records, const Repla
   }
   const mpc::MotorMpc mpc(options.mpc);
   ReplayStats stats;
-  std::vector<double> recorded, filtered;
+  std::vector<double> recorded;
   for (const ControlRecord& r : records) {
-    const int bins = static_cast<int>(r.samples.size());
-    std::vector<double> samples = r.samples;
-    if (options.filter_weight < 1.0) {
-      if (filtered.size() != r.samples.size()) filtered.assign(r.samples.size(), -1.0);
-      for (int s = 0; s < bins; ++s) {
-        double& f = filtered[binOf(r.theta_start + s * r.sample_step, r.sample_step, bins)];
-        f = f < 0.0 ? r.samples[s] : (1.0 - options.filter_weight) * f + options.filter_weight * r.samples[s];
-        samples[s] = f;
-      }
-    }
+    const std::vector<double> samples = filter.apply(r.theta_start, r.sample_step, r.samples);
     std::vector<double> strided;
     for (std::size_t s = 0; s < samples.size(); s += static_cast<std::size_t>(options.sample_stride)) {
       strided.push_back(samples[s]);

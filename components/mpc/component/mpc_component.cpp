@@ -80,6 +80,10 @@ class MpcComponent : public Component {
     b.bind("horizon", c.mpc.horizon, "M: the MPC optimises M + 1 future speeds").between(1, 200);
     b.bind("horizon_dt", c.mpc.dt, "time between horizon steps, s").between(0.001, 10.0);
     b.bindDegrees("sample_step_deg", c.sample_step, "delta_theta between U samples, degrees").between(0.5, 90.0);
+    b.bind("u_filter_weight", c.u_filter_weight,
+           "U samples averaged over control steps per motor angle, F <- (1 - w) F + w U (1: each step's own, as "
+           "in the paper; README \"Results\")")
+        .between(0.01, 1.0);
     b.bindDegrees("ray_step_deg", c.uncertainty.azimuth_step, "grid of the field-of-view rays for U, degrees")
         .between(0.5, 30.0);
     c.uncertainty.elevation_step = c.uncertainty.azimuth_step;  // one square grid

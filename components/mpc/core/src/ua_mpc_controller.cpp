@@ -53,6 +53,7 @@ UaMpcController::UaMpcController(const Config& config)
       depth_map_(config.depth_map),
       normals_(config.normals),
       uncertainty_(config_.uncertainty),
+      filter_(config.u_filter_weight),
       mpc_(config.mpc) {}
 
 UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
@@ -86,7 +87,9 @@ UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
     if (!decision.local_map_empty) {
       t = Clock::now();
       normals_.reset(depth_map_);
-      decision.samples = uncertainty_.sample(depth_map_, normals_, theta_now, decision.sample_step, sample_count_);
+      decision.samples = filter_.apply(
+          theta_now, decision.sample_step,
+          uncertainty_.sample(depth_map_, normals_, theta_now, decision.sample_step, sample_count_));
       decision.timings.uncertainty_ms = millisecondsSince(t);
 
       if (config_.mode == Mode::kUaMpc) {

@@ -16,6 +16,7 @@
 #include "uampc/mpc/depth_map_normals.hpp"
 #include "uampc/mpc/motor_mpc.hpp"
 #include "uampc/mpc/panoramic_depth_map.hpp"
+#include "uampc/mpc/uncertainty_filter.hpp"
 #include "uampc/mpc/uncertainty_model.hpp"
 
 namespace uampc::mpc {
@@ -35,6 +36,9 @@ class UaMpcController {
     double sample_step = 5.0 * 3.14159265358979323846 / 180.0;  // rad, delta_theta of the samples;
                                                                 // rounded so that a whole turn fits
     bool profile_in_baselines = false;                          // also compute the U samples in constant/zero modes
+    // U samples averaged over control steps per motor angle (uncertainty_filter.hpp); 1: each
+    // step's own samples, as in the paper.
+    double u_filter_weight = 1.0;
     // U's range weighting (uncertainty_model.hpp), set from what the LO and the LiDAR are: the
     // LO's scan voxel (m; 0 leaves uncertainty.range_weight_saturation as given, 0 by default:
     // the paper's equal rays) and the LiDAR's points per frame (Mid-360: 200k/s at 10 Hz).
@@ -59,7 +63,7 @@ class UaMpcController {
     bool local_map_empty = false;  // no local-map point within the depth map's range window
     double sample_start = 0.0;     // theta_now, angle of samples[0]
     double sample_step = 0.0;      // rad, delta_theta actually used (2 pi / samples.size())
-    std::vector<double> samples;   // U_s, empty when not computed
+    std::vector<double> samples;   // U_s as the MPC used them (filtered if so configured), empty when not computed
     MotorMpc::Plan plan;           // empty unless mode == kUaMpc and the map was not empty
     Timings timings;
   };
@@ -83,6 +87,7 @@ class UaMpcController {
   PanoramicDepthMap depth_map_;
   DepthMapNormals normals_;
   UncertaintyModel uncertainty_;
+  UncertaintyFilter filter_;
   MotorMpc mpc_;
 };
 
