@@ -19,17 +19,16 @@ UncertaintyFilter::UncertaintyFilter(double weight) : weight_(weight) {
   }
 }
 
-std::vector<double> UncertaintyFilter::apply(double theta_start, double step, const std::vector<double>& samples) {
+std::vector<double> UncertaintyFilter::apply(double theta_start, double step, std::vector<double> samples) {
   if (weight_ >= 1.0 || samples.empty()) return samples;
   const bool first = averages_.size() != samples.size();
   if (first) averages_.assign(samples.size(), 0.0);
-  std::vector<double> filtered(samples.size());
   for (std::size_t s = 0; s < samples.size(); ++s) {
     double& average = averages_[binOf(theta_start + static_cast<double>(s) * step, step, samples.size())];
     average = first ? samples[s] : (1.0 - weight_) * average + weight_ * samples[s];
-    filtered[s] = average;
+    samples[s] = average;
   }
-  return filtered;
+  return samples;
 }
 
 }  // namespace uampc::mpc

@@ -21,8 +21,9 @@ class UncertaintyFilter {
   explicit UncertaintyFilter(double weight = 1.0);
 
   // samples[s] is U at theta_start + s * step, and samples.size() * step is one turn. Returns the
-  // filtered samples in the same order. A different number of samples per turn starts over.
-  std::vector<double> apply(double theta_start, double step, const std::vector<double>& samples);
+  // filtered samples in the same order (the vector it was given, filtered in place: with weight 1
+  // nothing is copied). A different number of samples per turn starts over.
+  std::vector<double> apply(double theta_start, double step, std::vector<double> samples);
 
   double weight() const { return weight_; }
 
