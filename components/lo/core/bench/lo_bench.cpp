@@ -47,7 +47,7 @@ void BM_RegisterScan20k(benchmark::State& state) {
   config.scan_voxel_size = static_cast<double>(state.range(0)) / 1000.0;
   if (state.range(1) == 0) config.frame_velocity_std_linear = config.frame_velocity_std_angular = 0.0;
   auto odometry = std::make_unique<MotorizedLidarOdometry>(config);
-  std::size_t next = 0, points = 0, used = 0, correspondences = 0, iterations = 0, frames = 0;
+  std::size_t next = 0, points = 0, used = 0, correspondences = 0, iterations = 0, associations = 0, frames = 0;
   for (auto _ : state) {
     if (next == recording.scans.size()) {
       state.PauseTiming();
@@ -61,12 +61,14 @@ void BM_RegisterScan20k(benchmark::State& state) {
     used += result.points_used;
     correspondences += result.correspondences;
     iterations += static_cast<std::size_t>(result.iterations);
+    associations += static_cast<std::size_t>(result.associations);
     ++frames;
   }
   state.counters["points_in"] = static_cast<double>(points) / frames;
   state.counters["points_used"] = static_cast<double>(used) / frames;
   state.counters["correspondences"] = static_cast<double>(correspondences) / frames;
   state.counters["iterations"] = static_cast<double>(iterations) / frames;
+  state.counters["associations"] = static_cast<double>(associations) / frames;
   state.counters["map_voxels"] = static_cast<double>(odometry->localMap().size());
 }
 BENCHMARK(BM_RegisterScan20k)

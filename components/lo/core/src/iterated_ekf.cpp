@@ -306,6 +306,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     if (reassociate) {
       rotation_since_association = translation_since_association = 0.0;
       associate(ordered, FrameDeskew(x, frame), map, options, correspondences);
+      ++summary.associations;
       summary.correspondences = correspondences.size();
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
     }

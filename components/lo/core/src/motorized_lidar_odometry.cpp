@@ -205,6 +205,7 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
   }
   result.correspondences = summary.correspondences;
   result.iterations = summary.iterations;
+  result.associations = summary.associations;
   // Once lost, the prediction is what went wrong: judging the scan by it would reject every
   // correction and keep the wrong velocity for good (KTH at 324.4 s: 100 deg/s held, README).
   const bool lost_before = end_time - last_accepted_time_ > config_.lost_after;

@@ -102,6 +102,7 @@ struct UpdateSummary {
   bool applied = false;    // false: too few correspondences or a non-finite step; x- kept
   bool converged = false;  // the last step was below the convergence thresholds
   int iterations = 0;
+  int associations = 0;  // how many times the planes were found anew (the costliest part)
   std::size_t correspondences = 0;
   // Information of the pose from the last linearisation, unit weight, [rotation, translation]:
   // Lambda = sum_i J_i J_i^T (as in docs/design.md section 1, UA-MPC step 3).

@@ -144,6 +144,7 @@ struct OdometryResult {
   int degenerate_state_directions = 0;  // of the 12-dimensional state, velocities included
   std::size_t correspondences = 0;
   int iterations = 0;
+  int associations = 0;  // plane searches of the update (IteratedEkf's UpdateSummary)
   bool implausible_motion = false;   // this scan's update was rejected for its acceleration
   std::size_t rejected_updates = 0;  // such rejections since the start
   bool inertial_prediction = false;  // predicted with the IMU (else: constant velocity)
