@@ -47,7 +47,6 @@ void LocalMap::clear() {
   slots_.clear();
   pool_.clear();
   times_.clear();
-  views_.clear();
   counts_.clear();
   free_.clear();
   size_ = 0;
@@ -100,7 +99,6 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
           b = static_cast<std::uint32_t>(pool_.size());
           pool_.emplace_back();
           times_.emplace_back();
-          views_.emplace_back();
           counts_.emplace_back();
         }
         pool_[b].occupied = 0;
@@ -119,7 +117,7 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
       // A point at the viewpoint itself (never, past the LO's minimum range) gets no view: it
       // then votes for neither side.
       const Eigen::Vector3d view = (viewpoint_W - p).stableNormalized() * 127.0;
-      for (int a = 0; a < 3; ++a) views_[b][index][a] = static_cast<std::int8_t>(std::lround(view[a]));
+      for (int a = 0; a < 3; ++a) block.views[index][a] = static_cast<std::int8_t>(std::lround(view[a]));
       counts_[b][index] = 1;
       ++size_;
     } else if (counts_[b][index] < mean_points_) {
@@ -229,11 +227,9 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vect
   // All 8 blocks are looked up before any is searched, so that their cache misses overlap
   // instead of following one another; the search skips blocks, not look-ups.
   std::array<const Block*, 8> blocks;
-  std::array<const std::array<View, 8>*, 8> block_views;
   for (int c = 0; c < 8; ++c) {
     const std::size_t slot = slotOf(keys[c]);
     blocks[c] = slot == kNoSlot ? nullptr : &pool_[slots_[slot].block];
-    block_views[c] = slot == kNoSlot ? nullptr : &views_[slots_[slot].block];
     if (blocks[c] != nullptr) {
       __builtin_prefetch(blocks[c]);
       __builtin_prefetch(reinterpret_cast<const char*>(blocks[c]) + sizeof(Block) - 1);
@@ -259,7 +255,7 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vect
         best[i] = best[i - 1];
         --i;
       }
-      best[i] = {d2[j], block.point(j), &(*block_views[c])[j]};
+      best[i] = {d2[j], block.point(j), &block.views[j]};
       if (n == k) worst = best[k - 1].d2;
     }
   }

@@ -63,7 +63,7 @@ class LocalMap {
   // Heap memory held by the map (table and block pool), bytes.
   std::size_t memoryBytes() const {
     return slots_.capacity() * sizeof(Slot) + pool_.capacity() * sizeof(Block) +
-           times_.capacity() * sizeof(times_[0]) + views_.capacity() * sizeof(views_[0]) +
+           times_.capacity() * sizeof(times_[0]) +
            counts_.capacity() * sizeof(counts_[0]) +
            free_.capacity() * sizeof(std::uint32_t);
   }
@@ -78,14 +78,22 @@ class LocalMap {
   double max_radius_;
   std::uint8_t mean_points_;
 
+  // Unit direction from a point towards the sensor that first saw it, times 127 (a sign test
+  // needs no more).
+  using View = std::array<std::int8_t, 3>;
   // Eight voxels, 2x2x2; bit i of occupied says whether voxel i holds a point. Points are
   // float (plenty for 0.3 m voxels within a few km of the origin) and stored as x, y and z
-  // arrays, so that the squared distances of all 8 to a query vectorise; a block is ~100 bytes.
-  struct Block {
+  // arrays, so that the squared distances of all 8 to a query vectorise. With the views, a block
+  // is 121 bytes, aligned to exactly two cache lines: a search prefetches both and then finds
+  // everything it reads of the block there (views kept apart cost a cache miss per neighbour's
+  // block: 7 % of the search).
+  struct alignas(64) Block {
     std::array<float, 8> x, y, z;
+    std::array<View, 8> views;
     std::uint8_t occupied = 0;
     Eigen::Vector3f point(int i) const { return {x[i], y[i], z[i]}; }
   };
+  static_assert(sizeof(Block) == 128, "a block is two cache lines");
   // A table slot: the block key and the block's pool index side by side, so that a look-up
   // touches one cache line.
   struct Slot {
@@ -116,10 +124,6 @@ class LocalMap {
   std::vector<Slot> slots_;  // capacity a power of two; key kEmpty, kErased or a block key
   std::vector<Block> pool_;  // blocks, dense
   std::vector<std::array<double, 8>> times_;  // observation times, parallel to pool_
-  // Unit direction from the point towards the sensor that first saw it, times 127 (a sign test
-  // needs no more), parallel to pool_; apart from the blocks so the neighbour search stays lean.
-  using View = std::array<std::int8_t, 3>;
-  std::vector<std::array<View, 8>> views_;
   // How many observations each voxel's point averages so far, parallel to pool_ (only grows to
   // mean_points_).
   std::vector<std::array<std::uint8_t, 8>> counts_;
