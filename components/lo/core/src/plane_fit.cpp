@@ -1,5 +1,6 @@
 #include "uampc/lo/plane_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace uampc::lo {
@@ -42,6 +43,15 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
   Plane plane;
   plane.normal = normal;
   plane.offset = -normal.dot(centroid);
+  // The eigenvalues without a solver: lambda_0 = n^T S n, lambda_1 + lambda_2 = trace - lambda_0,
+  // and the adjugate's trace is lambda_0 lambda_1 + lambda_0 lambda_2 + lambda_1 lambda_2.
+  const double lambda_0 = std::max(0.0, normal.dot(S * normal));
+  const double in_plane_sum = trace - lambda_0;
+  const double in_plane_product = adj.trace() - lambda_0 * in_plane_sum;
+  if (points.size() > 3 && in_plane_product > 0.0) {
+    const double variance = lambda_0 / static_cast<double>(points.size() - 3);
+    plane.normal_variance = variance * in_plane_sum / (2.0 * in_plane_product);
+  }
   for (const auto& p : points) {
     if (std::abs(normal.dot(p) + plane.offset) > max_point_distance) return std::nullopt;
   }

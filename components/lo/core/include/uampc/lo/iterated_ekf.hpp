@@ -108,7 +108,9 @@ struct UpdateSummary {
   // Lambda = sum_i J_i J_i^T (as in docs/design.md section 1, UA-MPC step 3).
   Matrix6d pose_information = Matrix6d::Zero();
   // Eigen-analyses at the last linearisation: of the pose alone (what is reported) and of the
-  // whole state (the directions the measurements were kept out of).
+  // whole state (the directions the measurements were kept out of). Both judge the information
+  // net of what the planes' own noise adds (planeNoiseInformation in the source): a noisy normal
+  // lends every direction a little, whether a surface constrains it or not.
   PoseDegeneracy pose_degeneracy;
   StateDegeneracy state_degeneracy;
   // The frame's deviation from the updated velocity, when UpdateOptions ask for one: the deskew
@@ -136,7 +138,8 @@ class IteratedEkf {
 
  private:
   // The pose and state degeneracy of the last linearisation, into the summary.
-  static void reportDegeneracy(const Matrix12d& information, const UpdateOptions& options, UpdateSummary& summary);
+  static void reportDegeneracy(const Matrix12d& information, const Matrix12d& surface_information,
+                               const UpdateOptions& options, UpdateSummary& summary);
   BaseState state_;
   Matrix12d covariance_;
 };

@@ -11,6 +11,11 @@ namespace uampc::lo {
 struct Plane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double offset = 0.0;
+  // Expected squared tilt of the normal about an in-plane axis (rad^2), from the fit's own
+  // scatter: sigma^2 (1 / lambda_1 + 1 / lambda_2) / 2, sigma^2 = lambda_0 / (k - 3) the points'
+  // variance across the plane, lambda the scatter matrix's eigenvalues (an isotropic
+  // approximation of the normal's covariance). 0 for an exact fit.
+  double normal_variance = 0.0;
 };
 
 // Least-squares plane (smallest eigenvector of the scatter matrix). Nothing when there are fewer
