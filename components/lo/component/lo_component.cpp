@@ -106,8 +106,8 @@ class LoComponent : public Component {
         .between(0.0, 100.0);
     b.bind("max_iterations", c.max_iterations, "iterated EKF: at most this many re-linearisations").between(1, 100);
     b.bind("degeneracy_aware", c.degeneracy_aware,
-           "leave the state directions a scan does not constrain to the motion prior (suits wheeled platforms; "
-           "see README)");
+           "leave the state directions a scan does not constrain to the motion prior (suits LiDAR-inertial rigs in "
+           "corridors and tunnels; see README)");
     b.bind("frame_velocity_std_linear", c.frame_velocity_std_linear,
            "how far a frame's deskew velocity may differ from the filter's, m/s; 0 with frame_velocity_std_angular "
            "0: the paper's LO, the filter's velocity deskews every frame (see README)")
