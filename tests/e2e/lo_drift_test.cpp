@@ -9,6 +9,7 @@
 
 #include "command_runner.hpp"
 #include "test_domains.hpp"
+#include "uampc/run_files/metrics_file.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/time_series.hpp"
 
@@ -91,6 +92,11 @@ TEST(LoDrift, LidarInertialHoldsThroughThePoorRowAndReportsItDegenerate) {
     if (row.source == "lo" && row.name == "degenerate_directions" && row.value > 0) ++degenerate_frames;
   }
   EXPECT_GT(degenerate_frames, 10u);
+  // metrics.json counts the same frames (the evaluator, from /lo/metrics).
+  const auto summary = run_files::readMetricsFile(out + "/metrics.json");
+  ASSERT_TRUE(summary);
+  EXPECT_EQ(summary->lo.degenerate_frames, static_cast<std::int64_t>(degenerate_frames));
+  EXPECT_GE(summary->lo.frames, 690);  // 70 s of 10 Hz frames
   std::cout << "poor row with the IMU: worst position error " << worst << " m, " << degenerate_frames
             << " frames with degenerate directions\n";
 }

@@ -202,6 +202,8 @@ class EvaluatorComponent : public Component {
     if (first_lost_time_ >= 0.0) metrics.lo.first_lost_time = first_lost_time_;
     metrics.lo.lost_frames = lost_frames_;
     metrics.lo.rejected_updates = rejected_updates_;
+    metrics.lo.frames = lo_frames_;
+    metrics.lo.degenerate_frames = degenerate_frames_;
     metrics.run = run_info_;
     run_files::writeMetricsFile(inDirectory(out, run_files::kMetricsFile), metrics);
     evaluator::writeTumTrajectory(inDirectory(out, run_files::kEstimateFile), trajectory_.pairedEstimates());
@@ -247,12 +249,15 @@ class EvaluatorComponent : public Component {
   }
 
   void onLoStatus(const msg::Metrics& m) {
+    ++lo_frames_;
     for (const auto& v : m.values()) {
       if (v.name() == "lost" && v.value() > 0.5) {
         if (first_lost_time_ < 0.0) first_lost_time_ = fromMsg(m.header().stamp()).seconds();
         ++lost_frames_;
       } else if (v.name() == "rejected_updates") {
         rejected_updates_ = static_cast<long>(v.value());
+      } else if (v.name() == "degenerate_directions" && v.value() > 0.5) {
+        ++degenerate_frames_;
       }
     }
   }
@@ -354,6 +359,8 @@ class EvaluatorComponent : public Component {
   std::unique_ptr<run_files::TimingsWriter> timings_;
   double first_lost_time_ = -1.0;  // s; negative: the LO never said it was lost
   long lost_frames_ = 0;
+  long lo_frames_ = 0;          // /lo/metrics messages
+  long degenerate_frames_ = 0;  // of them, with a degenerate pose direction
   long rejected_updates_ = 0;
   std::unique_ptr<run_files::UncertaintyWriter> uncertainty_;
   double command_ = 0.0;

@@ -61,6 +61,8 @@ MetricsDocument sampleMetrics() {
   m.cmplt_ground_truth.cmplt = kNotANumber;
   m.motor.mean_speed = 3.6000000000000001;
   m.lo.lost_frames = 2;
+  m.lo.frames = 900;
+  m.lo.degenerate_frames = 850;
   m.lo.rejected_updates = -1;
   return m;
 }
@@ -100,6 +102,8 @@ TEST(MetricsFile, ReadsBackWhatItWrote) {
   EXPECT_TRUE(std::isnan(read->motor.speed_std));
   EXPECT_FALSE(read->lo.first_lost_time);
   EXPECT_EQ(read->lo.lost_frames, 2);
+  EXPECT_EQ(read->lo.frames, 900);
+  EXPECT_EQ(read->lo.degenerate_frames, 850);
   EXPECT_EQ(read->lo.rejected_updates, -1);
 }
 
@@ -122,7 +126,9 @@ TEST(MetricsFile, PrintsAsTheEvaluatorAlwaysHas) {
   EXPECT_NE(text.find("\"speed_error\": {\n      \"max_m_s\": 3.6\n    }"), std::string::npos) << text;
   EXPECT_NE(text.find("\"mean_speed\": 3.6,"), std::string::npos) << text;
   EXPECT_EQ(text.find("first_lost_time"), std::string::npos) << text;
-  const std::string tail = "  \"lo\": {\n    \"lost_frames\": 2,\n    \"rejected_updates\": -1\n  }\n}\n";
+  const std::string tail =
+      "  \"lo\": {\n    \"lost_frames\": 2,\n    \"rejected_updates\": -1,\n    \"frames\": 900,\n"
+      "    \"degenerate_frames\": 850\n  }\n}\n";
   EXPECT_EQ(text.substr(text.size() - tail.size()), tail) << text;
 }
 
@@ -368,7 +374,7 @@ TEST(MetricsFile, TheRunObjectComesLastAndReadsBackOnlyWhole) {
   writeMetricsFile(path, m);
   const std::string text = contentOf(path);
   // The figures print as before, then the run.
-  EXPECT_NE(text.find("\"rejected_updates\": -1\n  },\n  \"run\": {\n    \"scene\": \"scene.yaml\","),
+  EXPECT_NE(text.find("\"degenerate_frames\": 850\n  },\n  \"run\": {\n    \"scene\": \"scene.yaml\","),
             std::string::npos)
       << text;
   const auto read = readMetricsFile(path);
