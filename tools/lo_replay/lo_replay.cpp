@@ -167,6 +167,7 @@ int replay(int argc, char** argv) {
   lo::MotorizedLidarOdometry odometry;  // replaced once the first frame's end is known
   bool started = false;
   double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
+  std::size_t frames = 0, degenerate_frames = 0;  // registered frames, and those with a degenerate pose direction
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
   std::printf(
       "#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y "
@@ -186,6 +187,8 @@ int replay(int argc, char** argv) {
       odometry.addImu({sample.time, sample.angular_velocity, sample.linear_acceleration});
     }
     const lo::OdometryResult r = odometry.registerScan(scan, motor);
+    ++frames;
+    if (r.degeneracy.degenerate_directions > 0) ++degenerate_frames;
     const Eigen::Isometry3d T = truth.poseAt(r.time);
     const double rot_err = degrees(tools::rotationAngle(T.linear().transpose() * r.T_WB.linear()));
     const double pos_err = (T.translation() - r.T_WB.translation()).norm();
@@ -220,8 +223,8 @@ int replay(int argc, char** argv) {
   }
   std::printf(
       "summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at "
-      "%s\n",
+      "%s, degenerate frames %zu of %zu\n",
       source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
-      lost_at < 0 ? "never" : std::to_string(lost_at).c_str());
+      lost_at < 0 ? "never" : std::to_string(lost_at).c_str(), degenerate_frames, frames);
   return 0;
 }

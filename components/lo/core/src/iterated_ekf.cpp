@@ -256,13 +256,16 @@ Eigen::MatrixXd gramian(const Jacobian& H) {
 
 // What the planes' own noise adds to the unit-weight information H^T H of the state (12x12).
 // A row is J_i = A_i n_i, linear in the plane's normal (A_i: 12x3, below). A normal fitted to a few
-// noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = c_i (I - n n^T)
-// (Plane::normal_variance), so each row adds c_i A_i (I - n n^T) A_i^T = c_i (A_i A_i^T - J_i J_i^T) on
-// average: information along directions no surface constrains. In a plain corridor with 2 cm of
-// range noise that is 20-30 effective points along the axis, which hid its degeneracy in 91 % of
-// the frames (README, "The LO in degenerate geometry"). Rows the gate dropped (zero) add nothing.
-// An expectation, so it is estimated from every kStride-th row (the rows are in spatial order, so
-// those spread over the whole scan), times kStride: a quarter of the cost, about 0.5 ms a frame.
+// noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = sigma^2 C_i (C_i:
+// Plane::spread_inverse), so each row adds sigma^2 A_i C_i A_i^T on average: information along
+// directions no surface constrains. In a plain corridor with 2 cm of range noise that is 20-30
+// effective points along the axis, which hid its degeneracy in 91 % of the frames (README, "The LO
+// in degenerate geometry"). sigma^2 is the median of the planes' own estimates: one plane's
+// scatter also holds whatever bend of the surface it spans (an edge within the 0.1 m tolerance),
+// which is not noise, and with those the sum came out up to twice what the corridor's axis had.
+// Rows the gate dropped (zero) add nothing. An expectation, so it is estimated from every
+// kStride-th row (the rows are in spatial order, so those spread over the whole scan), times
+// kStride: a quarter of the cost, about 0.5 ms a frame.
 Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondences, const Jacobian& H,
                                 const BaseState& x, const FrameDeviation* deviation) {
   constexpr std::size_t kStride = 4;
@@ -270,13 +273,23 @@ Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondenc
   // After a re-association that found too few planes, H is still the previous set's: nothing to
   // pair its rows with.
   if (static_cast<std::size_t>(H.rows()) != correspondences.size()) return noise;
+  auto used = [&](std::size_t i) {
+    return correspondences[i].plane.scatter_variance > 0.0 && !H.block<1, 3>(static_cast<Eigen::Index>(i), 3).isZero();
+  };
+  std::vector<double> variances;
+  for (std::size_t i = 0; i < correspondences.size(); i += kStride) {
+    if (used(i)) variances.push_back(correspondences[i].plane.scatter_variance);
+  }
+  if (variances.empty()) return noise;
+  const auto middle = variances.begin() + static_cast<std::ptrdiff_t>(variances.size() / 2);
+  std::nth_element(variances.begin(), middle, variances.end());
+  const double sigma2 = *middle;
   const FrameDeskew deskew(x, deviation);
   const Eigen::Matrix3d R_BW = x.R_WB.transpose();
   Eigen::Matrix<double, 12, 3> A;
   for (std::size_t i = 0; i < correspondences.size(); i += kStride) {
+    if (!used(i)) continue;
     const Correspondence& c = correspondences[i];
-    const auto row = static_cast<Eigen::Index>(i);
-    if (c.plane.normal_variance <= 0.0 || H.block<1, 3>(row, 3).isZero()) continue;
     const TimedPoint& point = *c.point;
     const FrameDeskew::Rotation E = deskew.rotation(point.tau);
     const Eigen::Vector3d s = E * point.p_B;
@@ -288,10 +301,10 @@ Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondenc
     }
     A.block<3, 3>(3, 0).setIdentity();                              // position: n
     A.block<3, 3>(6, 0) = point.tau * Eigen::Matrix3d::Identity();  // linear velocity: tau n
-    const Vector12d J = H.block<1, 12>(row, 0).transpose();
-    noise.noalias() += c.plane.normal_variance * (A * A.transpose() - J * J.transpose());
+    const Eigen::Matrix<double, 12, 3> AC = A * c.plane.spread_inverse;
+    noise.noalias() += AC * A.transpose();
   }
-  return static_cast<double>(kStride) * noise;
+  return (sigma2 * static_cast<double>(kStride)) * noise;
 }
 
 // The Gauss-Newton step with the frame's deviation e as 6 more unknowns (see the header): the

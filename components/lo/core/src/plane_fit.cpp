@@ -1,5 +1,6 @@
 #include "uampc/lo/plane_fit.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
@@ -43,14 +44,17 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
   Plane plane;
   plane.normal = normal;
   plane.offset = -normal.dot(centroid);
-  // The eigenvalues without a solver: lambda_0 = n^T S n, lambda_1 + lambda_2 = trace - lambda_0,
-  // and the adjugate's trace is lambda_0 lambda_1 + lambda_0 lambda_2 + lambda_1 lambda_2.
+  // The pseudo-inverse of S restricted to the plane, P S P with P = I - n n^T, is
+  // (P S P + n n^T)^-1 - n n^T: the added n n^T makes it invertible without touching the plane.
   const double lambda_0 = std::max(0.0, normal.dot(S * normal));
-  const double in_plane_sum = trace - lambda_0;
-  const double in_plane_product = adj.trace() - lambda_0 * in_plane_sum;
-  if (points.size() > 3 && in_plane_product > 0.0) {
-    const double variance = lambda_0 / static_cast<double>(points.size() - 3);
-    plane.normal_variance = variance * in_plane_sum / (2.0 * in_plane_product);
+  if (points.size() > 3 && lambda_0 > 0.0) {
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - normal * normal.transpose();
+    const Eigen::Matrix3d nn = normal * normal.transpose();
+    const Eigen::Matrix3d in_plane_inverse = (P * S * P + nn).inverse() - nn;
+    if (in_plane_inverse.allFinite()) {
+      plane.spread_inverse = in_plane_inverse;
+      plane.scatter_variance = lambda_0 / static_cast<double>(points.size() - 3);
+    }
   }
   for (const auto& p : points) {
     if (std::abs(normal.dot(p) + plane.offset) > max_point_distance) return std::nullopt;

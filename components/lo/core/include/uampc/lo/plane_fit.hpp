@@ -11,11 +11,14 @@ namespace uampc::lo {
 struct Plane {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   double offset = 0.0;
-  // Expected squared tilt of the normal about an in-plane axis (rad^2), from the fit's own
-  // scatter: sigma^2 (1 / lambda_1 + 1 / lambda_2) / 2, sigma^2 = lambda_0 / (k - 3) the points'
-  // variance across the plane, lambda the scatter matrix's eigenvalues (an isotropic
-  // approximation of the normal's covariance). 0 for an exact fit.
-  double normal_variance = 0.0;
+  // How the normal tilts: its covariance is sigma^2 spread_inverse, with sigma^2 the points'
+  // variance across the plane and spread_inverse = (S restricted to the plane)^+ (S the scatter
+  // matrix; the normal tilts least about the direction the points spread along most).
+  // scatter_variance = lambda_0 / (k - 3) estimates sigma^2 from this fit alone (0 for an exact
+  // fit); a patch that bends over an edge inflates it, so a frame's typical value is the better
+  // estimate (see planeNoiseInformation in iterated_ekf.cpp).
+  Eigen::Matrix3d spread_inverse = Eigen::Matrix3d::Zero();
+  double scatter_variance = 0.0;
 };
 
 // Least-squares plane (smallest eigenvector of the scatter matrix). Nothing when there are fewer
