@@ -257,7 +257,7 @@ Eigen::MatrixXd gramian(const Jacobian& H) {
 // What the planes' own noise adds to the unit-weight information H^T H of the state (12x12).
 // A row is J_i = A_i n_i, linear in the plane's normal (A_i: 12x3, below). A normal fitted to a few
 // noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = sigma^2 C_i (C_i:
-// Plane::spread_inverse), so each row adds sigma^2 A_i C_i A_i^T on average: information along
+// spreadInverse(plane)), so each row adds sigma^2 A_i C_i A_i^T on average: information along
 // directions no surface constrains. In a plain corridor with 2 cm of range noise that is 20-30
 // effective points along the axis, which hid its degeneracy in 91 % of the frames (README, "The LO
 // in degenerate geometry"). sigma^2 is the median of the planes' own estimates: one plane's
@@ -301,7 +301,7 @@ Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondenc
     }
     A.block<3, 3>(3, 0).setIdentity();                              // position: n
     A.block<3, 3>(6, 0) = point.tau * Eigen::Matrix3d::Identity();  // linear velocity: tau n
-    const Eigen::Matrix<double, 12, 3> AC = A * c.plane.spread_inverse;
+    const Eigen::Matrix<double, 12, 3> AC = A * spreadInverse(c.plane);
     noise.noalias() += AC * A.transpose();
   }
   return (sigma2 * static_cast<double>(kStride)) * noise;

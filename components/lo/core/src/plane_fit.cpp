@@ -44,22 +44,26 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
   Plane plane;
   plane.normal = normal;
   plane.offset = -normal.dot(centroid);
-  // The pseudo-inverse of S restricted to the plane, P S P with P = I - n n^T, is
-  // (P S P + n n^T)^-1 - n n^T: the added n n^T makes it invertible without touching the plane.
   const double lambda_0 = std::max(0.0, normal.dot(S * normal));
-  if (points.size() > 3 && lambda_0 > 0.0) {
-    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - normal * normal.transpose();
-    const Eigen::Matrix3d nn = normal * normal.transpose();
-    const Eigen::Matrix3d in_plane_inverse = (P * S * P + nn).inverse() - nn;
-    if (in_plane_inverse.allFinite()) {
-      plane.spread_inverse = in_plane_inverse;
-      plane.scatter_variance = lambda_0 / static_cast<double>(points.size() - 3);
-    }
-  }
+  if (points.size() > 3) plane.scatter_variance = lambda_0 / static_cast<double>(points.size() - 3);
+  plane.scatter = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};
   for (const auto& p : points) {
     if (std::abs(normal.dot(p) + plane.offset) > max_point_distance) return std::nullopt;
   }
   return plane;
+}
+
+// The pseudo-inverse of S restricted to the plane, P S P with P = I - n n^T, is
+// (P S P + n n^T)^-1 - n n^T: the added n n^T makes it invertible without touching the plane.
+Eigen::Matrix3d spreadInverse(const Plane& plane) {
+  const auto& s = plane.scatter;
+  Eigen::Matrix3d S;
+  S << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
+  if (S.isZero()) return Eigen::Matrix3d::Zero();
+  const Eigen::Matrix3d nn = plane.normal * plane.normal.transpose();
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - nn;
+  const Eigen::Matrix3d inverse = (P * S * P + nn).inverse() - nn;
+  return inverse.allFinite() ? inverse : Eigen::Matrix3d::Zero();
 }
 
 }  // namespace uampc::lo

@@ -74,7 +74,7 @@ TEST(PlaneFit, PredictsTheCovarianceOfItsNormalFromItsOwnScatter) {
     const auto plane = fitPlane(points, 0.1);
     ASSERT_TRUE(plane);
     const Eigen::Vector3d n = plane->normal.z() < 0.0 ? Eigen::Vector3d(-plane->normal) : plane->normal;
-    predicted += plane->scatter_variance * plane->spread_inverse;
+    predicted += plane->scatter_variance * spreadInverse(*plane);
     measured += (n - Eigen::Vector3d::UnitZ()) * (n - Eigen::Vector3d::UnitZ()).transpose();
   }
   std::printf("normal covariance about y and x: predicted %.3g, %.3g rad^2, measured %.3g, %.3g rad^2\n",
