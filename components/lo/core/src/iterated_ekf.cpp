@@ -168,24 +168,29 @@ using Vector18d = Eigen::Matrix<double, 18, 1>;
 
 // Data association at the iterate x: each point with the plane through its k nearest map points,
 // if they are near enough, planar, and (options.match_seen_side_only) seen from the point's side.
+// spreads: how each plane's normal tilts, in the same order (apart, so the hot loops stay lean).
 void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew, const LocalMap& map,
-               const UpdateOptions& options, std::vector<Correspondence>& correspondences) {
+               const UpdateOptions& options, std::vector<Correspondence>& correspondences,
+               std::vector<PlaneSpread>& spreads) {
   const double max_neighbour_distance2 = options.max_neighbour_distance * options.max_neighbour_distance;
   std::vector<Eigen::Vector3d> neighbours;
   std::vector<Eigen::Vector3f> views;
   neighbours.reserve(options.nearest_neighbours);
   views.reserve(options.nearest_neighbours);
   correspondences.clear();
+  spreads.clear();
+  PlaneSpread spread;
   for (const TimedPoint& point : points) {
     const Eigen::Vector3d q = deskew.toWorld(point);
     if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
     if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
-    const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance);
+    const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance, &spread);
     if (!plane) continue;
     // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
     // within centimetres of it, and nothing that near is seen), at the point's time.
     if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, deskew.originAt(point.tau))) continue;
     correspondences.push_back({&point, *plane});
+    spreads.push_back(spread);
   }
 }
 
@@ -257,7 +262,7 @@ Eigen::MatrixXd gramian(const Jacobian& H) {
 // What the planes' own noise adds to the unit-weight information H^T H of the state (12x12).
 // A row is J_i = A_i n_i, linear in the plane's normal (A_i: 12x3, below). A normal fitted to a few
 // noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = sigma^2 C_i (C_i:
-// spreadInverse(plane)), so each row adds sigma^2 A_i C_i A_i^T on average: information along
+// spreadInverse), so each row adds sigma^2 A_i C_i A_i^T on average: information along
 // directions no surface constrains. In a plain corridor with 2 cm of range noise that is 20-30
 // effective points along the axis, which hid its degeneracy in 91 % of the frames (README, "The LO
 // in degenerate geometry"). sigma^2 is the median of the planes' own estimates: one plane's
@@ -266,19 +271,20 @@ Eigen::MatrixXd gramian(const Jacobian& H) {
 // Rows the gate dropped (zero) add nothing. An expectation, so it is estimated from every
 // kStride-th row (the rows are in spatial order, so those spread over the whole scan), times
 // kStride: a quarter of the cost, about 0.5 ms a frame.
-Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondences, const Jacobian& H,
-                                const BaseState& x, const FrameDeviation* deviation) {
+Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondences,
+                                const std::vector<PlaneSpread>& spreads, const Jacobian& H, const BaseState& x,
+                                const FrameDeviation* deviation) {
   constexpr std::size_t kStride = 4;
   Matrix12d noise = Matrix12d::Zero();
   // After a re-association that found too few planes, H is still the previous set's: nothing to
   // pair its rows with.
   if (static_cast<std::size_t>(H.rows()) != correspondences.size()) return noise;
   auto used = [&](std::size_t i) {
-    return correspondences[i].plane.scatter_variance > 0.0 && !H.block<1, 3>(static_cast<Eigen::Index>(i), 3).isZero();
+    return spreads[i].scatter_variance > 0.0 && !H.block<1, 3>(static_cast<Eigen::Index>(i), 3).isZero();
   };
   std::vector<double> variances;
   for (std::size_t i = 0; i < correspondences.size(); i += kStride) {
-    if (used(i)) variances.push_back(correspondences[i].plane.scatter_variance);
+    if (used(i)) variances.push_back(spreads[i].scatter_variance);
   }
   if (variances.empty()) return noise;
   const auto middle = variances.begin() + static_cast<std::ptrdiff_t>(variances.size() / 2);
@@ -301,7 +307,7 @@ Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondenc
     }
     A.block<3, 3>(3, 0).setIdentity();                              // position: n
     A.block<3, 3>(6, 0) = point.tau * Eigen::Matrix3d::Identity();  // linear velocity: tau n
-    const Eigen::Matrix<double, 12, 3> AC = A * spreadInverse(c.plane);
+    const Eigen::Matrix<double, 12, 3> AC = A * spreadInverse(c.plane, spreads[i]);
     noise.noalias() += AC * A.transpose();
   }
   return (sigma2 * static_cast<double>(kStride)) * noise;
@@ -332,7 +338,9 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   BaseState x = prior;
   Matrix12d posterior_information = prior_information;
   std::vector<Correspondence> correspondences;
+  std::vector<PlaneSpread> spreads;  // parallel to correspondences
   correspondences.reserve(points.size());
+  spreads.reserve(points.size());
   // Query the map in spatial (Morton) order: successive queries then share most of their map
   // blocks, which stay in cache. Same result as scan order, fewer cache misses.
   const std::vector<TimedPoint> ordered = spatialOrder(points, map.voxelSize());
@@ -359,7 +367,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     if (reassociate) {
       rotation_since_association = translation_since_association = 0.0;
-      associate(ordered, FrameDeskew(x, frame), map, options, correspondences);
+      associate(ordered, FrameDeskew(x, frame), map, options, correspondences, spreads);
       ++summary.associations;
       summary.correspondences = correspondences.size();
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
@@ -384,7 +392,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     // analysis is redone at every linearisation only when it decides the step; for the report
     // it is made once, after the loop.
     if (options.project_degenerate) {
-      const Matrix12d surface_information = HtH - planeNoiseInformation(correspondences, H, x, frame);
+      const Matrix12d surface_information = HtH - planeNoiseInformation(correspondences, spreads, H, x, frame);
       summary.state_degeneracy =
           analyseStateDegeneracy(surface_information, options.degeneracy_scales, options.degeneracy_threshold);
       if (summary.state_degeneracy.degenerate_directions > 0) {
@@ -443,7 +451,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
                   translation_since_association > options.reassociation_translation;
   }
   if (summary.applied) {
-    reportDegeneracy(information, information - planeNoiseInformation(correspondences, H, linearised_at, frame), options,
+    reportDegeneracy(information, information - planeNoiseInformation(correspondences, spreads, H, linearised_at, frame), options,
                      summary);
   }
   if (!summary.applied || !finite(x)) {

@@ -12,8 +12,8 @@ namespace uampc::lo {
 // already close to the normal, and two power-iteration steps on adj(S) (each shrinking the error
 // by lambda_0 / lambda_1) make it exact to rounding. No trigonometry, unlike a full 3x3
 // eigen-solver, and this runs for every correspondence.
-std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
-                              double max_point_distance) {
+std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points, double max_point_distance,
+                              PlaneSpread* spread) {
   if (points.size() < 3) return std::nullopt;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : points) centroid += p;
@@ -44,9 +44,11 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
   Plane plane;
   plane.normal = normal;
   plane.offset = -normal.dot(centroid);
-  const double lambda_0 = std::max(0.0, normal.dot(S * normal));
-  if (points.size() > 3) plane.scatter_variance = lambda_0 / static_cast<double>(points.size() - 3);
-  plane.scatter = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};
+  if (spread) {
+    const double lambda_0 = std::max(0.0, normal.dot(S * normal));
+    spread->scatter_variance = points.size() > 3 ? lambda_0 / static_cast<double>(points.size() - 3) : 0.0;
+    spread->scatter = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};
+  }
   for (const auto& p : points) {
     if (std::abs(normal.dot(p) + plane.offset) > max_point_distance) return std::nullopt;
   }
@@ -55,8 +57,8 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points,
 
 // The pseudo-inverse of S restricted to the plane, P S P with P = I - n n^T, is
 // (P S P + n n^T)^-1 - n n^T: the added n n^T makes it invertible without touching the plane.
-Eigen::Matrix3d spreadInverse(const Plane& plane) {
-  const auto& s = plane.scatter;
+Eigen::Matrix3d spreadInverse(const Plane& plane, const PlaneSpread& spread) {
+  const auto& s = spread.scatter;
   Eigen::Matrix3d S;
   S << s[0], s[1], s[2], s[1], s[3], s[4], s[2], s[4], s[5];
   if (S.isZero()) return Eigen::Matrix3d::Zero();

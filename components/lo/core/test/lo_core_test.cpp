@@ -56,14 +56,15 @@ TEST(PlaneFit, AcceptsAPlaneAndRejectsACorner) {
   EXPECT_FALSE(fitPlane(line, 0.1));
 }
 
-// scatter_variance * spread_inverse predicts how a fit's normal tilts: over many noisy 5-point patches of the plane
+// PlaneSpread predicts how a fit's normal tilts: over many noisy 5-point patches of the plane
 // z = 0, 0.9 m long and 0.2 m wide, with 2 cm of noise across the plane, the predicted covariance
 // matches the measured one about each in-plane axis (the normal tilts about five times more
 // across the narrow side: an isotropic guess would be off by 2.5 both ways); an exact fit predicts none.
 TEST(PlaneFit, PredictsTheCovarianceOfItsNormalFromItsOwnScatter) {
   const std::vector<Eigen::Vector3d> exact = {{0, 0, 0}, {0.3, 0, 0}, {0.6, 0, 0}, {0.9, 0, 0}, {0.45, 0.2, 0}};
-  ASSERT_TRUE(fitPlane(exact, 0.1));
-  EXPECT_EQ(fitPlane(exact, 0.1)->scatter_variance, 0.0);
+  PlaneSpread spread;
+  ASSERT_TRUE(fitPlane(exact, 0.1, &spread));
+  EXPECT_EQ(spread.scatter_variance, 0.0);
   std::mt19937 rng(7);
   std::normal_distribution<double> noise(0.0, 0.02);
   Eigen::Matrix3d predicted = Eigen::Matrix3d::Zero(), measured = Eigen::Matrix3d::Zero();
@@ -71,10 +72,10 @@ TEST(PlaneFit, PredictsTheCovarianceOfItsNormalFromItsOwnScatter) {
   for (int i = 0; i < patches; ++i) {
     std::vector<Eigen::Vector3d> points = exact;
     for (auto& p : points) p.z() += noise(rng);
-    const auto plane = fitPlane(points, 0.1);
+    const auto plane = fitPlane(points, 0.1, &spread);
     ASSERT_TRUE(plane);
     const Eigen::Vector3d n = plane->normal.z() < 0.0 ? Eigen::Vector3d(-plane->normal) : plane->normal;
-    predicted += plane->scatter_variance * spreadInverse(*plane);
+    predicted += spread.scatter_variance * spreadInverse(*plane, spread);
     measured += (n - Eigen::Vector3d::UnitZ()) * (n - Eigen::Vector3d::UnitZ()).transpose();
   }
   std::printf("normal covariance about y and x: predicted %.3g, %.3g rad^2, measured %.3g, %.3g rad^2\n",
