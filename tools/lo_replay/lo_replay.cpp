@@ -9,6 +9,7 @@
 //             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
 //             [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] [--open-fraction F]
 //             [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M]
+//             [--plane-min-spread-ratio R]
 //             [--path-speed M_PER_S] [--poor-rows N]
 //
 // Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
@@ -58,7 +59,7 @@ void printUsage(std::FILE* out) {
       "[--iterations N] [--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
       "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
       "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] "
-      "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] "
+      "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] [--plane-min-spread-ratio R] "
       "[--path-speed M_PER_S] [--poor-rows N]\n"
       "Replays the simulated motorized LiDAR at a constant motor speed into the LO, without DDS, and prints per\n"
       "frame the errors against ground truth, then a summary line (README, \"Where the loop's time goes\"). Unset LO options take\n"
@@ -106,6 +107,8 @@ int replay(int argc, char** argv) {
       settings.campus_poor_rows = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--plane-distance")
       config.plane_max_point_distance = tools::nonNegative(flag, value);
+    else if (flag == "--plane-min-spread-ratio")
+      config.plane_min_spread_ratio = tools::nonNegative(flag, value);
     else if (flag == "--profile")
       settings.density_profile = value;
     else if (flag == "--open-fraction")

@@ -184,7 +184,8 @@ void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew,
     const Eigen::Vector3d q = deskew.toWorld(point);
     if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
     if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
-    const std::optional<Plane> plane = fitPlane(neighbours, options.plane_max_point_distance, &spread);
+    const std::optional<Plane> plane =
+        fitPlane(neighbours, options.plane_max_point_distance, &spread, options.plane_min_spread_ratio);
     if (!plane) continue;
     // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
     // within centimetres of it, and nothing that near is seen), at the point's time.

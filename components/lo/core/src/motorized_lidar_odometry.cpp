@@ -67,6 +67,7 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
   UpdateOptions options;
   options.nearest_neighbours = config.nearest_neighbours;
   options.plane_max_point_distance = config.plane_max_point_distance;
+  options.plane_min_spread_ratio = config.plane_min_spread_ratio;
   options.max_neighbour_distance = config.max_neighbour_distance;
   options.measurement_variance = config.measurement_variance;
   options.max_iterations = config.max_iterations;

@@ -13,7 +13,7 @@ namespace uampc::lo {
 // by lambda_0 / lambda_1) make it exact to rounding. No trigonometry, unlike a full 3x3
 // eigen-solver, and this runs for every correspondence.
 std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points, double max_point_distance,
-                              PlaneSpread* spread) {
+                              PlaneSpread* spread, double min_spread_ratio) {
   if (points.size() < 3) return std::nullopt;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const auto& p : points) centroid += p;
@@ -44,6 +44,16 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points, double
   Plane plane;
   plane.normal = normal;
   plane.offset = -normal.dot(centroid);
+  if (min_spread_ratio > 0.0) {
+    // The in-plane eigenvalues from their sum and product: lambda_0 = n^T S n, lambda_1 + lambda_2
+    // = trace - lambda_0, and the adjugate's trace is lambda_0 (lambda_1 + lambda_2) + lambda_1 lambda_2.
+    const double lambda_0 = std::max(0.0, normal.dot(S * normal));
+    const double sum = trace - lambda_0;
+    const double product = adj.trace() - lambda_0 * sum;
+    const double root = std::sqrt(std::max(0.0, sum * sum - 4.0 * product));
+    const double wider = 0.5 * (sum + root), narrower = 0.5 * (sum - root);
+    if (!(narrower >= min_spread_ratio * wider)) return std::nullopt;
+  }
   if (spread) {
     const double lambda_0 = std::max(0.0, normal.dot(S * normal));
     spread->scatter_variance = points.size() > 3 ? lambda_0 / static_cast<double>(points.size() - 3) : 0.0;

@@ -87,6 +87,17 @@ TEST(PlaneFit, PredictsTheCovarianceOfItsNormalFromItsOwnScatter) {
   EXPECT_GT(measured(1, 1), 3.0 * measured(0, 0));  // what the test is about
 }
 
+// A thin patch (five points within 2 cm of a line) fits a plane whose normal may turn about the
+// line; with a minimum spread ratio it is refused, a square patch is not.
+TEST(PlaneFit, RefusesAThinPatchWhenAskedTo) {
+  const std::vector<Eigen::Vector3d> thin = {{0, 0, 0}, {0.3, 0.02, 0}, {0.6, 0, 0}, {0.9, 0.01, 0}, {1.2, 0.0, 0.01}};
+  const std::vector<Eigen::Vector3d> square = {{0, 0, 0}, {0.3, 0, 0}, {0, 0.3, 0}, {0.3, 0.3, 0}, {0.15, 0.15, 0.01}};
+  EXPECT_TRUE(fitPlane(thin, 0.1));
+  EXPECT_FALSE(fitPlane(thin, 0.1, nullptr, 0.05));
+  EXPECT_TRUE(fitPlane(square, 0.1, nullptr, 0.05));
+  EXPECT_TRUE(fitPlane(square, 0.1, nullptr, 0.9));  // its spreads are equal: ratio 1
+}
+
 TEST(VoxelDownsample, KeepsOnePointPerVoxelWithItsTime) {
   std::vector<TimedPoint> points = {
       {{0.01, 0.01, 0.01}, -0.1}, {{0.02, 0.02, 0.02}, -0.05}, {{0.5, 0.01, 0.01}, -0.02}};

@@ -70,6 +70,7 @@ namespace uampc::lo {
 struct UpdateOptions {
   std::size_t nearest_neighbours = 5;
   double plane_max_point_distance = 0.1;  // m
+  double plane_min_spread_ratio = 0.0;    // see OdometryConfig
   double max_neighbour_distance = 1.0;    // m, the k-th neighbour must be closer than this
   double measurement_variance = 0.001;    // m^2
   int max_iterations = 10;

@@ -51,6 +51,12 @@ struct OdometryConfig {
 
   std::size_t nearest_neighbours = 5;
   double plane_max_point_distance = 0.1;  // m, a plane is rejected if a neighbour is farther off
+  // A plane is rejected if its points spread along their narrower in-plane direction less than
+  // this fraction of along the wider (lambda_1 / lambda_2 of the scatter); 0: never. Thin patches
+  // (points nearly on a line) leave the normal free to turn about the line: in the plain corridor
+  // they were the x-facing planes near the sensor (README, "The LO in degenerate geometry").
+  // Off until measured on every world.
+  double plane_min_spread_ratio = 0.0;
   double max_neighbour_distance = 1.0;    // m
   double measurement_variance = 0.001;    // m^2
   // Velocity random walk densities of the constant-velocity model, linear and angular (they can

@@ -31,9 +31,10 @@ struct PlaneSpread {
 // Least-squares plane (smallest eigenvector of the scatter matrix). Nothing when there are fewer
 // than 3 points, they are collinear, or any of them lies more than max_point_distance off the
 // fitted plane (the neighbourhood is not planar: an edge, a corner, clutter).
-// With spread, also how the fit's normal tilts.
+// With spread, also how the fit's normal tilts. min_spread_ratio > 0 also rejects thin patches:
+// lambda_1 / lambda_2 of the scatter (the in-plane spreads, narrower over wider) below it.
 std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points, double max_point_distance,
-                              PlaneSpread* spread = nullptr);
+                              PlaneSpread* spread = nullptr, double min_spread_ratio = 0.0);
 
 // (S restricted to the plane)^+, m^-2: the shape of the normal's covariance (it tilts least about
 // the direction the points spread along most); zero for a plane with no scatter recorded.
