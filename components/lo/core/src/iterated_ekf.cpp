@@ -308,8 +308,10 @@ Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondenc
     }
     A.block<3, 3>(3, 0).setIdentity();                              // position: n
     A.block<3, 3>(6, 0) = point.tau * Eigen::Matrix3d::Identity();  // linear velocity: tau n
-    const Eigen::Matrix<double, 12, 3> AC = A * spreadInverse(c.plane, spreads[i]);
-    noise.noalias() += AC * A.transpose();
+    // Coefficient-wise products: for these fixed sizes Eigen would otherwise pack them for its
+    // large-matrix kernel, which cost more than the sums themselves.
+    const Eigen::Matrix<double, 12, 3> AC = A.lazyProduct(spreadInverse(c.plane, spreads[i]));
+    noise.noalias() += AC.lazyProduct(A.transpose());
   }
   return (sigma2 * static_cast<double>(kStride)) * noise;
 }
@@ -364,6 +366,9 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   Eigen::VectorXd z;                          // point-to-plane residuals
   Matrix12d information = Matrix12d::Zero();  // unit-weight H^T H of the last linearisation
   BaseState linearised_at = x;                // and where it was linearised
+  // What the planes' noise adds to information, once known for the last linearisation (every
+  // linearisation needs it only with project_degenerate; the report needs it once).
+  std::optional<Matrix12d> information_noise;
 
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     if (reassociate) {
@@ -388,14 +393,15 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     if (frame) HtHe = gram.topRightCorner<12, 6>();
     information = HtH;
     linearised_at = x;
+    information_noise.reset();
     // Directions the scan cannot see get none of its information (Zhang et al. 2016): in them,
     // noise and the few wrong matches every scan has would otherwise move the pose freely. The
     // analysis is redone at every linearisation only when it decides the step; for the report
     // it is made once, after the loop.
     if (options.project_degenerate) {
-      const Matrix12d surface_information = HtH - planeNoiseInformation(correspondences, spreads, H, x, frame);
+      information_noise = planeNoiseInformation(correspondences, spreads, H, x, frame);
       summary.state_degeneracy =
-          analyseStateDegeneracy(surface_information, options.degeneracy_scales, options.degeneracy_threshold);
+          analyseStateDegeneracy(HtH - *information_noise, options.degeneracy_scales, options.degeneracy_threshold);
       if (summary.state_degeneracy.degenerate_directions > 0) {
         const Matrix12d& pi = summary.state_degeneracy.projector;
         HtH = (pi.transpose() * HtH * pi).eval();
@@ -452,8 +458,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
                   translation_since_association > options.reassociation_translation;
   }
   if (summary.applied) {
-    reportDegeneracy(information, information - planeNoiseInformation(correspondences, spreads, H, linearised_at, frame), options,
-                     summary);
+    if (!information_noise) information_noise = planeNoiseInformation(correspondences, spreads, H, linearised_at, frame);
+    reportDegeneracy(information, information - *information_noise, options, summary);
   }
   if (!summary.applied || !finite(x)) {
     summary.applied = false;

@@ -6,6 +6,20 @@
 
 namespace uampc::lo {
 
+namespace {
+
+// Whether the in-plane spreads lambda_1 <= lambda_2 of a scatter matrix have lambda_1 / lambda_2
+// below min_ratio, from their sum (trace - lambda_0) and product (the adjugate's trace is
+// lambda_0 (lambda_1 + lambda_2) + lambda_1 lambda_2).
+bool thin(double in_plane_sum, double adjugate_trace, double lambda_0, double min_ratio) {
+  const double product = adjugate_trace - lambda_0 * in_plane_sum;
+  const double root = std::sqrt(std::max(0.0, in_plane_sum * in_plane_sum - 4.0 * product));
+  const double wider = 0.5 * (in_plane_sum + root), narrower = 0.5 * (in_plane_sum - root);
+  return !(narrower >= min_ratio * wider);
+}
+
+}  // namespace
+
 // The normal is the eigenvector of the scatter matrix S with the smallest eigenvalue. It is
 // taken from the adjugate adj(S) = sum_i (prod_{j != i} lambda_j) v_i v_i^T, which for a planar
 // patch (lambda_0 << lambda_1 <= lambda_2) is dominated by v_0 v_0^T: its largest column is
@@ -44,23 +58,14 @@ std::optional<Plane> fitPlane(const std::vector<Eigen::Vector3d>& points, double
   Plane plane;
   plane.normal = normal;
   plane.offset = -normal.dot(centroid);
-  if (min_spread_ratio > 0.0) {
-    // The in-plane eigenvalues from their sum and product: lambda_0 = n^T S n, lambda_1 + lambda_2
-    // = trace - lambda_0, and the adjugate's trace is lambda_0 (lambda_1 + lambda_2) + lambda_1 lambda_2.
-    const double lambda_0 = std::max(0.0, normal.dot(S * normal));
-    const double sum = trace - lambda_0;
-    const double product = adj.trace() - lambda_0 * sum;
-    const double root = std::sqrt(std::max(0.0, sum * sum - 4.0 * product));
-    const double wider = 0.5 * (sum + root), narrower = 0.5 * (sum - root);
-    if (!(narrower >= min_spread_ratio * wider)) return std::nullopt;
-  }
-  if (spread) {
-    const double lambda_0 = std::max(0.0, normal.dot(S * normal));
-    spread->scatter_variance = points.size() > 3 ? lambda_0 / static_cast<double>(points.size() - 3) : 0.0;
-    spread->scatter = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};
-  }
+  const double lambda_0 = std::max(0.0, normal.dot(S * normal));  // spread across the plane
+  if (min_spread_ratio > 0.0 && thin(trace - lambda_0, adj.trace(), lambda_0, min_spread_ratio)) return std::nullopt;
   for (const auto& p : points) {
     if (std::abs(normal.dot(p) + plane.offset) > max_point_distance) return std::nullopt;
+  }
+  if (spread) {
+    spread->scatter_variance = points.size() > 3 ? lambda_0 / static_cast<double>(points.size() - 3) : 0.0;
+    spread->scatter = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};
   }
   return plane;
 }
