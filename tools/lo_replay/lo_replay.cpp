@@ -107,8 +107,11 @@ int replay(int argc, char** argv) {
       settings.campus_poor_rows = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--plane-distance")
       config.plane_max_point_distance = tools::nonNegative(flag, value);
-    else if (flag == "--plane-min-spread-ratio")
+    else if (flag == "--plane-min-spread-ratio") {
+      // A ratio of the narrower spread to the wider: above 1 would refuse every plane.
       config.plane_min_spread_ratio = tools::nonNegative(flag, value);
+      if (config.plane_min_spread_ratio > 1.0) throw std::invalid_argument(flag + ": '" + value + "' must be at most 1");
+    }
     else if (flag == "--profile")
       settings.density_profile = value;
     else if (flag == "--open-fraction")
