@@ -2,6 +2,7 @@
 // UA-MPC on the LO's local map and pose; modes constant and zero are the paper's baselines.
 // Every control period it publishes the motor command, the uncertainty profile (U samples, the
 // planned horizon, predicted U), the panoramic depth map as a 32FC1 image, and its timings.
+#include <algorithm>
 #include <cstring>
 
 #include "uampc/adapters/pose_messages.hpp"
@@ -122,16 +123,12 @@ class MpcComponent : public Component {
   void onLocalMap(const sensor_msgs::msg::PointCloud2& m) {
     // The baselines never look at the map: do not convert 100k points ten times a second for them.
     if (controller_.config().mode != mpc::Mode::kUaMpc) return;
-    const pointcloud::ScanPoints points = pointcloud::readCloud(m);
-    local_map_.clear();
-    local_map_.reserve(points.positions.size());
-    std::size_t bad = 0;
-    for (const auto& p : points.positions) {
-      if (p.allFinite())
-        local_map_.push_back(p.cast<double>());
-      else
-        ++bad;
-    }
+    // Kept as float, as it came: the depth map widens each point to double itself.
+    local_map_ = pointcloud::readCloud(m).positions;
+    const auto finite_end = std::remove_if(local_map_.begin(), local_map_.end(),
+                                           [](const Eigen::Vector3f& p) { return !p.allFinite(); });
+    const auto bad = static_cast<std::size_t>(local_map_.end() - finite_end);
+    local_map_.erase(finite_end, local_map_.end());
     if (bad) ctx_.log().warn("dropped ", bad, " non-finite points of the local map on ", ctx_.topicOf("local_map"));
     local_map_time_ = ctx_.now();
   }
@@ -154,7 +151,7 @@ class MpcComponent : public Component {
         ctx_.log().info("local map available again; planning");
         stale_log_.reset();
       }
-      decision = controller_.step(T_WB_, local_map_, theta_);
+      decision = controller_.stepFloat(T_WB_, local_map_, theta_);
     }
     msg::MotorCommand command;
     command.header().stamp(toMsg(now));
@@ -226,7 +223,7 @@ class MpcComponent : public Component {
   Publisher<msg::Metrics> timing_pub_;
   Eigen::Isometry3d T_WB_ = Eigen::Isometry3d::Identity();
   bool have_pose_ = false;
-  std::vector<Eigen::Vector3d> local_map_;
+  std::vector<Eigen::Vector3f> local_map_;
   Time local_map_time_;
   double theta_ = 0.0;
   RateLimitedLog stale_log_ = RateLimitedLog::once();  // said again after the map came back

@@ -47,6 +47,7 @@ void LocalMap::clear() {
   slots_.clear();
   pool_.clear();
   times_.clear();
+  latest_.clear();
   counts_.clear();
   free_.clear();
   size_ = 0;
@@ -99,6 +100,7 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
           b = static_cast<std::uint32_t>(pool_.size());
           pool_.emplace_back();
           times_.emplace_back();
+          latest_.emplace_back(time);
           counts_.emplace_back();
         }
         pool_[b].occupied = 0;
@@ -129,6 +131,7 @@ void LocalMap::insert(const std::vector<Eigen::Vector3d>& points_W, double time,
       block.z[index] += (static_cast<float>(p.z()) - block.z[index]) / count;
     }
     times_[b][index] = time;  // when it was seen is refreshed
+    latest_[b] = std::max(latest_[b], time);
   }
 }
 
@@ -274,6 +277,7 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vect
 template <class Visit>
 void LocalMap::forEachPointSince(double observed_since, Visit&& visit) const {
   for (std::size_t b = 0; b < pool_.size(); ++b) {
+    if (latest_[b] < observed_since) continue;
     const Block& block = pool_[b];
     for (int j = 0; j < 8; ++j) {
       if ((block.occupied & (1u << j)) && times_[b][j] >= observed_since) visit(block.point(j), times_[b][j]);

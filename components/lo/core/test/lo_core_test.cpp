@@ -151,6 +151,28 @@ TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
   EXPECT_LT((coordinates[0] - Eigen::Vector3f(0.15f, 0.15f, 0.0f)).norm(), 1e-6f);
 }
 
+// The points of the last seconds, when old and new voxels share a block, and in a block freed
+// and taken again: a block is skipped only if none of its points is recent.
+TEST(LocalMap, PointsSinceFindsRecentVoxelsInOldBlocks) {
+  LocalMap map(0.3, 5.0);
+  map.insert({{0.15, 0.15, 0.15}, {3.15, 0.15, 0.15}}, 1.0, Eigen::Vector3d::Zero());
+  map.insert({{0.45, 0.15, 0.15}}, 2.0, Eigen::Vector3d::Zero());  // same block as the first
+  std::vector<Eigen::Vector3f> recent;
+  map.pointsSince(1.5, recent);
+  ASSERT_EQ(recent.size(), 1u);
+  EXPECT_NEAR(recent[0].x(), 0.45f, 1e-6f);
+  map.pointsSince(0.5, recent);
+  EXPECT_EQ(recent.size(), 3u);
+  map.removeFarFrom(Eigen::Vector3d(-4.0, 0.0, 0.0));  // drops the block at x = 3.15
+  map.insert({{1.35, 0.15, 0.15}}, 0.5, Eigen::Vector3d::Zero());  // older than all, in a reused block
+  map.pointsSince(1.5, recent);
+  EXPECT_EQ(recent.size(), 1u);
+  map.insert({{1.35, 0.45, 0.15}}, 3.0, Eigen::Vector3d::Zero());
+  map.pointsSince(2.5, recent);
+  ASSERT_EQ(recent.size(), 1u);
+  EXPECT_NEAR(recent[0].y(), 0.45f, 1e-6f);
+}
+
 // With mean_points, a voxel's point is the mean of its first observations: a wall seen through 2 cm
 // of noise is held closer to where it is, and what comes after the first N changes nothing.
 TEST(LocalMap, AveragesTheFirstObservationsOfAVoxel) {

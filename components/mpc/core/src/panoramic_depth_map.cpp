@@ -76,8 +76,16 @@ std::uint64_t pack(float range, std::uint32_t index) {
 }
 }  // namespace
 
-void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
-                               const Eigen::Isometry3d& T_WB) {
+void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W, const Eigen::Isometry3d& T_WB) {
+  renderPoints(points_W, T_WB);
+}
+
+void PanoramicDepthMap::renderFloat(const std::vector<Eigen::Vector3f>& points_W, const Eigen::Isometry3d& T_WB) {
+  renderPoints(points_W, T_WB);
+}
+
+template <class Point>
+void PanoramicDepthMap::renderPoints(const std::vector<Point>& points_W, const Eigen::Isometry3d& T_WB) {
   if (points_W.size() >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
     throw std::invalid_argument("PanoramicDepthMap: local map too large");
   }
@@ -107,7 +115,7 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
     for (std::size_t begin = 0; begin < points_W.size(); begin += kBlock) {
       const int n = static_cast<int>(std::min<std::size_t>(kBlock, points_W.size() - begin));
       for (int j = 0; j < n; ++j) {
-        const Eigen::Vector3f d = (points_W[begin + j] - t_WB).cast<float>();
+        const Eigen::Vector3f d = (points_W[begin + j].template cast<double>() - t_WB).template cast<float>();
         x[j] = R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * d.z();
         y[j] = R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * d.z();
         z[j] = R(2, 0) * d.x() + R(2, 1) * d.y() + R(2, 2) * d.z();
@@ -141,7 +149,8 @@ void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W,
     // occupied pixel, in raster order.
     for (std::size_t pixel = 0; pixel < centre_.size(); ++pixel) {
       if (centre_[pixel] == kEmpty) continue;
-      const Eigen::Vector3f d = (points_W[centre_[pixel] & 0xffffffffU] - t_WB).cast<float>();
+      const Eigen::Vector3f d =
+          (points_W[centre_[pixel] & 0xffffffffU].template cast<double>() - t_WB).template cast<float>();
       centre_points_[pixel] = Eigen::Vector3f(R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * d.z(),
                                               R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * d.z(),
                                               R(2, 0) * d.x() + R(2, 1) * d.y() + R(2, 2) * d.z());
@@ -211,12 +220,18 @@ int PanoramicDepthMap::lookup(int u, int v, int search_radius) const {
   if (occupied(centre)) return centre;
   int best = -1;
   float best_range = 0.0F;
+  // The neighbourhood's columns, wrapped once (u - r .. u + r, within one turn for r < W): an
+  // integer division per visited pixel cost most of a miss's look-up (outdoors, every ray into
+  // the sky is one).
+  const int width = config_.width;
+  const int first_column = u - search_radius;
+  const int columns = std::min(2 * search_radius + 1, width);
   for (int dv = -search_radius; dv <= search_radius; ++dv) {
     const int vv = v + dv;
     if (vv < 0 || vv >= config_.height) continue;
-    for (int du = -search_radius; du <= search_radius; ++du) {
-      int uu = (u + du) % config_.width;
-      if (uu < 0) uu += config_.width;
+    int uu = first_column % width;
+    if (uu < 0) uu += width;
+    for (int i = 0; i < columns; ++i, uu = uu + 1 == width ? 0 : uu + 1) {
       const int pixel = pixelIndex(uu, vv);
       if (occupied(pixel) && (best < 0 || depth_[pixel] < best_range)) {
         best = pixel;

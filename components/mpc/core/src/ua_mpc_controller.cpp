@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <type_traits>
 
 #include "uampc/mpc/uncertainty_surrogate.hpp"
 
@@ -58,6 +59,17 @@ UaMpcController::UaMpcController(const Config& config)
 
 UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
                                                 const std::vector<Eigen::Vector3d>& local_map_W, double theta_now) {
+  return stepWith(T_WB, local_map_W, theta_now);
+}
+
+UaMpcController::Decision UaMpcController::stepFloat(const Eigen::Isometry3d& T_WB,
+                                                const std::vector<Eigen::Vector3f>& local_map_W, double theta_now) {
+  return stepWith(T_WB, local_map_W, theta_now);
+}
+
+template <class Point>
+UaMpcController::Decision UaMpcController::stepWith(const Eigen::Isometry3d& T_WB,
+                                                    const std::vector<Point>& local_map_W, double theta_now) {
   const Clock::time_point start = Clock::now();
   Decision decision;
   decision.mode = config_.mode;
@@ -80,7 +92,11 @@ UaMpcController::Decision UaMpcController::step(const Eigen::Isometry3d& T_WB,
 
   if (want_samples) {
     Clock::time_point t = Clock::now();
-    depth_map_.render(local_map_W, T_WB);
+    if constexpr (std::is_same_v<Point, Eigen::Vector3f>) {
+      depth_map_.renderFloat(local_map_W, T_WB);
+    } else {
+      depth_map_.render(local_map_W, T_WB);
+    }
     decision.timings.depth_map_ms = millisecondsSince(t);
     decision.local_map_empty = depth_map_.occupiedCount() == 0;
 

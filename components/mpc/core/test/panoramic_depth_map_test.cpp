@@ -136,6 +136,37 @@ TEST(PanoramicDepthMap, LookupFillsSmallHolesWithNearestNeighbour) {
   EXPECT_EQ(map.lookup(100, 50, 1), map.pixelIndex(101, 50));
   EXPECT_EQ(map.lookup(99, 50, 1), map.pixelIndex(99, 50));
   EXPECT_EQ(map.lookup(300, 50, 1), -1);
+  // Across the seam of the panorama (columns 359 and 0 are neighbours), both ways.
+  map.render({5.0 * pixelCentreDirection(359, 60, 360, 180), 5.0 * pixelCentreDirection(1, 70, 360, 180)},
+             Eigen::Isometry3d::Identity());
+  EXPECT_EQ(map.lookup(0, 60, 1), map.pixelIndex(359, 60));
+  EXPECT_EQ(map.lookup(0, 70, 1), map.pixelIndex(1, 70));
+  EXPECT_EQ(map.lookup(359, 70, 1), -1);
+  EXPECT_EQ(map.lookup(359, 70, 2), map.pixelIndex(1, 70));
+}
+
+// The float entry point (the LO's local map as it arrives) renders exactly what the same points
+// widened to double render: same pixels, ranges and winners, far from the world origin too.
+TEST(PanoramicDepthMap, FloatPointsRenderAsTheirDoubleWidening) {
+  const Eigen::Vector3d offset(1234.5, -987.25, 31.0);
+  std::vector<Eigen::Vector3f> points_f;
+  std::vector<Eigen::Vector3d> points_d;
+  for (const Eigen::Vector3d& p : test::corridor(-20.0, 20.0)) {
+    points_f.push_back((p + offset).cast<float>());
+    points_d.push_back(points_f.back().cast<double>());
+  }
+  Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();
+  T_WB.translation() = offset + Eigen::Vector3d(0.3, -0.2, 0.1);
+  T_WB.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  PanoramicDepthMap from_double(oneDegree()), from_float(oneDegree());
+  from_double.render(points_d, T_WB);
+  from_float.renderFloat(points_f, T_WB);
+  ASSERT_GT(from_double.occupiedCount(), 1000u);
+  EXPECT_EQ(from_float.occupiedCount(), from_double.occupiedCount());
+  EXPECT_EQ(from_float.depthImage(), from_double.depthImage());
+  for (int pixel = 0; pixel < from_double.width() * from_double.height(); ++pixel) {
+    ASSERT_EQ(from_float.pointIndex(pixel), from_double.pointIndex(pixel)) << pixel;
+  }
 }
 
 // A near point covers its footprint (0.5 * spacing / range each side), a far one a single pixel;

@@ -59,6 +59,9 @@ class PanoramicDepthMap {
   // Renders the panorama around the base origin; replaces the previous content.
   // Points that are not finite or lie outside [min_range, max_range] are skipped.
   void render(const std::vector<Eigen::Vector3d>& points_W, const Eigen::Isometry3d& T_WB);
+  // render() for float points (the LO's local map arrives as float32): the same pixels and ranges
+  // as rendering the points widened to double, without building that double copy.
+  void renderFloat(const std::vector<Eigen::Vector3f>& points_W, const Eigen::Isometry3d& T_WB);
 
   int width() const { return config_.width; }
   int height() const { return config_.height; }
@@ -94,6 +97,9 @@ class PanoramicDepthMap {
   const std::vector<float>& depthImage() const { return depth_; }
 
  private:
+  template <class Point>
+  void renderPoints(const std::vector<Point>& points_W, const Eigen::Isometry3d& T_WB);
+
   Config config_;
   // Packed (range, index) z-buffers while rendering: the nearest point whose own pixel this is,
   // and the splatted result, with splat_pad_ extra columns on each side so that a footprint never

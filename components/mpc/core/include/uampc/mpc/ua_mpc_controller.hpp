@@ -76,12 +76,17 @@ class UaMpcController {
   // encoder angle (rad, multi-turn allowed). With an empty local map, UA-MPC returns omega_pre
   // (clamped to the speed bounds) and sets local_map_empty.
   Decision step(const Eigen::Isometry3d& T_WB, const std::vector<Eigen::Vector3d>& local_map_W, double theta_now);
+  // step() on float points (as the LO publishes them), without a double copy.
+  Decision stepFloat(const Eigen::Isometry3d& T_WB, const std::vector<Eigen::Vector3f>& local_map_W, double theta_now);
 
   // The panorama of the last step (for publishing as a 32FC1 image).
   const PanoramicDepthMap& depthMap() const { return depth_map_; }
   const Config& config() const { return config_; }
 
  private:
+  template <class Point>
+  Decision stepWith(const Eigen::Isometry3d& T_WB, const std::vector<Point>& local_map_W, double theta_now);
+
   Config config_;
   int sample_count_;
   PanoramicDepthMap depth_map_;
