@@ -56,10 +56,18 @@ Eigen::Isometry3d basePose() {
   return T_WB;
 }
 
+// The local map as the mpc component holds it: float32, as the LO publishes it.
+std::vector<Eigen::Vector3f> asFloat(const Cloud& cloud) {
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(cloud.size());
+  for (const auto& p : cloud) out.push_back(p.cast<float>());
+  return out;
+}
+
 // Args: local-map points, panorama degrees per pixel (1 is what the mpc component ships, see
 // PanoramicDepthMap::Config; 2 is the cheaper setting it replaced).
 void BM_ControlStep(benchmark::State& state) {
-  const Cloud cloud = hall(static_cast<std::size_t>(state.range(0)));
+  const std::vector<Eigen::Vector3f> cloud = asFloat(hall(static_cast<std::size_t>(state.range(0))));
   uampc::mpc::UaMpcController::Config config;
   config.depth_map.width = static_cast<int>(360 / state.range(1));
   config.depth_map.height = static_cast<int>(180 / state.range(1));
@@ -67,7 +75,7 @@ void BM_ControlStep(benchmark::State& state) {
   double theta = 0.0;
   uampc::mpc::UaMpcController::Decision decision;
   for (auto _ : state) {
-    decision = controller.step(basePose(), cloud, theta);
+    decision = controller.stepFloat(basePose(), cloud, theta);
     benchmark::DoNotOptimize(decision.omega);
     theta += 0.36;
   }
@@ -80,10 +88,10 @@ void BM_ControlStep(benchmark::State& state) {
 BENCHMARK(BM_ControlStep)->Args({100000, 2})->Args({100000, 1})->Unit(benchmark::kMillisecond);
 
 void BM_DepthMap(benchmark::State& state) {
-  const Cloud cloud = hall(100000);
+  const std::vector<Eigen::Vector3f> cloud = asFloat(hall(100000));
   uampc::mpc::PanoramicDepthMap map;
   for (auto _ : state) {
-    map.render(cloud, basePose());
+    map.renderFloat(cloud, basePose());
     benchmark::DoNotOptimize(map.occupiedCount());
   }
 }
