@@ -303,8 +303,9 @@ class UampcCli {
         ->required()
         ->type_name("NAME");
     sub->add_flag("--own-clock", options_.own_clock,
-                  "Step the scene in this process (its only process group) instead of following `uampc clock`; "
-                  "launch passes it when clock.in_process is true, and then only watches the acknowledgements.");
+                  "Step this process group itself, from the other groups' acknowledgements, instead of following "
+                  "`uampc clock` (give it to every group of the scene, or to none); launch passes it when "
+                  "clock.in_process is true, and then only watches the acknowledgements.");
     addOverrides(sub);
     addOutput(sub);
     commands_.push_back({sub, withOverrides([this] {

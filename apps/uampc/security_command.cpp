@@ -169,10 +169,12 @@ std::map<std::string, TopicGrant> topicGrants(const Scene& scene) {
   for (const auto& process : scene.processes()) {
     TopicGrant& grant = grants[process];
     grant.subscribe.insert(ddsTopicName(kClockTopic));
-    // The only process of a scene runs the clock itself (clock.in_process) and publishes /clock.
-    if (scene.clockInsideTheProcess()) grant.publish.insert(ddsTopicName(kClockTopic));
+    // Processes that step themselves (clock.in_process): the first publishes /clock.
+    if (scene.processesStepThemselves() && process == scene.processes().front())
+      grant.publish.insert(ddsTopicName(kClockTopic));
     grant.publish.insert(ddsTopicName(kStepAckTopic));
     grant.subscribe.insert(ddsTopicName(kStepAckTopic));  // each process waits for the others' acknowledgements
+    grant.publish.insert(ddsTopicName(kStepProgressTopic));
   }
   for (const auto& c : scene.components) {
     TopicGrant& grant = grants[c.process];
@@ -184,6 +186,7 @@ std::map<std::string, TopicGrant> topicGrants(const Scene& scene) {
   TopicGrant& launcher = grants[kLauncherIdentity];
   launcher.publish.insert(ddsTopicName(kClockTopic));
   launcher.subscribe.insert(ddsTopicName(kStepAckTopic));
+  launcher.subscribe.insert(ddsTopicName(kStepProgressTopic));
   grants[kObserverIdentity].subscribe.insert("*");
   grants[kPlayerIdentity].publish.insert("*");
   return grants;

@@ -14,9 +14,9 @@
 namespace uampc::test {
 namespace {
 
-CommandResult runFault(const std::string& mode, int domain) {
+CommandResult runFault(const std::string& mode, int domain, const std::string& more = "") {
   return runUampc("launch " + sourcePath("tests/scenes/fault.yaml") + " --set fault.mode=" + mode +
-                  " --set domain_id=" + std::to_string(domain));
+                  " --set domain_id=" + std::to_string(domain) + more);
 }
 
 TEST(Supervision, AThrowingComponentStopsTheRunWithItsNameAndTime) {
@@ -37,8 +37,15 @@ TEST(Supervision, AHungComponentTimesOutInsteadOfHangingTheRun) {
   const auto start = std::chrono::steady_clock::now();
   const CommandResult r = runFault("hang", testDomain(DomainBlock::kSupervision, 2));
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.output.find("no acknowledgement of the step from process(es) faulty"), std::string::npos) << r.output;
+  // The processes step themselves (clock.in_process): the one that waits names the one it waits for.
+  EXPECT_NE(r.output.find("run failed: process 'main': acknowledgements of step"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("from process(es) faulty did not arrive"), std::string::npos) << r.output;
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+  // The launcher's clock names the process that did not acknowledge its tick.
+  const CommandResult ticked = runFault("hang", testDomain(DomainBlock::kSupervision, 5), " --set clock.in_process=false");
+  EXPECT_EQ(ticked.exit_code, 1);
+  EXPECT_NE(ticked.output.find("no acknowledgement of the step from process(es) faulty"), std::string::npos)
+      << ticked.output;
 }
 
 TEST(Supervision, RealTimeRestartPolicyRestartsThenGivesUp) {

@@ -68,7 +68,7 @@ class ProcessSupervisor {
     command.name = process;
     command.executable = "/proc/self/exe";
     command.argv = {"uampc", "run-process", options_.scene_path, "--process", process};
-    if (scene_.clockInsideTheProcess()) command.argv.push_back("--own-clock");
+    if (scene_.processesStepThemselves()) command.argv.push_back("--own-clock");
     for (const auto& o : options_.overrides) {
       command.argv.push_back("--set");
       command.argv.push_back(o.text);
@@ -200,7 +200,7 @@ int launch(const LaunchOptions& options) {
   std::string error;
   if (scene.clock.mode == ClockMode::kLockstep) {
     const ClockResult result = runLockstepClock(
-        scene, stopFlag(), problem, scene.clockInsideTheProcess() ? ClockHost::kInTheProcess : ClockHost::kHere);
+        scene, stopFlag(), problem, scene.processesStepThemselves() ? ClockHost::kInTheProcess : ClockHost::kHere);
     // Stopped while the processes were starting is no failure: the user asked.
     if (!result.ok && !stopRequested()) error = result.error;
     std::cerr << "uampc: " << result.sim_seconds << " s of sim time in " << result.wall_seconds << " s ("
@@ -262,11 +262,11 @@ int runProcessCommand(const LaunchOptions& options, const std::string& process, 
     std::cerr << "uampc: the scene has no process '" << process << "'\n";
     return 2;
   }
-  if (own_clock && !scene.clockInsideTheProcess()) {
-    std::cerr << "uampc: --own-clock runs the lockstep clock inside the process of a scene of one process group "
-                 "with clock.in_process: true; this scene has "
-              << scene.processes().size() << " process group(s)"
-              << (scene.clock.mode == ClockMode::kLockstep ? "" : " and runs in real time") << "\n";
+  if (own_clock && !scene.processesStepThemselves()) {
+    std::cerr << "uampc: --own-clock lets the process groups of a lockstep scene with clock.in_process: true step "
+                 "themselves; this scene "
+              << (scene.clock.mode == ClockMode::kLockstep ? "has clock.in_process: false" : "runs in real time")
+              << "\n";
     return 2;
   }
   // 130 on Ctrl-C, like launch: the launcher counts it as a clean stop when it was stopping too.

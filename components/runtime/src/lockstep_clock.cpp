@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <set>
 #include <thread>
@@ -77,13 +78,13 @@ class Progress {
 // Each process of the scene writes step acknowledgements with one writer. More writers mean another
 // lockstep run (or a stranger) on this domain: its clock ticks, acknowledgements and samples would
 // mix with ours, so the run stops and says so instead of waiting for acknowledgements in vain.
-std::string otherRunOnTheDomain(DataReader* ack_reader, std::size_t processes, int domain_id) {
+std::string otherRunOnTheDomain(DataReader* ack_reader, const char* topic, std::size_t processes, int domain_id) {
   SubscriptionMatchedStatus status;
   ack_reader->get_subscription_matched_status(status);
   // total_count, not current_count: a writer seen even briefly (a second run that gave up) counts.
   if (status.total_count <= static_cast<int>(processes)) return {};
   return "another lockstep run is on DDS domain " + std::to_string(domain_id) + ": " +
-         std::to_string(status.total_count) + " writers of step acknowledgements (" + kStepAckTopic +
+         std::to_string(status.total_count) + " writers of step acknowledgements (" + topic +
          ") where this scene has " + std::to_string(processes) +
          " process(es); two runs on one domain hear each other's clock and topics, so give each run its own "
          "domain_id (--set domain_id=N)";
@@ -94,11 +95,12 @@ std::string otherRunOnTheDomain(DataReader* ack_reader, std::size_t processes, i
 // domain), empty if nothing.
 class AckFollower {
  public:
-  AckFollower(const Scene& scene, DataReader* reader) : scene_(scene), reader_(reader), processes_(scene.processes()) {}
+  AckFollower(const Scene& scene, DataReader* reader, const char* topic)
+      : scene_(scene), reader_(reader), topic_(topic), processes_(scene.processes()) {}
 
   template <class OnAck>
   std::string take(OnAck&& on_ack) {
-    if (std::string other = otherRunOnTheDomain(reader_, processes_.size(), scene_.domain_id); !other.empty()) {
+    if (std::string other = otherRunOnTheDomain(reader_, topic_, processes_.size(), scene_.domain_id); !other.empty()) {
       stayUntilTheOtherRunNotices();
       return other;
     }
@@ -118,6 +120,7 @@ class AckFollower {
  private:
   const Scene& scene_;
   DataReader* reader_;
+  const char* topic_;
   std::vector<std::string> processes_;
 };
 
@@ -159,10 +162,13 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
           ? dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl)
           : nullptr;
+  // Processes that step themselves report their progress apart from the acknowledgements they
+  // exchange every step, which this side does not need.
+  const char* ack_topic = host == ClockHost::kHere ? kStepAckTopic : kStepProgressTopic;
   DataReader* ack_reader =
-      dds.createReader(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+      dds.createReader(ack_topic, MessageType<uampc::msg::StepAck>::kRosName,
                        &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &listener);
-  AckFollower acks(scene, ack_reader);
+  AckFollower acks(scene, ack_reader, ack_topic);
   const std::vector<std::string>& processes = acks.processes();
   const auto clock_start = SteadyClock::now();
   const auto ack_timeout =
@@ -177,14 +183,14 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
     return {};
   };
 
-  // The latest step acknowledged, with its time: a process with the clock inside may have run
-  // far, even to its end, before its ready message is read here.
-  std::int64_t latest = -1;
-  Time latest_time{0};
+  // The latest step each process acknowledged: a process that steps itself may have run far, even
+  // to its end, before its ready message is read here.
+  std::map<std::string, std::int64_t> process_step;
+  for (const auto& p : scene.processes()) process_step[p] = -1;
   auto note = [&](const uampc::msg::StepAck& ack) {
-    if (ack.step() <= latest) return false;
-    latest = ack.step();
-    latest_time = fromMsg(ack.stamp());
+    std::int64_t& step = process_step[ack.process()];
+    if (ack.step() <= step) return false;
+    step = ack.step();
     return true;
   };
   // Waits until every process acknowledged `step`; false (with result.error) on failure.
@@ -245,19 +251,45 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   };
   const std::int64_t last = lastStep(scene.clock);
   if (host == ClockHost::kInTheProcess) {
-    // The process acknowledges a step every 0.1 s of wall time and its last one: each resets the
-    // deadline, so that a hung component is named after clock.ack_timeout as with this clock.
-    auto deadline = wall_start + ack_timeout;
-    if (latest >= 0) reached(latest_time);
-    while (!stop && (last < 0 || latest < last)) {
-      result.error = acks.take([&](const uampc::msg::StepAck& ack) {
-        if (!note(ack)) return;
-        deadline = SteadyClock::now() + ack_timeout;
-        reached(latest_time);
-      });
-      if (result.error.empty() && (last < 0 || latest < last))
+    // The processes step themselves and report their progress every 0.1 s of wall time and at
+    // their last step. Each report that moves a process on resets the deadline, so that a hung
+    // component is named after clock.ack_timeout as with this clock. The run has reached the step
+    // of the slowest process; it ends when every process has reported the last step.
+    auto slowest = [&] {
+      std::int64_t step = std::numeric_limits<std::int64_t>::max();
+      for (const auto& [p, s] : process_step) step = std::min(step, s);
+      return step;
+    };
+    // With several processes, one that waits in vain for another's acknowledgement gives up at
+    // 0.9 x ack_timeout and names it; this side waits longer, so that such a report comes first,
+    // and names the slowest only when none came (every process stuck).
+    const auto follow_timeout = processes.size() > 1 ? ack_timeout + ack_timeout / 2 : ack_timeout;
+    auto deadline = wall_start + follow_timeout;
+    std::int64_t reached_step = -1;
+    auto progress_made = [&] {
+      if (slowest() <= reached_step) return;
+      reached_step = slowest();
+      reached(Time{reached_step * scene.clock.step.ns});
+    };
+    auto follow = [&](const uampc::msg::StepAck& ack) {
+      if (!note(ack)) return;
+      deadline = SteadyClock::now() + follow_timeout;
+      progress_made();
+    };
+    progress_made();  // a process may have run on while the others were read ready
+    while (!stop && (last < 0 || slowest() < last)) {
+      result.error = acks.take(follow);
+      if (result.error.empty() && (last < 0 || slowest() < last))
         result.error = waitProblem(
-            deadline, [&] { return processes.front(); }, "acknowledgement of a step", ack_timeout);
+            deadline,
+            [&] {
+              std::string late;
+              for (const auto& [p, step] : process_step) {
+                if (step == slowest()) late += (late.empty() ? "" : ", ") + p;
+              }
+              return late;
+            },
+            "acknowledgement of a step", follow_timeout);
       if (!result.error.empty()) {
         result.ok = false;
         break;

@@ -20,9 +20,9 @@ struct ClockResult {
   double startup_seconds = 0;  // from the clock's start until every process was ready
 };
 
-// Who steps the scene: this clock, ticking every process, or the scene's only process itself
-// (Scene::clockInsideTheProcess(); `run-process --own-clock`), whose acknowledgements this side then
-// only follows, for progress, hangs and the end of the run.
+// Who steps the scene: this clock, ticking every process, or the processes themselves
+// (Scene::processesStepThemselves(); `run-process --own-clock`), whose acknowledgements this side
+// then only follows, for progress, hangs and the end of the run.
 enum class ClockHost { kHere, kInTheProcess };
 
 // check_processes is called while waiting; a non-empty answer (e.g. "process 'sim' died") stops

@@ -371,6 +371,7 @@ class ProcessRunner {
     clock_reader_.reset();
     if (clock_writer_) dds_.deleteWriter(clock_writer_);
     ack_writer_.reset();
+    progress_writer_.reset();
     ack_reader_.reset();
   }
 
@@ -545,9 +546,19 @@ class ProcessRunner {
         if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
       }
       const int processes = static_cast<int>(scene_.processes().size());
-      PublicationMatchedStatus ack_status;
-      ack_writer_->dds()->get_publication_matched_status(ack_status);
-      if (ack_status.current_count < 1 + (ack_reader_ ? processes : 0)) missing += "\n  the acknowledgement readers";
+      // The launcher's clock reads the acknowledgements, or (processes that step themselves) the
+      // progress; the processes read each other's acknowledgements.
+      if (ack_writer_) {
+        PublicationMatchedStatus ack_status;
+        ack_writer_->dds()->get_publication_matched_status(ack_status);
+        if (ack_status.current_count < (own_clock_ ? 0 : 1) + (ack_reader_ ? processes : 0))
+          missing += "\n  the acknowledgement readers";
+      }
+      if (progress_writer_) {
+        PublicationMatchedStatus progress_status;
+        progress_writer_->dds()->get_publication_matched_status(progress_status);
+        if (progress_status.current_count < 1) missing += "\n  the launcher";
+      }
       if (ack_reader_) {
         SubscriptionMatchedStatus ack_reader_status;
         ack_reader_->shared.reader->get_subscription_matched_status(ack_reader_status);
@@ -590,18 +601,30 @@ class ProcessRunner {
     return counts;
   }
 
-  void sendAck(std::int64_t step, Time stamp) {
+  uampc::msg::StepAck ackOf(std::int64_t step, Time stamp) const {
     uampc::msg::StepAck ack;
     ack.process(process_);
     ack.step(step);
     ack.stamp(toMsg(stamp));
     ack.written() = writtenBy(step);
+    ack.failed(!failure_.empty());
+    ack.message(failure_);
+    return ack;
+  }
+
+  // The acknowledgement of a step, to the launcher's clock and the other processes.
+  void sendAck(std::int64_t step, Time stamp) {
+    uampc::msg::StepAck ack = ackOf(step, stamp);
     // Alone under the launcher's clock: what the others would have read (with the clock inside,
     // runOwnClock keeps its counts itself).
     if (!ack_reader_ && !own_clock_) acks_[process_][step] = ack.written();
-    ack.failed(!failure_.empty());
-    ack.message(failure_);
     ack_writer_->write(&ack);
+  }
+
+  // How far a process that steps itself is, to the launcher.
+  void reportProgress(std::int64_t step, Time stamp) {
+    uampc::msg::StepAck ack = ackOf(step, stamp);
+    progress_writer_->write(&ack);
   }
 
   // Lockstep: the acknowledgements of step `step` from every process, summed into the number of
@@ -655,28 +678,37 @@ class ProcessRunner {
 
   int runLockstep(const std::atomic<bool>& stop) {
     // The clock's protocol topics are reliable and keep every sample, like the loop's own.
-    if (own_clock_) {
+    // Processes that step themselves: the first of the scene publishes /clock, for outside tools.
+    if (own_clock_ && scene_.processes().front() == process_) {
       clock_writer_ = dds_.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
                                         &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
-    } else {
+    } else if (!own_clock_) {
       clock_reader_ = std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
                                                        &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
                                                        &state_.wakeup);
     }
-    ack_writer_ = std::make_unique<DdsWriter>(
-        dds_,
-        dds_.createWriter(kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
-                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
-        kStepAckTopic, QosPreset::kControl, state_);
+    auto stepAckWriter = [&](const char* topic) {
+      return std::make_unique<DdsWriter>(dds_,
+                                         dds_.createWriter(topic, MessageType<uampc::msg::StepAck>::kRosName,
+                                                           &detail::makeTypeSupport<uampc::msg::StepAck>,
+                                                           QosPreset::kControl),
+                                         topic, QosPreset::kControl, state_);
+    };
     // Every process reads every acknowledgement: they say how many samples to wait for. A process
     // alone in its scene knows what it wrote: its acknowledgements go to the clock only (a delivery
-    // to itself cost about as much as one to the clock, every step).
-    if (scene_.processes().size() > 1)
+    // to itself cost about as much as one to the clock, every step), and if it steps itself, to
+    // nobody: the launcher hears its progress.
+    const bool alone = scene_.processes().size() == 1;
+    if (!own_clock_ || !alone) ack_writer_ = stepAckWriter(kStepAckTopic);
+    if (own_clock_) progress_writer_ = stepAckWriter(kStepProgressTopic);
+    if (!alone)
       ack_reader_ = std::make_unique<ProtocolReader>(dds_, kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
                                                    &detail::makeTypeSupport<uampc::msg::StepAck>, &state_.wakeup);
     if (!waitForMatches(stop)) return stop ? 0 : 1;
     state_.started = true;
-    sendAck(-1, Time{0});  // ready
+    // Ready.
+    if (ack_writer_) sendAck(-1, Time{0});
+    if (progress_writer_) reportProgress(-1, Time{0});
     if (own_clock_) return runOwnClock(stop);
 
     while (!stop) {
@@ -704,32 +736,46 @@ class ProcessRunner {
     return 0;
   }
 
-  // The scene's only process steps itself (Scene::clockInsideTheProcess()): the same steps as with
-  // the launcher's clock, and the same outputs (lockstep_test), without a tick and an
-  // acknowledgement crossing processes every step, four thread wake-ups (README, "Where the loop's
-  // time goes"). It still publishes /clock for outside tools, and acknowledges a step to the
-  // launcher every 0.1 s of wall time and at the last step, for progress and hang detection; after
-  // the last step it waits, like a process of the launcher's clock, until the launcher stops it.
+  // The process steps itself (Scene::processesStepThemselves()): the same steps as with the
+  // launcher's clock, and the same outputs (lockstep_test), without a tick from another process.
+  // The launcher's clock only ever advanced once every process had acknowledged the step, and the
+  // acknowledgements are what each process waits for anyway: with several processes each one
+  // starts step k once it holds every process's acknowledgement of step k - 1, so no process runs
+  // more than a step ahead of another, and the clock's tick and the launcher's wake-ups leave the
+  // loop (README, "Where the loop's time goes"); a process alone in its scene knows what it wrote
+  // and acknowledges nothing. The launcher hears each process's progress on its own topic every
+  // 0.1 s of wall time and at the last step, for progress and hang detection. The first process
+  // publishes /clock for outside tools. After the last step it waits, like a process of the
+  // launcher's clock, until the launcher stops it.
   int runOwnClock(const std::atomic<bool>& stop) {
     const std::int64_t last = lastStep(scene_.clock);
+    const bool alone = !ack_reader_;
     const auto wall_start = SteadyClock::now();
-    auto next_ack = wall_start;
+    auto next_progress = wall_start;
     std::map<std::string, std::uint64_t> expected;  // written by the end of the previous step
     for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
       const Time t{step * scene_.clock.step.ns};
       if (!paceTo(wall_start, t, scene_.clock.real_time_factor, stop)) return 0;
-      rosgraph_msgs::msg::Clock tick;
-      tick.clock(toMsg(t));
-      clock_writer_->write(&tick);
+      if (clock_writer_) {
+        rosgraph_msgs::msg::Clock tick;
+        tick.clock(toMsg(t));
+        clock_writer_->write(&tick);
+      }
       state_.now = t;
+      if (!alone && !awaitAcks(step - 1, expected, stop)) {
+        if (stop) return 0;
+        reportProgress(step, t);  // the failure, naming the processes this one waited for
+        return 1;
+      }
       const bool ok = deliverInputs(&expected) && fireTimers();
       if (!ok && stop) return 0;
-      if (!ok || step == last || SteadyClock::now() >= next_ack) {
-        sendAck(step, t);
-        next_ack = SteadyClock::now() + std::chrono::milliseconds(100);
+      if (!alone) sendAck(step, t);
+      if (!ok || step == last || SteadyClock::now() >= next_progress) {
+        reportProgress(step, t);
+        next_progress = SteadyClock::now() + std::chrono::milliseconds(100);
       }
       if (!ok) return 1;
-      expected = writtenSoFar();
+      if (alone) expected = writtenSoFar();
     }
     while (!stop) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
     return 0;
@@ -763,7 +809,8 @@ class ProcessRunner {
   std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
   std::unique_ptr<ProtocolReader> clock_reader_;  // ticks of the launcher's clock
   DataWriter* clock_writer_ = nullptr;           // or this process's own (own_clock_)
-  std::unique_ptr<DdsWriter> ack_writer_;
+  std::unique_ptr<DdsWriter> ack_writer_;       // to the launcher's clock and the other processes
+  std::unique_ptr<DdsWriter> progress_writer_;  // to the launcher, when the process steps itself
   std::unique_ptr<ProtocolReader> ack_reader_;
   // Acknowledged sample counts: process -> step -> counts per topic.
   std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;

@@ -45,9 +45,7 @@ std::vector<std::string> Scene::processes() const {
   return out;
 }
 
-bool Scene::clockInsideTheProcess() const {
-  return clock.mode == ClockMode::kLockstep && clock.in_process && processes().size() == 1;
-}
+bool Scene::processesStepThemselves() const { return clock.mode == ClockMode::kLockstep && clock.in_process; }
 
 // DDS readers of a topic: in each process, the typed inputs with one QoS share one reader
 // (process_group.cpp); each serialized input has its own.
@@ -729,7 +727,7 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
     auto target = scalar<std::string>(kv.second, "topic of port '" + port + "'");
     if (!target) continue;
     topic_locations_[instance.name + "." + port] = at(kv.second);
-    if (*target == kClockTopic || target->rfind(kStepAckTopic, 0) == 0) {
+    if (*target == kClockTopic || target->rfind(kLockstepTopicPrefix, 0) == 0) {
       // The runtime's own topics: a port on them would fight the lockstep clock (a port mapped to
       // /clock crashed the process).
       error(kv.second, "topic " + *target + " is the runtime's own (the lockstep clock); map port '" + port +

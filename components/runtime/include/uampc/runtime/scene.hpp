@@ -45,8 +45,8 @@ struct ClockSettings {
   // that a short ack_timeout does not fail a start on a busy machine.
   double startupTimeout() const { return ack_timeout_s > 30.0 ? ack_timeout_s : 30.0; }
   double real_time_factor = 0.0;  // lockstep pacing: 0 = as fast as possible, 1 = real time
-  // Lockstep with one process group: its process steps itself and the launcher only watches
-  // (README, "Time and lockstep"); false: the launcher's clock drives it, as with several.
+  // Lockstep: each process group steps itself, from the others' acknowledgements, and the launcher
+  // only watches (README, "Time and lockstep"); false: the launcher's clock ticks every step.
   bool in_process = true;
 };
 
@@ -87,8 +87,9 @@ struct Scene {
   std::vector<std::string> warnings;
 
   std::vector<std::string> processes() const;  // in order of first appearance
-  // Whether the lockstep clock runs inside the scene's only process group (clock.in_process).
-  bool clockInsideTheProcess() const;
+  // Whether the scene's process groups step themselves, without the launcher's clock (lockstep
+  // with clock.in_process).
+  bool processesStepThemselves() const;
   // DDS readers of a topic over the whole scene: one per process and QoS for its typed inputs,
   // one per serialized input (PortSpec::serialized).
   int readersOf(const std::string& topic) const;
