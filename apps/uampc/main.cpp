@@ -304,8 +304,8 @@ class UampcCli {
         ->type_name("NAME");
     sub->add_flag("--own-clock", options_.own_clock,
                   "Step this process group itself, from the other groups' acknowledgements, instead of following "
-                  "`uampc clock` (give it to every group of the scene, or to none); launch passes it when "
-                  "clock.in_process is true, and then only watches the acknowledgements.");
+                  "`uampc clock`: what launch passes to its children when clock.in_process is true; it then "
+                  "follows their progress (without launch, run `uampc clock` and leave this out).");
     addOverrides(sub);
     addOutput(sub);
     commands_.push_back({sub, withOverrides([this] {

@@ -187,6 +187,7 @@ std::map<std::string, TopicGrant> topicGrants(const Scene& scene) {
   launcher.publish.insert(ddsTopicName(kClockTopic));
   launcher.subscribe.insert(ddsTopicName(kStepAckTopic));
   launcher.subscribe.insert(ddsTopicName(kStepProgressTopic));
+  launcher.publish.insert(ddsTopicName(kStepProgressTopic));  // its presence (lockstep_clock.cpp)
   grants[kObserverIdentity].subscribe.insert("*");
   grants[kPlayerIdentity].publish.insert("*");
   return grants;

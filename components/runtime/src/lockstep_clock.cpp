@@ -78,16 +78,15 @@ class Progress {
 // Each process of the scene writes step acknowledgements with one writer. More writers mean another
 // lockstep run (or a stranger) on this domain: its clock ticks, acknowledgements and samples would
 // mix with ours, so the run stops and says so instead of waiting for acknowledgements in vain.
-std::string otherRunOnTheDomain(DataReader* ack_reader, const char* topic, std::size_t processes, int domain_id) {
+// writers: how many the scene has on the topic (a writer per process, and on the progress topic
+// the launcher's own marker, below).
+std::string otherRunOnTheDomain(DataReader* ack_reader, const char* topic, std::size_t writers, int domain_id) {
   SubscriptionMatchedStatus status;
   ack_reader->get_subscription_matched_status(status);
   // total_count, not current_count: a writer seen even briefly (a second run that gave up) counts.
-  if (status.total_count <= static_cast<int>(processes)) return {};
-  return "another lockstep run is on DDS domain " + std::to_string(domain_id) + ": " +
-         std::to_string(status.total_count) + " writers of step acknowledgements (" + topic +
-         ") where this scene has " + std::to_string(processes) +
-         " process(es); two runs on one domain hear each other's clock and topics, so give each run its own "
-         "domain_id (--set domain_id=N)";
+  if (status.total_count <= static_cast<int>(writers)) return {};
+  return anotherRunOnTheDomain(domain_id, std::to_string(status.total_count) + " writers of step acknowledgements (" +
+                                              topic + ") where this scene has " + std::to_string(writers));
 }
 
 // The acknowledgements the clock reads: takes what arrived and hands each valid one of a process of
@@ -95,12 +94,12 @@ std::string otherRunOnTheDomain(DataReader* ack_reader, const char* topic, std::
 // domain), empty if nothing.
 class AckFollower {
  public:
-  AckFollower(const Scene& scene, DataReader* reader, const char* topic)
-      : scene_(scene), reader_(reader), topic_(topic), processes_(scene.processes()) {}
+  AckFollower(const Scene& scene, DataReader* reader, const char* topic, std::size_t writers)
+      : scene_(scene), reader_(reader), topic_(topic), writers_(writers), processes_(scene.processes()) {}
 
   template <class OnAck>
   std::string take(OnAck&& on_ack) {
-    if (std::string other = otherRunOnTheDomain(reader_, topic_, processes_.size(), scene_.domain_id); !other.empty()) {
+    if (std::string other = otherRunOnTheDomain(reader_, topic_, writers_, scene_.domain_id); !other.empty()) {
       stayUntilTheOtherRunNotices();
       return other;
     }
@@ -109,6 +108,20 @@ class AckFollower {
     while (reader_->take_next_sample(&ack, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
       if (std::find(processes_.begin(), processes_.end(), ack.process()) == processes_.end()) continue;
+      // A process is known by the writer of its ready message (step -1, its first). Anything else
+      // under its name is another run's on this domain: a second ready says so; a later step from
+      // an unknown writer is left alone (processes that step themselves may be far into a run
+      // this side never started), until the writers' count gives the other run away.
+      auto known = writer_of_.find(ack.process());
+      if (ack.step() < 0) {
+        if (known != writer_of_.end() && known->second != info.publication_handle) {
+          stayUntilTheOtherRunNotices();
+          return anotherRunOnTheDomain(scene_.domain_id, "two processes named '" + ack.process() + "' said ready");
+        }
+        writer_of_[ack.process()] = info.publication_handle;
+      } else if (known == writer_of_.end() || known->second != info.publication_handle) {
+        continue;
+      }
       if (ack.failed()) return "process '" + ack.process() + "': " + ack.message();
       on_ack(ack);
     }
@@ -121,7 +134,9 @@ class AckFollower {
   const Scene& scene_;
   DataReader* reader_;
   const char* topic_;
+  std::size_t writers_;
   std::vector<std::string> processes_;
+  std::map<std::string, InstanceHandle_t> writer_of_;  // each process's writer, from its ready message
 };
 
 std::string noAcknowledgement(const char* what, const std::string& late, SteadyClock::duration timeout) {
@@ -168,7 +183,16 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   DataReader* ack_reader =
       dds.createReader(ack_topic, MessageType<uampc::msg::StepAck>::kRosName,
                        &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &listener);
-  AckFollower acks(scene, ack_reader, ack_topic);
+  // Following, this side writes nothing another run would hear (the ticking clock's /clock writer
+  // is how its processes notice a second run): a writer on the progress topic, never written,
+  // makes a second launcher one writer too many for the first, at once, whether or not its
+  // processes got far enough to write anything.
+  DataWriter* presence =
+      host == ClockHost::kInTheProcess
+          ? dds.createWriter(kStepProgressTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                             &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl)
+          : nullptr;
+  AckFollower acks(scene, ack_reader, ack_topic, scene.processes().size() + (presence ? 1 : 0));
   const std::vector<std::string>& processes = acks.processes();
   const auto clock_start = SteadyClock::now();
   const auto ack_timeout =
@@ -314,8 +338,15 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   progress.update(result.sim_seconds, result.wall_seconds, true);
   progress.finish();
   if (clock_writer) dds.deleteWriter(clock_writer);
+  if (presence) dds.deleteWriter(presence);
   dds.deleteReader(ack_reader);
   return result;
+}
+
+std::string anotherRunOnTheDomain(int domain_id, const std::string& evidence) {
+  return "another lockstep run is on DDS domain " + std::to_string(domain_id) + ": " + evidence +
+         "; two runs on one domain hear each other's clock and topics, so give each run its own domain_id "
+         "(--set domain_id=N)";
 }
 
 void stayUntilTheOtherRunNotices() { std::this_thread::sleep_for(std::chrono::milliseconds(1500)); }

@@ -44,4 +44,7 @@ std::int64_t lastStep(const ClockSettings& clock);
 // on alone, never naming the cause (seen in CI under AddressSanitizer).
 void stayUntilTheOtherRunNotices();
 
+// What a run says when another lockstep run shares its domain; evidence: what gave it away.
+std::string anotherRunOnTheDomain(int domain_id, const std::string& evidence);
+
 }  // namespace uampc

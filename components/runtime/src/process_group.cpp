@@ -489,7 +489,7 @@ class ProcessRunner {
       for (const auto& s : samples) have += s.source_time < state_.now ? 1 : 0;
       if (have >= want) return true;
       // Stopped (Ctrl-C, or the launcher died): the samples may never come; not a failure.
-      if (*stop_) return false;
+      if (*stop_ || anotherRunStops()) return false;
       if (SteadyClock::now() > deadline) {
         failure_ = "input '" + r.port + "' of component '" + r.component + "' (" + r.topic + ") expected " +
                    std::to_string(want) + " samples by t=" + std::to_string(state_.now.seconds()) + " s but got " +
@@ -648,7 +648,7 @@ class ProcessRunner {
         if (it == acks_.end() || !it->second.count(step)) missing += (missing.empty() ? "" : ", ") + p;
       }
       if (missing.empty()) break;
-      if (stop) return false;
+      if (stop || anotherRunStops()) return false;
       if (SteadyClock::now() > deadline) {
         failure_ = "acknowledgements of step " + std::to_string(step) + " from process(es) " + missing +
                    " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s";
@@ -665,15 +665,37 @@ class ProcessRunner {
     return true;
   }
 
-  // A second writer of /clock, ever: another lockstep run on this domain, whose ticks would drive
-  // this one (the clock checks the acknowledgements' writers the same way).
-  std::string anotherClock() const {
+  // Another lockstep run on this domain, whose ticks would drive this one or whose acknowledgements
+  // would mix with its own: a second writer of /clock ever, or more writers of acknowledgements than
+  // the scene has processes (the launcher checks its readers the same way).
+  std::string anotherRun() const {
     SubscriptionMatchedStatus status;
-    clock_reader_->shared.reader->get_subscription_matched_status(status);
-    if (status.total_count <= 1) return {};
-    return "another lockstep run is on DDS domain " + std::to_string(scene_.domain_id) + ": " +
-           std::to_string(status.total_count) + " clocks were heard on " + kClockTopic +
-           "; give each run its own domain_id (--set domain_id=N)";
+    if (clock_reader_) {
+      clock_reader_->shared.reader->get_subscription_matched_status(status);
+      if (status.total_count > 1)
+        return anotherRunOnTheDomain(scene_.domain_id,
+                                     std::to_string(status.total_count) + " clocks were heard on " + kClockTopic);
+    }
+    // The acknowledgements' writers as matched now: a writer discovered again counts twice in
+    // total_count (seen at the start of runs with the launcher's clock).
+    if (ack_reader_) {
+      ack_reader_->shared.reader->get_subscription_matched_status(status);
+      const auto processes = static_cast<int>(scene_.processes().size());
+      if (status.current_count > processes)
+        return anotherRunOnTheDomain(scene_.domain_id, std::to_string(status.current_count) +
+                                                           " writers of step acknowledgements where the scene has " +
+                                                           std::to_string(processes) + " process(es)");
+    }
+    return {};
+  }
+
+  // While waiting: another run on the domain is a failure, said once the other run may have noticed.
+  bool anotherRunStops() {
+    failure_ = anotherRun();
+    if (failure_.empty()) return false;
+    log_.error(failure_);
+    stayUntilTheOtherRunNotices();
+    return true;
   }
 
   int runLockstep(const std::atomic<bool>& stop) {
@@ -713,11 +735,7 @@ class ProcessRunner {
 
     while (!stop) {
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
-      if (const std::string other = anotherClock(); !other.empty()) {
-        log_.error(other);
-        stayUntilTheOtherRunNotices();
-        return 1;
-      }
+      if (anotherRunStops()) return 1;
       std::deque<Sample> ticks;
       clock_reader_->takeAll(ticks);
       for (const auto& tick : ticks) {
