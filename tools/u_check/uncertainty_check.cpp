@@ -71,14 +71,11 @@ ProbeResult UncertaintyCheck::probe(double t) {
   result.lo_lost = last.lost || result.lo_rotation_error > kMangledRotation;
 
   // 2. U as the controller computes it, from the LO's pose and local map.
-  std::vector<Eigen::Vector3f> map_points_f;
-  odometry.localMap().pointsSince(last.time - config_.local_map_window, map_points_f);
-  std::vector<Eigen::Vector3d> map_points;
-  map_points.reserve(map_points_f.size());
-  for (const auto& p : map_points_f) map_points.push_back(p.cast<double>());
+  std::vector<Eigen::Vector3f> map_points;  // float32, as the LO publishes it and the mpc component holds it
+  odometry.localMap().pointsSince(last.time - config_.local_map_window, map_points);
   result.local_map_points = map_points.size();
   mpc::UaMpcController controller(config_.controller);
-  const mpc::UaMpcController::Decision decision = controller.step(last.T_WB, map_points, 0.0);
+  const mpc::UaMpcController::Decision decision = controller.stepFloat(last.T_WB, map_points, 0.0);
 
   // 3. Each angle's static view registered by the LO's update, from its prediction.
   const lo::UpdateOptions options = lo::updateOptionsFrom(config_.odometry);
