@@ -24,6 +24,7 @@
 // and runs the LO LiDAR-inertial. LO_REPLAY_DEBUG=T prints every eigenvalue, the velocities and
 // their standard deviations from T s on.
 #include <Eigen/Geometry>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -56,7 +57,7 @@ void printUsage(std::FILE* out) {
       out,
       "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S (30)] "
       "[--motor RAD_PER_S (3.6)] [--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] "
-      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--max-registration-points N] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
       "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
       "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] "
       "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] [--plane-min-spread-ratio R] "
@@ -128,6 +129,8 @@ int replay(int argc, char** argv) {
       config.scan_voxel_size = tools::nonNegative(flag, value);
     else if (flag == "--map-voxel")
       config.map_voxel_size = tools::nonNegative(flag, value);
+    else if (flag == "--max-registration-points")
+      config.max_registration_points = static_cast<int>(tools::nonNegative(flag, value));
     else if (flag == "--imu")
       use_imu = static_cast<int>(tools::nonNegative(flag, value)) != 0;
     else if (flag == "--degeneracy-threshold")
@@ -173,6 +176,7 @@ int replay(int argc, char** argv) {
   lo::MotorizedLidarOdometry odometry;  // replaced once the first frame's end is known
   bool started = false;
   double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
+  double squared_position_sum = 0.0, registration_seconds = 0.0;  // for the RMS error and the LO's time
   std::size_t frames = 0, degenerate_frames = 0;  // registered frames, and those with a degenerate pose direction
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
   std::printf(
@@ -192,7 +196,10 @@ int replay(int argc, char** argv) {
       const raycaster::ImuSample sample = imu.sample(next_imu, imu_motion);
       odometry.addImu({sample.time, sample.angular_velocity, sample.linear_acceleration});
     }
+    const auto registration_start = std::chrono::steady_clock::now();
     const lo::OdometryResult r = odometry.registerScan(scan, motor);
+    registration_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - registration_start).count();
     ++frames;
     if (r.degeneracy.degenerate_directions > 0) ++degenerate_frames;
     const Eigen::Isometry3d T = truth.poseAt(r.time);
@@ -204,6 +211,7 @@ int replay(int argc, char** argv) {
     previous_estimate = r.T_WB;
     previous_truth = T;
     worst_position = std::max(worst_position, pos_err);
+    squared_position_sum += pos_err * pos_err;
     worst_rotation = std::max(worst_rotation, rot_err);
     if (lost_at < 0 && (rot_err > 5.0 || pos_err > 2.0)) lost_at = r.time;
     const Eigen::Vector3d v_true = (T.translation() - truth.poseAt(r.time - 0.01).translation()) / 0.01;
@@ -229,8 +237,10 @@ int replay(int argc, char** argv) {
   }
   std::printf(
       "summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at "
-      "%s, degenerate frames %zu of %zu\n",
+      "%s, degenerate frames %zu of %zu, RMS position %.3f m, LO %.2f ms per frame\n",
       source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
-      lost_at < 0 ? "never" : std::to_string(lost_at).c_str(), degenerate_frames, frames);
+      lost_at < 0 ? "never" : std::to_string(lost_at).c_str(), degenerate_frames, frames,
+      frames > 0 ? std::sqrt(squared_position_sum / static_cast<double>(frames)) : 0.0,
+      frames > 0 ? 1e3 * registration_seconds / static_cast<double>(frames) : 0.0);
   return 0;
 }

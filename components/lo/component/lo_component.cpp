@@ -90,6 +90,10 @@ class LoComponent : public Component {
   // The parameters that set the core's config: declared from its defaults, read into it.
   static void bindParameters(ParameterBinding& b, lo::OdometryConfig& c) {
     b.bind("scan_voxel_size", c.scan_voxel_size, "voxel downsampling of the scan, m").between(0.01, 10.0);
+    b.bind("max_registration_points", c.max_registration_points,
+           "a downsampled scan with more points registers this many, spread evenly over space (0: all; see "
+           "README, \"A registration budget\")")
+        .between(0, 10000000);
     b.bind("map_voxel_size", c.map_voxel_size, "voxel size of the local map, m").between(0.01, 10.0);
     b.bind("map_mean_points", c.map_mean_points,
            "a map voxel's point is the mean of its first this many observations (1: the first point stays; see README)")

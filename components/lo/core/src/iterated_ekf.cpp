@@ -3,14 +3,13 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <utility>
 
 #include "uampc/frames/gravity.hpp"
 #include "uampc/lo/plane_fit.hpp"
 #include "uampc/lo/so3.hpp"
-#include "uampc/lo/voxel.hpp"
+#include "uampc/lo/voxel_downsample.hpp"
 
 namespace uampc::lo {
 
@@ -50,36 +49,6 @@ BaseState boxPlus(const BaseState& x, const Vector12d& dx) {
   out.r_WB += dx.segment<3>(3);
   out.v_W += dx.segment<3>(6);
   out.w_B += dx.segment<3>(9);
-  return out;
-}
-
-// Morton code of a point's voxel (10 bits per axis, wrapping: only locality matters).
-std::uint32_t mortonCode(const Voxel& v) {
-  auto spread = [](std::uint32_t x) {
-    x &= 0x3FF;
-    x = (x | (x << 16)) & 0x030000FF;
-    x = (x | (x << 8)) & 0x0300F00F;
-    x = (x | (x << 4)) & 0x030C30C3;
-    x = (x | (x << 2)) & 0x09249249;
-    return x;
-  };
-  return spread(static_cast<std::uint32_t>(v.x())) | (spread(static_cast<std::uint32_t>(v.y())) << 1) |
-         (spread(static_cast<std::uint32_t>(v.z())) << 2);
-}
-
-// The points sorted by that code. A copy, not pointers: the hot loops then read the points in
-// memory order. Sorting code << 32 | index as plain integers is several times faster than
-// sorting pairs through a comparator.
-std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, double voxel_size) {
-  std::vector<std::uint64_t> keyed;
-  keyed.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    keyed.push_back(std::uint64_t{mortonCode(voxelOf(points[i].p_B, 1.0 / voxel_size))} << 32 | i);
-  }
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<TimedPoint> out;
-  out.reserve(points.size());
-  for (const std::uint64_t key : keyed) out.push_back(points[key & 0xFFFFFFFFu]);
   return out;
 }
 

@@ -105,7 +105,9 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   predict(end_time, dt, motor, result);
   const IteratedEkf predicted = *filter_;
 
-  const std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
+  const std::vector<TimedPoint> keypoints =
+      spatialSubset(voxelDownsample(derotated.points, config_.scan_voxel_size),
+                    static_cast<std::size_t>(config_.max_registration_points), config_.map_voxel_size);
   result.points_used = keypoints.size();
   const UpdateSummary summary = correct(keypoints, predicted, end_time, dt, result);
   reportStatus(summary, keypoints.empty(), end_time, result);

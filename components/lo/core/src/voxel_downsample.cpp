@@ -1,10 +1,29 @@
 #include "uampc/lo/voxel_downsample.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "uampc/lo/voxel.hpp"
 
 namespace uampc::lo {
+
+namespace {
+
+// Morton code of a voxel (10 bits per axis, wrapping: only locality matters).
+std::uint32_t mortonCode(const Voxel& v) {
+  auto spread = [](std::uint32_t x) {
+    x &= 0x3FF;
+    x = (x | (x << 16)) & 0x030000FF;
+    x = (x | (x << 8)) & 0x0300F00F;
+    x = (x | (x << 4)) & 0x030C30C3;
+    x = (x | (x << 2)) & 0x09249249;
+    return x;
+  };
+  return spread(static_cast<std::uint32_t>(v.x())) | (spread(static_cast<std::uint32_t>(v.y())) << 1) |
+         (spread(static_cast<std::uint32_t>(v.z())) << 2);
+}
+
+}  // namespace
 
 std::vector<TimedPoint> voxelDownsample(const std::vector<TimedPoint>& points, double voxel_size) {
   if (voxel_size <= 0.0) return points;
@@ -31,6 +50,35 @@ std::vector<TimedPoint> voxelDownsample(const std::vector<TimedPoint>& points, d
       seen[i] = key;
       out.push_back(point);
     }
+  }
+  return out;
+}
+
+std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, double cell_size) {
+  // Sorting code << 32 | index as plain integers is several times faster than sorting pairs
+  // through a comparator.
+  std::vector<std::uint64_t> keyed;
+  keyed.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    keyed.push_back(std::uint64_t{mortonCode(voxelOf(points[i].p_B, 1.0 / cell_size))} << 32 | i);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<TimedPoint> out;
+  out.reserve(points.size());
+  for (const std::uint64_t key : keyed) out.push_back(points[key & 0xFFFFFFFFu]);
+  return out;
+}
+
+std::vector<TimedPoint> spatialSubset(const std::vector<TimedPoint>& points, std::size_t max_points, double cell_size) {
+  if (max_points == 0 || points.size() <= max_points) return points;
+  const std::vector<TimedPoint> ordered = spatialOrder(points, cell_size);
+  std::vector<TimedPoint> out;
+  out.reserve(max_points);
+  // The middle point of each of max_points equal runs of the ordered points: deterministic, and
+  // no run's point is favoured by where the runs start.
+  const double run = static_cast<double>(ordered.size()) / static_cast<double>(max_points);
+  for (std::size_t i = 0; i < max_points; ++i) {
+    out.push_back(ordered[static_cast<std::size_t>((static_cast<double>(i) + 0.5) * run)]);
   }
   return out;
 }

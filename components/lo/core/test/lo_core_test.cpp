@@ -5,6 +5,9 @@
 
 #include <random>
 
+#include <algorithm>
+#include <array>
+
 #include <cmath>
 #include <limits>
 
@@ -105,6 +108,33 @@ TEST(VoxelDownsample, KeepsOnePointPerVoxelWithItsTime) {
   ASSERT_EQ(out.size(), 2u);
   EXPECT_DOUBLE_EQ(out[0].tau, -0.1);
   EXPECT_DOUBLE_EQ(out[1].tau, -0.02);
+}
+
+// A budget keeps exactly that many points, each of them one of the input's (with its time), and
+// spreads them over space: two clusters, one with 4 times the other's points, keep their shares.
+TEST(SpatialSubset, KeepsTheBudgetSpreadOverSpace) {
+  std::vector<TimedPoint> points;
+  for (int i = 0; i < 800; ++i) points.push_back({{0.1 * (i % 40), 0.1 * (i / 40), 0.0}, -1e-4 * i});  // 4 x 2 m
+  for (int i = 0; i < 200; ++i) points.push_back({{20.0 + 0.1 * (i % 20), 0.1 * (i / 20), 5.0}, -0.1 + 1e-4 * i});
+  const std::vector<TimedPoint> subset = spatialSubset(points, 100, 0.3);
+  ASSERT_EQ(subset.size(), 100u);
+  std::size_t far_cluster = 0;
+  for (const TimedPoint& kept : subset) {
+    const auto same = [&kept](const TimedPoint& p) { return p.p_B == kept.p_B && p.tau == kept.tau; };
+    EXPECT_NE(std::find_if(points.begin(), points.end(), same), points.end());
+    if (kept.p_B.z() > 1.0) ++far_cluster;
+  }
+  EXPECT_NEAR(static_cast<double>(far_cluster), 20.0, 2.0);
+  // Within the large cluster, every 1 m x 1 m square keeps its share of its 100 points (10 expected).
+  std::array<int, 8> per_square{};
+  for (const TimedPoint& kept : subset) {
+    if (kept.p_B.z() < 1.0) ++per_square[static_cast<int>(kept.p_B.x()) + 4 * static_cast<int>(kept.p_B.y())];
+  }
+  for (const int count : per_square) EXPECT_GE(count, 3);
+  // Within the budget (or without one) the points come back as they were.
+  EXPECT_EQ(spatialSubset(points, 1000, 0.3).size(), 1000u);
+  EXPECT_EQ(spatialSubset(points, 0, 0.3).front().tau, points.front().tau);
+  EXPECT_EQ(spatialSubset(points, 5000, 0.3).back().tau, points.back().tau);
 }
 
 TEST(LocalMap, FindsNearestAndDropsFarVoxels) {
@@ -329,6 +359,28 @@ TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
       "position error %.4f m, min eigenvalue %.1f\n",
       worst_rotation / kDegree, worst_translation, final_error.translation().norm(),
       min_eigenvalue);
+}
+
+// With a registration budget each frame registers that many points (the map still takes them all),
+// and the known motion is still recovered.
+TEST(MotorizedLidarOdometry, RegistersItsBudgetOfPointsAndTracks) {
+  const sim::World world = sim::featureRoom();
+  const sim::LidarModel lidar;
+  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0);
+  OdometryConfig config;
+  config.initial_pose = truth(0.0);
+  config.max_registration_points = 1000;
+  MotorizedLidarOdometry odometry(config);
+  double worst_position = 0.0;
+  runOdometry(odometry, world, truth, lidar, 30,
+              [&](int k, const OdometryResult& result, const Eigen::Isometry3d& T_true) {
+                if (k == 0) return;
+                EXPECT_EQ(result.status, OdometryStatus::kTracking) << result.warning;
+                EXPECT_EQ(result.points_used, 1000u);
+                worst_position = std::max(worst_position, (result.T_WB.translation() - T_true.translation()).norm());
+              });
+  EXPECT_LT(worst_position, 0.02);
+  EXPECT_GT(odometry.localMap().size(), 1000u);
 }
 
 // A hand-held turn: 72 deg/s reached and lost within 0.2 s, the motor turning the same way (the

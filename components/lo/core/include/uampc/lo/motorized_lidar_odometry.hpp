@@ -39,6 +39,11 @@ struct OdometryConfig {
   double min_range = 0.5;        // m, measured in the LiDAR frame
   double max_range = 100.0;      // m
   double scan_voxel_size = 0.3;  // m
+  // Registration budget: a downsampled scan with more points than this registers this many,
+  // spread evenly over space (spatialSubset); the map still takes every point. 0: no budget, every
+  // downsampled point registers (the LO before this option). Off until measured on every world
+  // (README, "A registration budget").
+  int max_registration_points = 0;
   double map_voxel_size = 0.3;   // m
   // How many observations a map voxel's point averages (LocalMap); 1: the first point stays (the
   // LO before this option). 20 was chosen with tools/lo_replay at constant motor speeds only,

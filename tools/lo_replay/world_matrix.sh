@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# world_matrix.sh [--jobs N] [--only REGEX] [LO_REPLAY_FLAGS ...]
+#
+# Runs build/bench/lo_replay over the worlds on which the LO's parameters are decided (README, "A
+# registration budget", and the sections it follows: whole MCD trajectories, the indoor worlds, the
+# density worlds, the LiDAR-inertial campus loop), every run at a constant motor speed and with the
+# scenes' 2 cm range noise, and prints one line per run: its name, then lo_replay's summary.
+# LO_REPLAY_FLAGS are added to every run (e.g. --max-registration-points 2000). --only keeps the runs
+# whose name matches REGEX (grep -E). N runs at a time (default: the number of cores).
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+replay=build/bench/lo_replay
+[ -x "$replay" ] || { echo "world_matrix: $replay not built (cmake --workflow --preset build)" >&2; exit 1; }
+
+jobs=$(nproc)
+only=""
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --jobs) jobs="$2"; shift 2 ;;
+    --only) only="$2"; shift 2 ;;
+    -h|--help) sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) break ;;
+  esac
+done
+export EXTRA_FLAGS="$*"
+
+noise="--lidar-range-noise 0.02"
+indoor="--scan-voxel 0.15 --map-voxel 0.15"
+# name|arguments
+runs=(
+  "kth-1.8-s1|data/mcd/kth_day06.csv --duration 1e6 --motor 1.8 --seed 1 $noise"
+  "kth-1.8-s2|data/mcd/kth_day06.csv --duration 1e6 --motor 1.8 --seed 2 $noise"
+  "kth-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 $noise"
+  "ntu-3.6|data/mcd/ntu_day01.csv --duration 1e6 --motor 3.6 $noise"
+  "tuhh-3.6|data/mcd/tuhh_day03.csv --duration 1e6 --motor 3.6 $noise"
+  "corridor-doors|corridor --duration 1e6 $indoor $noise"
+  "multilevel|multilevel --duration 1e6 $indoor $noise"
+)
+for site in kth:kth_day06 ntu:ntu_day01 tuhh:tuhh_day03; do
+  for profile in mixed poor; do
+    for seed in 1 2; do
+      runs+=("${site%%:*}-$profile-s$seed|data/mcd/${site#*:}.csv --duration 180 --profile $profile --seed $seed $noise")
+    done
+  done
+done
+for seed in 1 2 3; do
+  runs+=("campus-imu-3.6-s$seed|campus --duration 1e6 --seed $seed --imu 1 $noise")
+done
+runs+=("kth-imu-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 --imu 1 $noise")
+
+run_one() {
+  local name="${1%%|*}" args="${1#*|}"
+  local summary
+  # shellcheck disable=SC2086  # both are lists of words by construction
+  summary=$("$replay" $args $EXTRA_FLAGS | grep '^summary:' || echo "summary: lo_replay failed")
+  printf '%-18s %s\n' "$name" "${summary#summary: }"
+}
+export -f run_one
+export replay
+
+for run in "${runs[@]}"; do
+  if [ -z "$only" ] || [[ "${run%%|*}" =~ $only ]]; then printf '%s\0' "$run"; fi
+done | xargs -0 -n 1 -P "$jobs" bash -c 'run_one "$1"' _
