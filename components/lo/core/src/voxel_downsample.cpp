@@ -1,7 +1,8 @@
 #include "uampc/lo/voxel_downsample.hpp"
 
-#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <utility>
 
 #include "uampc/lo/voxel.hpp"
 
@@ -21,6 +22,24 @@ std::uint32_t mortonCode(const Voxel& v) {
   };
   return spread(static_cast<std::uint32_t>(v.x())) | (spread(static_cast<std::uint32_t>(v.y())) << 1) |
          (spread(static_cast<std::uint32_t>(v.z())) << 2);
+}
+
+// Sorts keys code << 32 | index, made in index order, by their Morton code: a stable radix sort
+// on the code's 30 bits in three passes of 10 bits, so equal codes keep their index order and the
+// result is that of sorting the keys as integers, at a fraction of a comparison sort's cost (which
+// was a twentieth of a frame's registration with a budget of 2000 points).
+void sortByCode(std::vector<std::uint64_t>& keys) {
+  constexpr int kBits = 10;
+  constexpr std::uint64_t kDigit = (1u << kBits) - 1;
+  std::vector<std::uint64_t> sorted(keys.size());
+  for (int shift = 32; shift < 32 + 30; shift += kBits) {
+    std::array<std::size_t, kDigit + 1> first{};  // counts, then each digit's first position
+    for (const std::uint64_t key : keys) ++first[(key >> shift) & kDigit];
+    std::size_t position = 0;
+    for (std::size_t& f : first) position += std::exchange(f, position);
+    for (const std::uint64_t key : keys) sorted[first[(key >> shift) & kDigit]++] = key;
+    keys.swap(sorted);
+  }
 }
 
 }  // namespace
@@ -55,14 +74,12 @@ std::vector<TimedPoint> voxelDownsample(const std::vector<TimedPoint>& points, d
 }
 
 std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, double cell_size) {
-  // Sorting code << 32 | index as plain integers is several times faster than sorting pairs
-  // through a comparator.
   std::vector<std::uint64_t> keyed;
   keyed.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     keyed.push_back(std::uint64_t{mortonCode(voxelOf(points[i].p_B, 1.0 / cell_size))} << 32 | i);
   }
-  std::sort(keyed.begin(), keyed.end());
+  sortByCode(keyed);
   std::vector<TimedPoint> out;
   out.reserve(points.size());
   for (const std::uint64_t key : keyed) out.push_back(points[key & 0xFFFFFFFFu]);
