@@ -370,7 +370,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     if (options.project_degenerate) {
       information_noise = planeNoiseInformation(correspondences, spreads, H, x, frame);
       summary.state_degeneracy =
-          analyseStateDegeneracy(HtH - *information_noise, options.degeneracy_scales, options.degeneracy_threshold);
+          analyseStateDegeneracy(options.degeneracy_information_scale * (HtH - *information_noise),
+                                 options.degeneracy_scales, options.degeneracy_threshold);
       if (summary.state_degeneracy.degenerate_directions > 0) {
         const Matrix12d& pi = summary.state_degeneracy.projector;
         HtH = (pi.transpose() * HtH * pi).eval();
@@ -428,7 +429,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   }
   if (summary.applied) {
     if (!information_noise) information_noise = planeNoiseInformation(correspondences, spreads, H, linearised_at, frame);
-    reportDegeneracy(information, information - *information_noise, options, summary);
+    reportDegeneracy(information, options.degeneracy_information_scale * (information - *information_noise), options,
+                     summary);
   }
   if (!summary.applied || !finite(x)) {
     summary.applied = false;

@@ -105,11 +105,13 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   predict(end_time, dt, motor, result);
   const IteratedEkf predicted = *filter_;
 
+  const std::vector<TimedPoint> downsampled = voxelDownsample(derotated.points, config_.scan_voxel_size);
   const std::vector<TimedPoint> keypoints =
-      spatialSubset(voxelDownsample(derotated.points, config_.scan_voxel_size),
-                    static_cast<std::size_t>(config_.max_registration_points), config_.map_voxel_size);
+      spatialSubset(downsampled, static_cast<std::size_t>(config_.max_registration_points), config_.map_voxel_size);
   result.points_used = keypoints.size();
-  const UpdateSummary summary = correct(keypoints, predicted, end_time, dt, result);
+  const double sampled_fraction =
+      keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled.size());
+  const UpdateSummary summary = correct(keypoints, sampled_fraction, predicted, end_time, dt, result);
   reportStatus(summary, keypoints.empty(), end_time, result);
 
   // The map grows with the registered scan, at full resolution (the map voxel grid downsamples).
@@ -195,11 +197,13 @@ void MotorizedLidarOdometry::predict(double end_time, double dt, const frames::M
 }
 
 // The iterated update against the local map, undone if it needs an implausible acceleration.
-UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& keypoints, const IteratedEkf& predicted,
-                                              double end_time, double dt, OdometryResult& result) {
+UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
+                                              const IteratedEkf& predicted, double end_time, double dt,
+                                              OdometryResult& result) {
   UpdateSummary summary;
   if (!keypoints.empty()) {
     UpdateOptions options = updateOptionsFrom(config_);
+    options.degeneracy_information_scale = 1.0 / sampled_fraction;
     // The IMU has measured how the base moved within the frame: no frame deviation from it. (With
     // it, an open field's unobservable directions took up the noise: 0.10 -> 0.23 m, measured in
     // degenerate_geometry_test.)

@@ -362,25 +362,44 @@ TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
 }
 
 // With a registration budget each frame registers that many points (the map still takes them all),
-// and the known motion is still recovered.
+// the known motion is still recovered, and the degeneracy figure still counts the scan's points
+// (it is that of the LO without a budget, within the sample's scatter, not a tenth of it).
 TEST(MotorizedLidarOdometry, RegistersItsBudgetOfPointsAndTracks) {
   const sim::World world = sim::featureRoom();
   const sim::LidarModel lidar;
   const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0);
   OdometryConfig config;
   config.initial_pose = truth(0.0);
+  MotorizedLidarOdometry whole(config);
+  std::vector<double> whole_eigenvalues;
+  std::size_t whole_points = 0;
+  runOdometry(whole, world, truth, lidar, 30, [&](int k, const OdometryResult& result, const Eigen::Isometry3d&) {
+    if (k == 0) return;
+    whole_eigenvalues.push_back(result.min_information_eigenvalue);
+    whole_points = std::max(whole_points, result.points_used);
+  });
+  ASSERT_GT(whole_points, 5000u);  // the budget below takes less than a fifth
+
   config.max_registration_points = 1000;
-  MotorizedLidarOdometry odometry(config);
+  MotorizedLidarOdometry budgeted(config);
   double worst_position = 0.0;
-  runOdometry(odometry, world, truth, lidar, 30,
+  std::vector<double> eigenvalue_ratios;
+  runOdometry(budgeted, world, truth, lidar, 30,
               [&](int k, const OdometryResult& result, const Eigen::Isometry3d& T_true) {
                 if (k == 0) return;
                 EXPECT_EQ(result.status, OdometryStatus::kTracking) << result.warning;
                 EXPECT_EQ(result.points_used, 1000u);
                 worst_position = std::max(worst_position, (result.T_WB.translation() - T_true.translation()).norm());
+                eigenvalue_ratios.push_back(result.min_information_eigenvalue / whole_eigenvalues[k - 1]);
               });
   EXPECT_LT(worst_position, 0.02);
-  EXPECT_GT(odometry.localMap().size(), 1000u);
+  EXPECT_GT(budgeted.localMap().size(), 1000u);
+  std::sort(eigenvalue_ratios.begin(), eigenvalue_ratios.end());
+  const double median_ratio = eigenvalue_ratios[eigenvalue_ratios.size() / 2];
+  std::printf("budget of 1000 of about %zu points: smallest pose eigenvalue %.2f times the whole scan's (median)\n",
+              whole_points, median_ratio);
+  EXPECT_GT(median_ratio, 0.7);
+  EXPECT_LT(median_ratio, 1.4);
 }
 
 // A hand-held turn: 72 deg/s reached and lost within 0.2 s, the motor turning the same way (the

@@ -97,6 +97,11 @@ struct UpdateOptions {
   double frame_velocity_std_angular = 0.0;  // rad/s
   double degeneracy_threshold = 20.0;
   DegeneracyScales degeneracy_scales;
+  // The degeneracy analyses judge the information of the whole downsampled scan, estimated as this
+  // times that of the points registered: a registration budget registers an even sample of the
+  // scan (OdometryConfig::max_registration_points), and the threshold counts the scan's points,
+  // not the budget's. 1 without a budget.
+  double degeneracy_information_scale = 1.0;
 };
 
 struct UpdateSummary {

@@ -197,8 +197,9 @@ class MotorizedLidarOdometry {
   DerotatedScan derotateScan(const Scan& scan, const frames::MotorAngleTrack& motor, OdometryResult& result) const;
   OdometryResult initialise(const DerotatedScan& derotated, OdometryResult result);
   void predict(double end_time, double dt, const frames::MotorAngleTrack& motor, OdometryResult& result);
-  UpdateSummary correct(const std::vector<TimedPoint>& keypoints, const IteratedEkf& predicted, double end_time,
-                        double dt, OdometryResult& result);
+  // sampled_fraction: the share of the downsampled scan that keypoints are (below 1 with a budget).
+  UpdateSummary correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
+                        const IteratedEkf& predicted, double end_time, double dt, OdometryResult& result);
   void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
   void fillState(OdometryResult& result) const;
   // Whether the update from predicted to updated needs an acceleration beyond the configured ones.
