@@ -57,7 +57,7 @@ void printUsage(std::FILE* out) {
       out,
       "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S (30)] "
       "[--motor RAD_PER_S (3.6)] [--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] "
-      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--max-registration-points N] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--max-registration-points N] [--registration-weakest-points N] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
       "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
       "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] "
       "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] [--plane-min-spread-ratio R] "
@@ -131,6 +131,8 @@ int replay(int argc, char** argv) {
       config.map_voxel_size = tools::nonNegative(flag, value);
     else if (flag == "--max-registration-points")
       config.max_registration_points = static_cast<int>(tools::nonNegative(flag, value));
+    else if (flag == "--registration-weakest-points")
+      config.registration_weakest_points = tools::nonNegative(flag, value);
     else if (flag == "--imu")
       use_imu = static_cast<int>(tools::nonNegative(flag, value)) != 0;
     else if (flag == "--degeneracy-threshold")

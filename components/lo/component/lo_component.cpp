@@ -94,6 +94,10 @@ class LoComponent : public Component {
            "a downsampled scan with more points registers this many, spread evenly over space (0: all; see "
            "README, \"A registration budget\")")
         .between(0, 10000000);
+    b.bind("registration_weakest_points", c.registration_weakest_points,
+           "with max_registration_points, enough points register that the weakest pose direction keeps this many "
+           "effective points (poor geometry registers every point; 0: the budget alone)")
+        .between(0.0, 1e6);
     b.bind("map_voxel_size", c.map_voxel_size, "voxel size of the local map, m").between(0.01, 10.0);
     b.bind("map_mean_points", c.map_mean_points,
            "a map voxel's point is the mean of its first this many observations (1: the first point stays; see README)")

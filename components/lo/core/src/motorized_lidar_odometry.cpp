@@ -1,6 +1,7 @@
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -107,12 +108,13 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
 
   const std::vector<TimedPoint> downsampled = voxelDownsample(derotated.points, config_.scan_voxel_size);
   const std::vector<TimedPoint> keypoints =
-      spatialSubset(downsampled, static_cast<std::size_t>(config_.max_registration_points), config_.map_voxel_size);
+      spatialSubset(downsampled, registrationBudget(downsampled.size()), config_.map_voxel_size);
   result.points_used = keypoints.size();
   const double sampled_fraction =
       keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled.size());
   const UpdateSummary summary = correct(keypoints, sampled_fraction, predicted, end_time, dt, result);
   reportStatus(summary, keypoints.empty(), end_time, result);
+  last_weakest_information_ = summary.applied ? std::max(0.0, result.min_information_eigenvalue) : 0.0;
 
   // The map grows with the registered scan, at full resolution (the map voxel grid downsamples).
   // Each point keeps the side it was seen from, taken from the base origin at the frame's end
@@ -194,6 +196,17 @@ void MotorizedLidarOdometry::predict(double end_time, double dt, const frames::M
   }
   last_time_ = end_time;
   while (!imu_.empty() && imu_.front().time < last_time_ - 0.1) imu_.pop_front();
+}
+
+// How many of the downsampled scan's points register (0: all): the budget, or more where the last
+// frame's weakest direction needs them (OdometryConfig::registration_weakest_points).
+std::size_t MotorizedLidarOdometry::registrationBudget(std::size_t downsampled_points) const {
+  const auto budget = static_cast<std::size_t>(config_.max_registration_points);
+  if (budget == 0 || config_.registration_weakest_points <= 0.0) return budget;
+  if (!(last_weakest_information_ > 0.0)) return 0;
+  const double needed =
+      std::ceil(static_cast<double>(downsampled_points) * config_.registration_weakest_points / last_weakest_information_);
+  return needed >= static_cast<double>(downsampled_points) ? 0 : std::max(budget, static_cast<std::size_t>(needed));
 }
 
 // The iterated update against the local map, undone if it needs an implausible acceleration.

@@ -44,6 +44,11 @@ struct OdometryConfig {
   // downsampled point registers (the LO before this option). Off until measured on every world
   // (README, "A registration budget").
   int max_registration_points = 0;
+  // With a budget, enough points register that the weakest pose direction keeps this many effective
+  // points (the last frame's smallest pose information eigenvalue, degeneracy.hpp, scaled by the
+  // share kept): where geometry is poor every point registers, the budget saves time where it is
+  // rich. After a frame that registered nothing, the next registers every point. 0: the budget alone.
+  double registration_weakest_points = 0.0;
   double map_voxel_size = 0.3;   // m
   // How many observations a map voxel's point averages (LocalMap); 1: the first point stays (the
   // LO before this option). 20 was chosen with tools/lo_replay at constant motor speeds only,
@@ -200,6 +205,7 @@ class MotorizedLidarOdometry {
   // sampled_fraction: the share of the downsampled scan that keypoints are (below 1 with a budget).
   UpdateSummary correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
                         const IteratedEkf& predicted, double end_time, double dt, OdometryResult& result);
+  std::size_t registrationBudget(std::size_t downsampled_points) const;
   void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
   void fillState(OdometryResult& result) const;
   // Whether the update from predicted to updated needs an acceleration beyond the configured ones.
@@ -210,6 +216,9 @@ class MotorizedLidarOdometry {
   std::optional<IteratedEkf> filter_;
   double last_time_ = 0.0;
   double last_accepted_time_ = 0.0;  // s, the end of the last scan whose registration was accepted
+  // The last registered frame's smallest pose information eigenvalue (effective points of the whole
+  // scan); 0 after a frame that registered nothing.
+  double last_weakest_information_ = 0.0;
   std::size_t rejected_updates_ = 0;
   std::deque<ImuReading> imu_;
 };
