@@ -33,7 +33,8 @@ runs=(
   "kth-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 $noise"
   "ntu-3.6|data/mcd/ntu_day01.csv --duration 1e6 --motor 3.6 $noise"
   "tuhh-3.6|data/mcd/tuhh_day03.csv --duration 1e6 --motor 3.6 $noise"
-  "corridor-doors|corridor --duration 1e6 $indoor $noise"
+  "corridor-doors|corridor --door-spacing 8 --duration 1e6 $indoor $noise"
+  "corridor-plain|corridor --duration 1e6 $indoor $noise"
   "multilevel|multilevel --duration 1e6 $indoor $noise"
 )
 for site in kth:kth_day06 ntu:ntu_day01 tuhh:tuhh_day03; do

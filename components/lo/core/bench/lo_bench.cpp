@@ -40,7 +40,8 @@ const Recording& shortRecording() {
 
 // Arguments: scan voxel size in mm (300 is the default: docs/design.md section 1), 1 for each
 // frame's own velocity (the default), 0 for the filter's (OdometryConfig::frame_velocity_std_*),
-// and the registration budget (OdometryConfig::max_registration_points; 0: none, the default).
+// the registration budget (OdometryConfig::max_registration_points; 0: none) and the weakest
+// direction's points it keeps (OdometryConfig::registration_weakest_points; 0: the budget alone).
 void BM_RegisterScan20k(benchmark::State& state) {
   const Recording& recording = shortRecording();
   OdometryConfig config;
@@ -48,6 +49,7 @@ void BM_RegisterScan20k(benchmark::State& state) {
   config.scan_voxel_size = static_cast<double>(state.range(0)) / 1000.0;
   if (state.range(1) == 0) config.frame_velocity_std_linear = config.frame_velocity_std_angular = 0.0;
   config.max_registration_points = static_cast<int>(state.range(2));
+  config.registration_weakest_points = static_cast<double>(state.range(3));
   auto odometry = std::make_unique<MotorizedLidarOdometry>(config);
   std::size_t next = 0, points = 0, used = 0, correspondences = 0, iterations = 0, associations = 0, frames = 0;
   for (auto _ : state) {
@@ -74,11 +76,12 @@ void BM_RegisterScan20k(benchmark::State& state) {
   state.counters["map_voxels"] = static_cast<double>(odometry->localMap().size());
 }
 BENCHMARK(BM_RegisterScan20k)
-    ->Args({300, 1, 0})
-    ->Args({500, 1, 0})
-    ->Args({300, 0, 0})
-    ->Args({300, 1, 4000})
-    ->Args({300, 1, 2000})
+    ->Args({300, 1, 0, 0})
+    ->Args({500, 1, 0, 0})
+    ->Args({300, 0, 0, 0})
+    ->Args({300, 1, 4000, 0})
+    ->Args({300, 1, 2000, 0})
+    ->Args({300, 1, 2000, 100})
     ->Unit(benchmark::kMillisecond)
     ->MinTime(5.0);
 
