@@ -29,6 +29,9 @@ double rotationAngle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).ang
 
 Eigen::Isometry3d identityAt(double) { return Eigen::Isometry3d::Identity(); }
 
+// The path most tests take through the feature room: weaving at about 1 m/s.
+sim::Trajectory featureRoomWeave() { return sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0); }
+
 // Runs the odometry over frames [0, frames) and calls check(frame, result, ground truth).
 template <typename Check>
 void runOdometry(MotorizedLidarOdometry& odometry, const sim::World& world,
@@ -325,7 +328,7 @@ TEST(Derotation, DropsAndCountsNonFiniteAndOutOfTrackPoints) {
 TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
   const sim::World world = sim::featureRoom();
   const sim::LidarModel lidar;
-  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0);
+  const sim::Trajectory truth = featureRoomWeave();
   OdometryConfig config;
   config.initial_pose = truth(0.0);
   MotorizedLidarOdometry odometry(config);
@@ -367,7 +370,7 @@ TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
 TEST(MotorizedLidarOdometry, RegistersItsBudgetOfPointsAndTracks) {
   const sim::World world = sim::featureRoom();
   const sim::LidarModel lidar;
-  const sim::Trajectory truth = sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0);
+  const sim::Trajectory truth = featureRoomWeave();
   OdometryConfig config;
   config.initial_pose = truth(0.0);
   MotorizedLidarOdometry whole(config);
@@ -423,7 +426,7 @@ TEST(MotorizedLidarOdometry, TheBudgetYieldsWhereTheWeakestDirectionNeedsPoints)
       pointsUsed(sim::corridor(), sim::weavingTrajectory({0, 0, 1.2}, 1.0, 0.5, 0.5, 10.0));
   for (std::size_t k = 0; k < corridor.size(); ++k) EXPECT_GT(corridor[k], 1000u) << "update " << k;
   const std::vector<std::size_t> room =
-      pointsUsed(sim::featureRoom(), sim::weavingTrajectory({0, 0, 1.2}, 1.0, 1.5, 1.0, 12.0));
+      pointsUsed(sim::featureRoom(), featureRoomWeave());
   EXPECT_GT(room.front(), 1000u);  // the first update registers every point
   for (std::size_t k = 1; k < room.size(); ++k) EXPECT_LE(room[k], 1500u) << "update " << k;
 }
