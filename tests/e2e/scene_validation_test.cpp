@@ -291,9 +291,10 @@ TEST(ComponentLoader, TextListingKeepsColumnsApartForLongNames) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // The longest parameter name of the lo component once ran into its type column; now every
   // name is padded to the longest, and the types line up.
-  EXPECT_NE(r.output.find("param  frame_velocity_std_angular double"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("param  max_angular_acceleration   double"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("param  measurement_variance       double"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("param  registration_weakest_points double"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("param  frame_velocity_std_angular  double"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("param  max_angular_acceleration    double"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("param  measurement_variance        double"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("output registered   sensor_msgs/msg/PointCloud2"), std::string::npos) << r.output;
 }
 
