@@ -65,12 +65,15 @@ std::vector<Eigen::Vector3f> asFloat(const Cloud& cloud) {
 }
 
 // Args: local-map points, panorama degrees per pixel (1 is what the mpc component ships, see
-// PanoramicDepthMap::Config; 2 is the cheaper setting it replaced).
+// PanoramicDepthMap::Config; 2 is the cheaper setting it replaced), and U's ray grid in degrees
+// (5 is the default, UncertaintyModel::Config; 10 is a quarter of the rays: README, "Where the
+// loop's time goes").
 void BM_ControlStep(benchmark::State& state) {
   const std::vector<Eigen::Vector3f> cloud = asFloat(hall(static_cast<std::size_t>(state.range(0))));
   uampc::mpc::UaMpcController::Config config;
   config.depth_map.width = static_cast<int>(360 / state.range(1));
   config.depth_map.height = static_cast<int>(180 / state.range(1));
+  config.uncertainty.azimuth_step = config.uncertainty.elevation_step = static_cast<double>(state.range(2)) * M_PI / 180.0;
   uampc::mpc::UaMpcController controller(config);
   double theta = 0.0;
   uampc::mpc::UaMpcController::Decision decision;
@@ -85,7 +88,11 @@ void BM_ControlStep(benchmark::State& state) {
   state.counters["solver_iterations"] = decision.plan.iterations;
   state.counters["occupied_px"] = static_cast<double>(controller.depthMap().occupiedCount());
 }
-BENCHMARK(BM_ControlStep)->Args({100000, 2})->Args({100000, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ControlStep)
+    ->Args({100000, 2, 5})
+    ->Args({100000, 1, 5})
+    ->Args({100000, 1, 10})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_DepthMap(benchmark::State& state) {
   const std::vector<Eigen::Vector3f> cloud = asFloat(hall(100000));
