@@ -30,6 +30,16 @@ inline double nonNegative(const std::string& flag, const std::string& text) {
   return value;
 }
 
+// number(), and a whole number from 0 to INT_MAX: a count, a seed, a switch. A fraction or a value
+// beyond int would otherwise be truncated or overflow the cast silently.
+inline int count(const std::string& flag, const std::string& text) {
+  const double value = nonNegative(flag, text);
+  if (value != std::floor(value) || value > 2147483647.0) {
+    throw std::invalid_argument(flag + ": '" + text + "' must be a whole number from 0 to 2147483647");
+  }
+  return static_cast<int>(value);
+}
+
 inline int runTool(const char* name, int (*run)(int, char**), int argc, char** argv) {
   try {
     return run(argc, argv);

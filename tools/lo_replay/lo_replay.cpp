@@ -105,7 +105,7 @@ int replay(int argc, char** argv) {
     else if (flag == "--path-speed")
       settings.path_speed = tools::nonNegative(flag, value);
     else if (flag == "--poor-rows")
-      settings.campus_poor_rows = static_cast<int>(tools::nonNegative(flag, value));
+      settings.campus_poor_rows = tools::count(flag, value);
     else if (flag == "--plane-distance")
       config.plane_max_point_distance = tools::nonNegative(flag, value);
     else if (flag == "--plane-min-spread-ratio") {
@@ -118,35 +118,35 @@ int replay(int argc, char** argv) {
     else if (flag == "--open-fraction")
       settings.open_fraction = tools::nonNegative(flag, value);
     else if (flag == "--every")
-      every = static_cast<int>(tools::nonNegative(flag, value));
+      every = tools::count(flag, value);
     else if (flag == "--linear-noise")
       config.linear_process_noise = tools::nonNegative(flag, value);
     else if (flag == "--angular-noise")
       config.angular_process_noise = tools::nonNegative(flag, value);
     else if (flag == "--iterations")
-      config.max_iterations = static_cast<int>(tools::nonNegative(flag, value));
+      config.max_iterations = tools::count(flag, value);
     else if (flag == "--scan-voxel")
       config.scan_voxel_size = tools::nonNegative(flag, value);
     else if (flag == "--map-voxel")
       config.map_voxel_size = tools::nonNegative(flag, value);
     else if (flag == "--max-registration-points")
-      config.max_registration_points = static_cast<int>(tools::nonNegative(flag, value));
+      config.max_registration_points = tools::count(flag, value);
     else if (flag == "--registration-weakest-points")
       config.registration_weakest_points = tools::nonNegative(flag, value);
     else if (flag == "--imu")
-      use_imu = static_cast<int>(tools::nonNegative(flag, value)) != 0;
+      use_imu = tools::count(flag, value) != 0;
     else if (flag == "--degeneracy-threshold")
       config.degeneracy_threshold = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-length")
       config.degeneracy_scales.length = tools::nonNegative(flag, value);
     else if (flag == "--map-mean-points")
-      config.map_mean_points = static_cast<int>(tools::nonNegative(flag, value));
+      config.map_mean_points = tools::count(flag, value);
     else if (flag == "--measurement-variance")
       config.measurement_variance = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-period")
       config.degeneracy_scales.period = tools::nonNegative(flag, value);
     else if (flag == "--degeneracy-aware")
-      config.degeneracy_aware = static_cast<int>(tools::nonNegative(flag, value)) != 0;
+      config.degeneracy_aware = tools::count(flag, value) != 0;
     else if (flag == "--frame-velocity-std-linear")
       config.frame_velocity_std_linear = tools::nonNegative(flag, value);
     else if (flag == "--frame-velocity-std-angular")

@@ -16,8 +16,10 @@ jobs=$(nproc)
 only=""
 while [ $# -gt 0 ]; do
   case "$1" in
-    --jobs) jobs="$2"; shift 2 ;;
-    --only) only="$2"; shift 2 ;;
+    --jobs|--only)
+      [ $# -ge 2 ] || { echo "world_matrix: $1 needs a value" >&2; exit 2; }
+      if [ "$1" = --jobs ]; then jobs="$2"; else only="$2"; fi
+      shift 2 ;;
     -h|--help) sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) break ;;
   esac

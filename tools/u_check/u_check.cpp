@@ -113,7 +113,7 @@ int run(int argc, char** argv) {
     else if (flag == "--warmup")
       config.warmup = tools::number(flag, value);
     else if (flag == "--trials")
-      config.trials = static_cast<int>(tools::number(flag, value));
+      config.trials = tools::count(flag, value);
     else if (flag == "--rotation-sigma")
       config.start_rotation_sigma = tools::number(flag, value) * M_PI / 180.0;
     else if (flag == "--position-sigma")
@@ -136,8 +136,8 @@ int run(int argc, char** argv) {
     } else if (flag == "--panorama") {
       const auto x = value.find('x');
       if (x == std::string::npos) throw std::invalid_argument("--panorama: expected WxH, e.g. 180x90");
-      config.controller.depth_map.width = static_cast<int>(tools::number(flag, value.substr(0, x)));
-      config.controller.depth_map.height = static_cast<int>(tools::number(flag, value.substr(x + 1)));
+      config.controller.depth_map.width = tools::count(flag, value.substr(0, x));
+      config.controller.depth_map.height = tools::count(flag, value.substr(x + 1));
     } else
       throw std::invalid_argument("unknown option " + flag + "\n" + kUsage);
   }

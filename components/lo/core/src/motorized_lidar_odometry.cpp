@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "uampc/lo/derotation.hpp"
 #include "uampc/lo/deskew.hpp"
@@ -106,12 +107,12 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   predict(end_time, dt, motor, result);
   const IteratedEkf predicted = *filter_;
 
-  const std::vector<TimedPoint> downsampled = voxelDownsample(derotated.points, config_.scan_voxel_size);
-  const std::vector<TimedPoint> keypoints =
-      spatialSubset(downsampled, registrationBudget(downsampled.size()), config_.map_voxel_size);
+  std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
+  const std::size_t downsampled = keypoints.size();
+  keypoints = spatialSubset(std::move(keypoints), registrationBudget(downsampled), config_.map_voxel_size);
   result.points_used = keypoints.size();
   const double sampled_fraction =
-      keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled.size());
+      keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled);
   const UpdateSummary summary = correct(keypoints, sampled_fraction, predicted, end_time, dt, result);
   reportStatus(summary, keypoints.empty(), end_time, result);
   last_weakest_information_ = summary.applied ? std::max(0.0, result.min_information_eigenvalue) : 0.0;

@@ -42,6 +42,18 @@ void sortByCode(std::vector<std::uint64_t>& keys) {
   }
 }
 
+// The indices of the points in Morton order of their voxels (cell_size).
+std::vector<std::uint64_t> mortonOrder(const std::vector<TimedPoint>& points, double cell_size) {
+  std::vector<std::uint64_t> keyed;
+  keyed.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    keyed.push_back(std::uint64_t{mortonCode(voxelOf(points[i].p_B, 1.0 / cell_size))} << 32 | i);
+  }
+  sortByCode(keyed);
+  for (std::uint64_t& key : keyed) key &= 0xFFFFFFFFu;
+  return keyed;
+}
+
 }  // namespace
 
 std::vector<TimedPoint> voxelDownsample(const std::vector<TimedPoint>& points, double voxel_size) {
@@ -74,28 +86,22 @@ std::vector<TimedPoint> voxelDownsample(const std::vector<TimedPoint>& points, d
 }
 
 std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, double cell_size) {
-  std::vector<std::uint64_t> keyed;
-  keyed.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    keyed.push_back(std::uint64_t{mortonCode(voxelOf(points[i].p_B, 1.0 / cell_size))} << 32 | i);
-  }
-  sortByCode(keyed);
   std::vector<TimedPoint> out;
   out.reserve(points.size());
-  for (const std::uint64_t key : keyed) out.push_back(points[key & 0xFFFFFFFFu]);
+  for (const std::uint64_t index : mortonOrder(points, cell_size)) out.push_back(points[index]);
   return out;
 }
 
-std::vector<TimedPoint> spatialSubset(const std::vector<TimedPoint>& points, std::size_t max_points, double cell_size) {
+std::vector<TimedPoint> spatialSubset(std::vector<TimedPoint> points, std::size_t max_points, double cell_size) {
   if (max_points == 0 || points.size() <= max_points) return points;
-  const std::vector<TimedPoint> ordered = spatialOrder(points, cell_size);
+  const std::vector<std::uint64_t> order = mortonOrder(points, cell_size);
   std::vector<TimedPoint> out;
   out.reserve(max_points);
   // The middle point of each of max_points equal runs of the ordered points: deterministic, and
   // no run's point is favoured by where the runs start.
-  const double run = static_cast<double>(ordered.size()) / static_cast<double>(max_points);
+  const double run = static_cast<double>(order.size()) / static_cast<double>(max_points);
   for (std::size_t i = 0; i < max_points; ++i) {
-    out.push_back(ordered[static_cast<std::size_t>((static_cast<double>(i) + 0.5) * run)]);
+    out.push_back(points[order[static_cast<std::size_t>((static_cast<double>(i) + 0.5) * run)]]);
   }
   return out;
 }

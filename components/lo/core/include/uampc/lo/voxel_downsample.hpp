@@ -21,8 +21,9 @@ std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, doub
 // At most max_points of the points, spread evenly over space: in spatial order (cell_size), every
 // (size / max_points)-th point. Each region keeps its share of the points, so a frame's rare
 // features (a corridor's end wall) keep theirs; a frame within the budget is returned whole and
-// unchanged. The registration budget of the LO (OdometryConfig::max_registration_points), as
-// KISS-ICP and FAST-LIO2 register a few thousand points a frame. max_points 0: no budget.
-std::vector<TimedPoint> spatialSubset(const std::vector<TimedPoint>& points, std::size_t max_points, double cell_size);
+// unchanged (moved through, not copied: the LO's every frame without a budget). The registration
+// budget of the LO (OdometryConfig::max_registration_points), as KISS-ICP and FAST-LIO2 register a
+// few thousand points a frame. max_points 0: no budget.
+std::vector<TimedPoint> spatialSubset(std::vector<TimedPoint> points, std::size_t max_points, double cell_size);
 
 }  // namespace uampc::lo
