@@ -9,6 +9,13 @@
 
 namespace uampc::app {
 
+std::string fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
+  return buffer;
+}
+
 namespace {
 
 bool lostTrack(const RunResult& r) { return std::isfinite(r.metrics.runaway_time_s); }
@@ -37,13 +44,6 @@ CellStatistics cellOf(const std::vector<const RunResult*>& runs) {
 RunPair pairOf(const RunResult& subject, const RunResult& baseline) {
   return {subject.metrics.ate_m,  baseline.metrics.ate_m, subject.metrics.cmplt,
           baseline.metrics.cmplt, lostTrack(subject),     lostTrack(baseline)};
-}
-
-std::string fixed(double value, int decimals) {
-  if (!std::isfinite(value)) return "n/a";
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
 }
 
 // p with three significant digits (0.0625, 0.00012), since its size matters more than its decimals.

@@ -40,6 +40,10 @@ struct ExperimentStatistics {
   std::vector<BaselineComparison> comparisons;     // every controller but the subject, in order
 };
 
+// value with that many decimals ("%.*f"); "n/a" when it is not finite. Every table of the report prints
+// through it.
+std::string fixed(double value, int decimals);
+
 ExperimentStatistics computeStatistics(const Experiment& experiment, const std::vector<RunResult>& results);
 
 // The two tables as cell texts, shared by results.md and the report page; emphasised rows are the

@@ -9,12 +9,6 @@ namespace uampc::app {
 
 namespace {
 
-std::string fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, value);
-  return buffer;
-}
-
 std::string withCount(std::string text, const MeanOverSeeds& cell, int seeds) {
   if (cell.runs < seeds) text += " (" + std::to_string(cell.runs) + "/" + std::to_string(seeds) + ")";
   return text;

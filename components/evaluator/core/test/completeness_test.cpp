@@ -17,7 +17,7 @@
 namespace uampc::evaluator {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kFloatNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 using VoxelSet = std::set<std::tuple<int, int, int>>;
@@ -110,7 +110,7 @@ TEST(Completeness, CountsDistinctVoxelsPerWindowAndAveragesCompleteOnes) {
 TEST(Completeness, SkipsAndCountsBadInput) {
   Completeness cmplt;
   cmplt.addScan(0.0, {});  // an empty scan is fine
-  cmplt.addScan(1.0, {{kNaN, 0, 0}, {0, kInf, 0}, {0, 0, -kInf}, in(1, 1, 1), {1e9f, 0, 0}});
+  cmplt.addScan(1.0, {{kFloatNaN, 0, 0}, {0, kInf, 0}, {0, 0, -kInf}, in(1, 1, 1), {1e9f, 0, 0}});
   cmplt.addScan(std::numeric_limits<double>::quiet_NaN(), {in(2, 2, 2)});
   const CompletenessReport report = cmplt.report();
   EXPECT_EQ(report.scans, 2u);

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <random>
 
+#include "synthetic_scenes.hpp"
+
 namespace uampc::mpc {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 // Surrogate of U(theta) = mean - amplitude * cos(theta - best), sampled every 5 degrees from
 // theta_start: smallest uncertainty towards `best`.

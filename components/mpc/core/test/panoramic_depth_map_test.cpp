@@ -11,7 +11,7 @@
 namespace uampc::mpc {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 Eigen::Isometry3d somePose() {
   Eigen::Isometry3d T_WB = Eigen::Isometry3d::Identity();

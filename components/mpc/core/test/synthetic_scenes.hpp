@@ -9,6 +9,8 @@ namespace uampc::mpc::test {
 
 using Cloud = std::vector<Eigen::Vector3d>;
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 // Points every `spacing` metres on the rectangle origin + a * e1 + b * e2, a in [0, |e1|],
 // b in [0, |e2|].
 inline void addRectangle(Cloud& cloud, const Eigen::Vector3d& origin, const Eigen::Vector3d& e1,

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "synthetic_scenes.hpp"
+
 namespace uampc::mpc {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 TEST(UncertaintyFilter, WeightOneReturnsEachStepsSamples) {
   UncertaintyFilter filter(1.0);

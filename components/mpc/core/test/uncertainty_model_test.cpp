@@ -12,7 +12,7 @@
 namespace uampc::mpc {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 struct Scene {
   PanoramicDepthMap map;

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <random>
 
+#include "synthetic_scenes.hpp"
+
 namespace uampc::mpc {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using test::kPi;
 
 UncertaintySurrogate randomSurrogate(double theta_start, int count = 72) {
   std::mt19937 rng(11);
