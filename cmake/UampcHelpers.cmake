@@ -1,5 +1,18 @@
 # Helpers shared by every CMakeLists.txt of uampc.
 
+# uampc_compile_in_batches(target ...)
+# Compiles a target's sources in batches of up to eight (CMake's unity build): the heavy headers
+# (Eigen, Fast DDS, nlohmann::json, GoogleTest) are parsed once per batch instead of once per file.
+# Measured on two cores without ccache: the generated message types 125 -> 22 s of CPU, the world
+# core 52 -> 30 s, the evaluator core 45 -> 23 s. Same flags, so the same results bit for bit (no
+# -ffast-math, no FMA contraction in ISO C++ mode). Two costs: file-local names must differ between
+# batch mates (the build fails and names both when they do not), and compile_commands.json lists the
+# batches, not the files. Files with their own COMPILE_OPTIONS are compiled on their own.
+# Not used for the LO core: its time is one file (iterated_ekf.cpp), batching saved 12 %.
+function(uampc_compile_in_batches)
+  set_target_properties(${ARGN} PROPERTIES UNITY_BUILD ON)
+endfunction()
+
 # uampc_off_hot_path(TARGETS target ... | SOURCES file ...)
 # Code the simulation never runs per step (the command line, scene and IDL parsing, experiments and
 # reports, the tests' own code) is compiled at -O1 instead of the build type's -O3: a third less
@@ -12,7 +25,7 @@ function(uampc_off_hot_path)
   cmake_parse_arguments(O "" "" "TARGETS;SOURCES" ${ARGN})
   foreach(target IN LISTS O_TARGETS)
     target_compile_options(${target} PRIVATE -O1)
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ON)
+    uampc_compile_in_batches(${target})
   endforeach()
   if(O_SOURCES)
     set_source_files_properties(${O_SOURCES} DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR} PROPERTIES COMPILE_OPTIONS -O1)

@@ -70,5 +70,6 @@ function(uampc_add_message_library)
   target_link_libraries(${L_TARGET} PUBLIC fastrtps fastcdr)
   # Generated code is not ours to make warning-free.
   target_compile_options(${L_TARGET} PRIVATE -w)
-  set_target_properties(${L_TARGET} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 16)
+  uampc_compile_in_batches(${L_TARGET})
+  set_target_properties(${L_TARGET} PROPERTIES UNITY_BUILD_BATCH_SIZE 16)  # tiny files: bigger batches
 endfunction()

@@ -7,10 +7,10 @@ namespace uampc::run_files {
 
 namespace {
 
-// The keys, once: eachField(info, visit) calls visit(key, field) in the file's order; writing and
+// The keys, once: eachInfoField(info, visit) calls visit(key, field) in the file's order; writing and
 // reading both go through it. I is RunInfo, const when writing.
 template <class I, class Visit>
-void eachField(I& info, Visit&& visit) {
+void eachInfoField(I& info, Visit&& visit) {
   visit("scene", info.scene_copy);
   visit("scene_source", info.scene_source);
   visit("overrides", info.overrides);
@@ -22,7 +22,7 @@ void eachField(I& info, Visit&& visit) {
   visit("components", info.components);
 }
 
-struct Reader {
+struct InfoReader {
   const Json& json;
   const std::string& where;
 
@@ -52,14 +52,14 @@ struct Reader {
 
 Json runInfoToJson(const RunInfo& info) {
   Json json = Json::object();
-  eachField(info, [&json](const char* key, const auto& field) { json[key] = field; });
+  eachInfoField(info, [&json](const char* key, const auto& field) { json[key] = field; });
   return json;
 }
 
 RunInfo runInfoFromJson(const Json& json, const std::string& where) {
   if (!json.is_object()) throw std::runtime_error(where + ": not a JSON object");
   RunInfo info;
-  eachField(info, Reader{json, where});
+  eachInfoField(info, InfoReader{json, where});
   return info;
 }
 

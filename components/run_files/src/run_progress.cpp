@@ -12,7 +12,7 @@ namespace uampc::run_files {
 namespace {
 
 template <class S, class Visit>
-void eachField(S& p, Visit&& visit) {
+void eachProgressField(S& p, Visit&& visit) {
   visit("sim_s", p.sim_s);
   visit("total_s", p.total_s);
   visit("wall_s", p.wall_s);
@@ -23,7 +23,7 @@ void eachField(S& p, Visit&& visit) {
 
 void writeRunProgress(const std::string& path, const RunProgress& progress) {
   Json json = Json::object();
-  eachField(progress, [&json](const char* key, const auto& value) { json[key] = value; });
+  eachProgressField(progress, [&json](const char* key, const auto& value) { json[key] = value; });
   const std::string partial = path + ".partial";
   writeJsonFile(partial, json);
   std::error_code error;
@@ -37,7 +37,7 @@ std::optional<RunProgress> readRunProgress(const std::string& path) {
   try {
     const Json json = readJsonFile(path);
     bool complete = json.is_object();
-    eachField(progress, [&](const char* key, auto& value) {
+    eachProgressField(progress, [&](const char* key, auto& value) {
       using Field = std::remove_reference_t<decltype(value)>;
       const auto found = complete ? json.find(key) : json.end();
       const bool fits = found != json.end() && (std::is_same_v<Field, bool> ? found->is_boolean() : found->is_number());

@@ -6,12 +6,13 @@
 #include <limits>
 #include <stdexcept>
 
+#include "angles.hpp"
 #include "fast_atan2.hpp"
 
 namespace uampc::mpc {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 }  // namespace
 
 PanoramicDepthMap::PanoramicDepthMap() : PanoramicDepthMap(Config{}) {}

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "angles.hpp"
+
 namespace uampc::mpc {
 
 namespace {
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+using detail::kTwoPi;
 
 // Grid values from lo to hi (inclusive within a small tolerance) every step; for a full circle
 // the end point is the start point again and is left out.

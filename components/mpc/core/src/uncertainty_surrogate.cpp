@@ -6,10 +6,12 @@
 #include <string>
 #include <utility>
 
+#include "angles.hpp"
+
 namespace uampc::mpc {
 
 namespace {
-constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+using detail::kTwoPi;
 }  // namespace
 
 UncertaintySurrogate::UncertaintySurrogate(double theta_start, double step,
