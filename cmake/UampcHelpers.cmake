@@ -9,8 +9,12 @@
 # batch mates (the build fails and names both when they do not), and compile_commands.json lists the
 # batches, not the files. Files with their own COMPILE_OPTIONS are compiled on their own.
 # Not used for the LO core: its time is one file (iterated_ekf.cpp), batching saved 12 %.
+# -DUAMPC_COMPILE_IN_BATCHES=OFF compiles every file on its own (an editor's clangd wants that).
+option(UAMPC_COMPILE_IN_BATCHES "compile targets in batches of files (unity builds)" ON)
 function(uampc_compile_in_batches)
-  set_target_properties(${ARGN} PROPERTIES UNITY_BUILD ON)
+  if(UAMPC_COMPILE_IN_BATCHES)
+    set_target_properties(${ARGN} PROPERTIES UNITY_BUILD ON)
+  endif()
 endfunction()
 
 # uampc_off_hot_path(TARGETS target ... | SOURCES file ...)
