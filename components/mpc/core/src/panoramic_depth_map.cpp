@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "angles.hpp"
-#include "fast_atan2.hpp"
+#include "panorama_kernels.hpp"
 
 namespace uampc::mpc {
 
@@ -75,6 +75,7 @@ std::uint64_t pack(float range, std::uint32_t index) {
   std::memcpy(&bits, &range, sizeof bits);
   return (static_cast<std::uint64_t>(bits) << 32) | index;
 }
+
 }  // namespace
 
 void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W, const Eigen::Isometry3d& T_WB) {
@@ -93,49 +94,29 @@ void PanoramicDepthMap::renderPoints(const std::vector<Point>& points_W, const E
   std::fill(centre_.begin(), centre_.end(), kEmpty);
   std::fill(zbuffer_.begin(), zbuffer_.end(), kEmpty);
 
-  const Eigen::Matrix3d R_BW = T_WB.linear().transpose();
   const int width = config_.width;
   const int height = config_.height;
 
   // Pass 1: every point into its own pixel (Eq. 5), nearest wins. Float is ample for binning
-  // (1e-7 relative against a 1-degree pixel), and the translation is removed in double first, so
-  // world coordinates far from the origin lose nothing. Per block: gather into structure-of-arrays,
-  // project without branches (vectorised), then scatter into the z-buffer (scalar), keeping the
-  // base-frame coordinates of each pixel's nearest point.
+  // (1e-7 relative against a 1-degree pixel); the translation is removed in double first. Per
+  // block: into the base frame as structure-of-arrays, project without branches (both vectorised,
+  // panorama_kernels.hpp), then scatter into the z-buffer (scalar).
   {
-    const Eigen::Vector3d t_WB = T_WB.translation();
-    const Eigen::Matrix3f R = R_BW.cast<float>();
-    const float min2 = static_cast<float>(config_.min_range * config_.min_range);
-    const float max2 = static_cast<float>(config_.max_range * config_.max_range);
-    const float columns_per_rad = static_cast<float>(width / (2.0 * kPi));
-    const float rows_per_rad = static_cast<float>(height / kPi);
-    constexpr float kPiF = static_cast<float>(kPi);
+    const detail::BaseFrameTransform T{T_WB.translation(), T_WB.linear().transpose().cast<float>()};
+    detail::PanoramaProjection projection;
+    projection.min_range2 = static_cast<float>(config_.min_range * config_.min_range);
+    projection.max_range2 = static_cast<float>(config_.max_range * config_.max_range);
+    projection.columns_per_rad = static_cast<float>(width / (2.0 * kPi));
+    projection.rows_per_rad = static_cast<float>(height / kPi);
+    projection.width = width;
+    projection.height = height;
     constexpr int kBlock = 256;
     float x[kBlock], y[kBlock], z[kBlock], range[kBlock];
     std::int32_t column[kBlock], row[kBlock];
     for (std::size_t begin = 0; begin < points_W.size(); begin += kBlock) {
       const int n = static_cast<int>(std::min<std::size_t>(kBlock, points_W.size() - begin));
-      for (int j = 0; j < n; ++j) {
-        const Eigen::Vector3f d = (points_W[begin + j].template cast<double>() - t_WB).template cast<float>();
-        x[j] = R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * d.z();
-        y[j] = R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * d.z();
-        z[j] = R(2, 0) * d.x() + R(2, 1) * d.y() + R(2, 2) * d.z();
-      }
-      for (int j = 0; j < n; ++j) {
-        const float horizontal2 = x[j] * x[j] + y[j] * y[j];
-        const float r2 = horizontal2 + z[j] * z[j];
-        // asin(z / r) is computed as atan2(z, sqrt(x^2 + y^2)), the same angle.
-        const float azimuth = detail::fastAtan2(y[j], x[j]);
-        const float elevation = detail::fastAtan2(z[j], std::sqrt(horizontal2));
-        int u = static_cast<int>((azimuth + kPiF) * columns_per_rad);  // >= 0: truncation = floor
-        u = u >= width ? u - width : u;                                 // azimuth == +pi
-        const int v = static_cast<int>((0.5F * kPiF - elevation) * rows_per_rad);
-        column[j] = u;
-        row[j] = std::min(v, height - 1);
-        range[j] = std::sqrt(r2);
-        // Outside the range window (or NaN, which fails both tests): marked by row -1.
-        row[j] = (r2 >= min2 && r2 <= max2) ? row[j] : -1;
-      }
+      detail::toBaseFrame(&points_W[begin], n, T, x, y, z);
+      detail::project(n, x, y, z, projection, range, column, row);
       for (int j = 0; j < n; ++j) {
         if (row[j] < 0) continue;
         const int pixel = pixelIndex(column[j], row[j]);
@@ -144,17 +125,12 @@ void PanoramicDepthMap::renderPoints(const std::vector<Point>& points_W, const E
         centre_[pixel] = std::min(centre_[pixel], candidate);
       }
     }
-    // The base-frame coordinates of each pixel's nearest point, recomputed from its index with
-    // the very expression of the projection loop (same float operations, same bits). Storing them
-    // in the scatter loop above cost a 12-byte random write per point; here it is one gather per
-    // occupied pixel, in raster order.
+    // The base-frame coordinates of each pixel's nearest point, recomputed from its index (the
+    // same operations, the same bits as the block above). Storing them in the scatter loop cost a
+    // 12-byte random write per point; here it is one gather per occupied pixel, in raster order.
     for (std::size_t pixel = 0; pixel < centre_.size(); ++pixel) {
       if (centre_[pixel] == kEmpty) continue;
-      const Eigen::Vector3f d =
-          (points_W[centre_[pixel] & 0xffffffffU].template cast<double>() - t_WB).template cast<float>();
-      centre_points_[pixel] = Eigen::Vector3f(R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * d.z(),
-                                              R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * d.z(),
-                                              R(2, 0) * d.x() + R(2, 1) * d.y() + R(2, 2) * d.z());
+      centre_points_[pixel] = detail::baseFramePoint(points_W[centre_[pixel] & 0xffffffffU], T);
     }
   }
 

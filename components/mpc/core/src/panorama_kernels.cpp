@@ -1,0 +1,112 @@
+#include "panorama_kernels.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "angles.hpp"
+#include "fast_atan2.hpp"
+#include "uampc/simd/dispatch.hpp"
+
+namespace uampc::mpc::detail {
+
+namespace {
+
+// Constants are copied into locals and arrays are __restrict: loads through a reference or a
+// possible alias keep GCC from vectorising these loops.
+template <class Scalar>
+UAMPC_SIMD_INLINE void toBaseFrameBody(const Eigen::Matrix<Scalar, 3, 1>* points_W, int n,
+                                       const BaseFrameTransform& T, float* __restrict x, float* __restrict y,
+                                       float* __restrict z) {
+  const Scalar* __restrict p = points_W->data();  // n packed (x, y, z): a Vector3 has no padding
+  const double tx = T.r_WB.x(), ty = T.r_WB.y(), tz = T.r_WB.z();
+  const float r00 = T.R_BW(0, 0), r01 = T.R_BW(0, 1), r02 = T.R_BW(0, 2);
+  const float r10 = T.R_BW(1, 0), r11 = T.R_BW(1, 1), r12 = T.R_BW(1, 2);
+  const float r20 = T.R_BW(2, 0), r21 = T.R_BW(2, 1), r22 = T.R_BW(2, 2);
+  for (int j = 0; j < n; ++j) {
+    const auto dx = static_cast<float>(static_cast<double>(p[3 * j]) - tx);
+    const auto dy = static_cast<float>(static_cast<double>(p[3 * j + 1]) - ty);
+    const auto dz = static_cast<float>(static_cast<double>(p[3 * j + 2]) - tz);
+    x[j] = r00 * dx + r01 * dy + r02 * dz;
+    y[j] = r10 * dx + r11 * dy + r12 * dz;
+    z[j] = r20 * dx + r21 * dy + r22 * dz;
+  }
+}
+
+// Eq. 5 without branches (selects), so that it vectorises.
+UAMPC_SIMD_INLINE void projectBody(int n, const float* __restrict x, const float* __restrict y,
+                                   const float* __restrict z, const PanoramaProjection& c, float* __restrict range,
+                                   std::int32_t* __restrict column, std::int32_t* __restrict row) {
+  constexpr float kPiF = static_cast<float>(kPi);
+  const float min2 = c.min_range2, max2 = c.max_range2;
+  const float columns_per_rad = c.columns_per_rad, rows_per_rad = c.rows_per_rad;
+  const int width = c.width, last_row = c.height - 1;
+  for (int j = 0; j < n; ++j) {
+    const float horizontal2 = x[j] * x[j] + y[j] * y[j];
+    const float r2 = horizontal2 + z[j] * z[j];
+    // asin(z / r) is computed as atan2(z, sqrt(x^2 + y^2)), the same angle.
+    const float azimuth = fastAtan2(y[j], x[j]);
+    const float elevation = fastAtan2(z[j], std::sqrt(horizontal2));
+    int u = static_cast<int>((azimuth + kPiF) * columns_per_rad);  // >= 0: truncation = floor
+    u = u >= width ? u - width : u;                                 // azimuth == +pi
+    const int v = static_cast<int>((0.5F * kPiF - elevation) * rows_per_rad);
+    column[j] = u;
+    range[j] = std::sqrt(r2);
+    row[j] = (r2 >= min2 && r2 <= max2) ? std::min(v, last_row) : -1;
+  }
+}
+
+}  // namespace
+
+namespace builds {
+void toBaseFrameBaseline(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y,
+                         float* z) {
+  toBaseFrameBody(points_W, n, T, x, y, z);
+}
+UAMPC_SIMD_AVX2 void toBaseFrameAvx2(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x,
+                                     float* y, float* z) {
+  toBaseFrameBody(points_W, n, T, x, y, z);
+}
+void projectBaseline(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c,
+                     float* range, std::int32_t* column, std::int32_t* row) {
+  projectBody(n, x, y, z, c, range, column, row);
+}
+UAMPC_SIMD_AVX2 void projectAvx2(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c,
+                                 float* range, std::int32_t* column, std::int32_t* row) {
+  projectBody(n, x, y, z, c, range, column, row);
+}
+}  // namespace builds
+
+void toBaseFrame(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z) {
+  if (simd::avx2()) {
+    builds::toBaseFrameAvx2(points_W, n, T, x, y, z);
+  } else {
+    builds::toBaseFrameBaseline(points_W, n, T, x, y, z);
+  }
+}
+
+void toBaseFrame(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z) {
+  toBaseFrameBody(points_W, n, T, x, y, z);
+}
+
+Eigen::Vector3f baseFramePoint(const Eigen::Vector3f& p_W, const BaseFrameTransform& T) {
+  Eigen::Vector3f p_B;
+  toBaseFrameBody(&p_W, 1, T, &p_B.x(), &p_B.y(), &p_B.z());
+  return p_B;
+}
+
+Eigen::Vector3f baseFramePoint(const Eigen::Vector3d& p_W, const BaseFrameTransform& T) {
+  Eigen::Vector3f p_B;
+  toBaseFrameBody(&p_W, 1, T, &p_B.x(), &p_B.y(), &p_B.z());
+  return p_B;
+}
+
+void project(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c, float* range,
+             std::int32_t* column, std::int32_t* row) {
+  if (simd::avx2()) {
+    builds::projectAvx2(n, x, y, z, c, range, column, row);
+  } else {
+    builds::projectBaseline(n, x, y, z, c, range, column, row);
+  }
+}
+
+}  // namespace uampc::mpc::detail
