@@ -153,7 +153,10 @@ sensor_msgs::msg::PointCloud2 makeXyzCloud(const std::vector<Eigen::Vector3f>& p
   sensor_msgs::msg::PointCloud2 cloud;
   cloud.fields({field("x", 0, kFloat32), field("y", 4, kFloat32), field("z", 8, kFloat32)});
   setLayout(cloud, points.size(), 12, frame_id);
-  for (std::size_t i = 0; i < points.size(); ++i) std::memcpy(&cloud.data()[12 * i], points[i].data(), 12);
+  // One copy: the points are packed (x, y, z) floats, as the cloud's rows are. (A copy per point
+  // through cloud.data(), an accessor of the generated types' library, cost a call per point.)
+  static_assert(sizeof(Eigen::Vector3f) == 12, "Vector3f is three packed floats");
+  if (!points.empty()) std::memcpy(cloud.data().data(), points.data(), 12 * points.size());
   return cloud;
 }
 
@@ -223,12 +226,21 @@ ScanPoints readCloud(const sensor_msgs::msg::PointCloud2& cloud, const TimeField
   if (fr) out.rings.resize(n);
   if (time_field) out.time_offsets.resize(n);
   const std::uint8_t* base = cloud.data().data();
+  // Offsets read once: the fields' accessors live in the generated types' library, a call each.
+  const std::uint32_t x_at = fx->offset(), y_at = fy->offset(), z_at = fz->offset();
+  const std::uint32_t intensity_at = fi ? fi->offset() : 0, ring_at = fr ? fr->offset() : 0;
+  // A cloud of packed (x, y, z) floats and nothing else (the LO's local map, makeXyzCloud) is
+  // the positions' own layout: one copy.
+  static_assert(sizeof(Eigen::Vector3f) == 12, "Vector3f is three packed floats");
+  if (step == 12 && x_at == 0 && y_at == 4 && z_at == 8 && !fi && !fr && !time_field) {
+    if (n > 0) std::memcpy(static_cast<void*>(out.positions.data()), base, 12 * n);
+    return out;
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t* p = base + i * step;
-    out.positions[i] = {readAs<float>(p + fx->offset()), readAs<float>(p + fy->offset()),
-                        readAs<float>(p + fz->offset())};
-    if (fi) out.intensities[i] = readAs<float>(p + fi->offset());
-    if (fr) out.rings[i] = readAs<std::uint16_t>(p + fr->offset());
+    out.positions[i] = {readAs<float>(p + x_at), readAs<float>(p + y_at), readAs<float>(p + z_at)};
+    if (fi) out.intensities[i] = readAs<float>(p + intensity_at);
+    if (fr) out.rings[i] = readAs<std::uint16_t>(p + ring_at);
     if (time_field) {
       const std::uint8_t* q = p + time_field->offset;
       double t = 0;

@@ -131,6 +131,40 @@ TEST(ScanCloud, PointTimesFartherThanAFrameCouldLastAreNotANumber) {
   EXPECT_EQ(back.positions.size(), times.size());  // the points stay; only their time is unknown
 }
 
+// Packed x, y, z clouds (the LO's local map) are read in one copy; the same points with another
+// layout go point by point; both must give the points back, bit for bit.
+TEST(ScanCloud, ReadsXyzCloudsOfEveryLayout) {
+  const std::vector<Eigen::Vector3f> points = {{1, 2, 3}, {-4, 5.5f, -0.0f}, {1e-30f, 3e38f, -7}};
+  const ScanPoints packed = readCloud(makeXyzCloud(points, "odom"));
+  ASSERT_EQ(packed.positions.size(), points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(std::memcmp(packed.positions[i].data(), points[i].data(), 12), 0) << "point " << i;
+  }
+  EXPECT_TRUE(packed.intensities.empty());
+  EXPECT_TRUE(readCloud(makeXyzCloud({}, "odom")).positions.empty());
+
+  // The same 12 bytes a point, with the coordinates stored in the order z, x, y.
+  auto shuffled = makeXyzCloud(points, "odom");
+  shuffled.fields()[0].offset(4);  // x
+  shuffled.fields()[1].offset(8);  // y
+  shuffled.fields()[2].offset(0);  // z
+  const ScanPoints from_shuffled = readCloud(shuffled);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // Stored bytes (x, y, z) are read as x = bytes 4-7 (y), y = bytes 8-11 (z), z = bytes 0-3 (x).
+    EXPECT_EQ(from_shuffled.positions[i], Eigen::Vector3f(points[i].y(), points[i].z(), points[i].x()));
+  }
+
+  // 16 bytes a point (padding after z): read point by point, the same points.
+  auto padded = makeXyzCloud(points, "odom");
+  padded.point_step(16);
+  padded.row_step(16 * static_cast<std::uint32_t>(points.size()));
+  padded.data().assign(16 * points.size(), 0xAB);
+  for (std::size_t i = 0; i < points.size(); ++i) std::memcpy(&padded.data()[16 * i], points[i].data(), 12);
+  const ScanPoints from_padded = readCloud(padded);
+  ASSERT_EQ(from_padded.positions.size(), points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) EXPECT_EQ(from_padded.positions[i], points[i]) << "point " << i;
+}
+
 TEST(ScanCloud, RefusesCloudsItCannotRead) {
   auto cloud = makeXyzCloud({{1, 1, 1}}, "map");
   EXPECT_THROW(findTimeField(cloud), std::runtime_error);  // no time field: says which fields exist
