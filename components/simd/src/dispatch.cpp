@@ -1,5 +1,6 @@
 #include "uampc/simd/dispatch.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -14,9 +15,15 @@ bool cpuHasAvx2() {
 }
 
 namespace {
+// UAMPC_SIMD: unset, empty or "auto" lets the CPU decide; "baseline" forces the SSE2 builds.
+// Anything else is a typo, said once on stderr (this runs inside a component's first control
+// step or scan, where throwing would stop a run over a setting that cannot change its results).
 bool chooseAvx2() {
-  const char* forced = std::getenv("UAMPC_SIMD");
-  if (forced != nullptr && std::strcmp(forced, "baseline") == 0) return false;
+  const char* setting = std::getenv("UAMPC_SIMD");
+  if (setting != nullptr && std::strcmp(setting, "baseline") == 0) return false;
+  if (setting != nullptr && *setting != '\0' && std::strcmp(setting, "auto") != 0) {
+    std::fprintf(stderr, "uampc: UAMPC_SIMD=%s is not one of: auto, baseline; using auto\n", setting);
+  }
   return cpuHasAvx2();
 }
 }  // namespace

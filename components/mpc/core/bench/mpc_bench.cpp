@@ -5,6 +5,7 @@
 #include <random>
 
 #include "../test/synthetic_scenes.hpp"
+#include "uampc/simd/dispatch.hpp"
 #include "uampc/mpc/ua_mpc_controller.hpp"
 #include "uampc/mpc/uncertainty_surrogate.hpp"
 
@@ -141,4 +142,12 @@ BENCHMARK(BM_Solve)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // Which build of the panorama's loops ran (UAMPC_SIMD=baseline forces the SSE2 one).
+  benchmark::AddCustomContext("uampc_simd", uampc::simd::instructionSetName());
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

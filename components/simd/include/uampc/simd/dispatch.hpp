@@ -16,7 +16,8 @@
 // into a fused multiply-add. Loops that sum in a different order when widened (reductions) do not
 // belong here. Each kernel's test compares its two builds bit for bit.
 //
-// UAMPC_SIMD=baseline in the environment forces the baseline (to compare, or to rule it out).
+// UAMPC_SIMD=baseline in the environment forces the baseline (to compare, or to rule it out);
+// unset, empty or "auto" lets the CPU decide; any other value is reported on stderr and ignored.
 #pragma once
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -42,7 +43,7 @@ bool avx2();
 // Whether the CPU has AVX2, whatever UAMPC_SIMD says (tests use it to run both builds).
 bool cpuHasAvx2();
 
-// "avx2" or "baseline": what avx2() chose, for run_info and benchmarks.
+// "avx2" or "baseline": what avx2() chose, for benchmarks' output.
 const char* instructionSetName();
 
 }  // namespace uampc::simd
