@@ -12,8 +12,13 @@ DepthMapNormals::DepthMapNormals(const Config& config) : config_(config) {}
 
 void DepthMapNormals::reset(const PanoramicDepthMap& map) {
   map_ = &map;
-  cache_.assign(static_cast<std::size_t>(map.width()) * map.height(),
-                CachedNormal{Eigen::Vector3f::Zero(), kUnknown});
+  const std::size_t pixels = static_cast<std::size_t>(map.width()) * map.height();
+  ++generation_;
+  if (cache_.size() != pixels || generation_ == 0) {
+    // Generation 0 marks never-used entries; the first reset after a wrap starts again at 1.
+    cache_.assign(pixels, CachedNormal{Eigen::Vector3f::Zero(), kUnknown, 0});
+    generation_ = 1;
+  }
   computed_count_ = 0;
 }
 

@@ -88,18 +88,6 @@ void toBaseFrame(const Eigen::Vector3d* points_W, int n, const BaseFrameTransfor
   toBaseFrameBody(points_W, n, T, x, y, z);
 }
 
-Eigen::Vector3f baseFramePoint(const Eigen::Vector3f& p_W, const BaseFrameTransform& T) {
-  Eigen::Vector3f p_B;
-  toBaseFrameBody(&p_W, 1, T, &p_B.x(), &p_B.y(), &p_B.z());
-  return p_B;
-}
-
-Eigen::Vector3f baseFramePoint(const Eigen::Vector3d& p_W, const BaseFrameTransform& T) {
-  Eigen::Vector3f p_B;
-  toBaseFrameBody(&p_W, 1, T, &p_B.x(), &p_B.y(), &p_B.z());
-  return p_B;
-}
-
 void project(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c, float* range,
              std::int32_t* column, std::int32_t* row) {
   if (simd::avx2()) {

@@ -24,10 +24,20 @@ struct BaseFrameTransform {
   Eigen::Matrix3f R_BW;
 };
 void toBaseFrame(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z);
-Eigen::Vector3f baseFramePoint(const Eigen::Vector3f& p_W, const BaseFrameTransform& T);
 // The same for double points (render(); baseline build only, not a control step's path).
 void toBaseFrame(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z);
-Eigen::Vector3f baseFramePoint(const Eigen::Vector3d& p_W, const BaseFrameTransform& T);
+
+// One point, inline (once per occupied pixel of a render): the operations of toBaseFrame's loop,
+// in its order, so the same bits (the test compares them).
+template <class Scalar>
+Eigen::Vector3f baseFramePoint(const Eigen::Matrix<Scalar, 3, 1>& p_W, const BaseFrameTransform& T) {
+  const auto dx = static_cast<float>(static_cast<double>(p_W.x()) - T.r_WB.x());
+  const auto dy = static_cast<float>(static_cast<double>(p_W.y()) - T.r_WB.y());
+  const auto dz = static_cast<float>(static_cast<double>(p_W.z()) - T.r_WB.z());
+  const Eigen::Matrix3f& R = T.R_BW;
+  return Eigen::Vector3f(R(0, 0) * dx + R(0, 1) * dy + R(0, 2) * dz, R(1, 0) * dx + R(1, 1) * dy + R(1, 2) * dz,
+                         R(2, 0) * dx + R(2, 1) * dy + R(2, 2) * dz);
+}
 
 // Pixel (column, row) and range of n base-frame points; row -1 marks a point outside the range
 // window, or NaN (which fails both tests).

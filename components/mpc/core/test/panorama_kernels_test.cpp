@@ -58,6 +58,8 @@ TEST(PanoramaKernels, AvxBuildGivesTheBaselineBits) {
     // The single-point form (pixels recompute their point with it) agrees with the blocks.
     const Eigen::Vector3f p = baseFramePoint(points[j], T);
     ASSERT_EQ(bitsOf(p.x()), bitsOf(xb[j])) << "point " << j;
+    ASSERT_EQ(bitsOf(p.y()), bitsOf(yb[j])) << "point " << j;
+    ASSERT_EQ(bitsOf(p.z()), bitsOf(zb[j])) << "point " << j;
   }
 
   // Project the awkward points themselves too (as base-frame offsets), not only transformed ones.

@@ -250,5 +250,38 @@ TEST(DepthMapNormals, EmptyPixelHasNoNormal) {
   EXPECT_EQ(normals.normal(map.pixelOf({1, 0, 0})), nullptr);  // single point: no plane
 }
 
+// reset() forgets the cached normals by a generation count: a normal asked for after any number
+// of resets (past the count's wrap at 65536) is estimated again, on the map as it is now.
+TEST(DepthMapNormals, ResetForgetsEveryNormalEvenAfterTheCountWraps) {
+  PanoramicDepthMap map(oneDegree());
+  map.render(test::corridor(-30.0, 30.0), Eigen::Isometry3d::Identity());
+  const int wall = map.pixelOf({0.3, 1.0, 0.2});
+  DepthMapNormals normals;
+  normals.reset(map);
+  ASSERT_NE(normals.normal(wall), nullptr);
+  const Eigen::Vector3f first = *normals.normal(wall);
+  EXPECT_EQ(normals.computedCount(), 1);  // the second call was answered by the cache
+  for (int r = 0; r < 70000; ++r) {
+    normals.reset(map);
+    if (r == 65533 || r == 65534 || r == 65535 || r == 69999) {  // around the wrap, and after it
+      ASSERT_NE(normals.normal(wall), nullptr) << "reset " << r;
+      EXPECT_EQ(*normals.normal(wall), first) << "reset " << r;
+      EXPECT_EQ(normals.computedCount(), 1) << "reset " << r << ": estimated again once";
+    }
+  }
+  // A new map with a lone point where the wall's point was (so the same cache entry, which is
+  // per centre pixel): no plane there, so no normal, and not the wall's stale one.
+  const int centre = map.centrePixel(wall);
+  const double azimuth = (centre % map.width() + 0.5) * 2.0 * M_PI / map.width() - M_PI;
+  const double elevation = 0.5 * M_PI - (centre / map.width() + 0.5) * M_PI / map.height();
+  const Eigen::Vector3d lone(3.0 * std::cos(elevation) * std::cos(azimuth), 3.0 * std::cos(elevation) * std::sin(azimuth),
+                             3.0 * std::sin(elevation));
+  map.render({lone}, Eigen::Isometry3d::Identity());
+  ASSERT_EQ(map.centrePixel(centre), centre);
+  normals.reset(map);
+  EXPECT_EQ(normals.normal(centre), nullptr);
+  EXPECT_EQ(normals.computedCount(), 1);
+}
+
 }  // namespace
 }  // namespace uampc::mpc
