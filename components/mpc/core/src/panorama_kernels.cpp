@@ -11,28 +11,8 @@ namespace uampc::mpc::detail {
 
 namespace {
 
-// Constants are copied into locals and arrays are __restrict: loads through a reference or a
-// possible alias keep GCC from vectorising these loops.
-template <class Scalar>
-UAMPC_SIMD_INLINE void toBaseFrameBody(const Eigen::Matrix<Scalar, 3, 1>* points_W, int n,
-                                       const BaseFrameTransform& T, float* __restrict x, float* __restrict y,
-                                       float* __restrict z) {
-  const Scalar* __restrict p = points_W->data();  // n packed (x, y, z): a Vector3 has no padding
-  const double tx = T.r_WB.x(), ty = T.r_WB.y(), tz = T.r_WB.z();
-  const float r00 = T.R_BW(0, 0), r01 = T.R_BW(0, 1), r02 = T.R_BW(0, 2);
-  const float r10 = T.R_BW(1, 0), r11 = T.R_BW(1, 1), r12 = T.R_BW(1, 2);
-  const float r20 = T.R_BW(2, 0), r21 = T.R_BW(2, 1), r22 = T.R_BW(2, 2);
-  for (int j = 0; j < n; ++j) {
-    const auto dx = static_cast<float>(static_cast<double>(p[3 * j]) - tx);
-    const auto dy = static_cast<float>(static_cast<double>(p[3 * j + 1]) - ty);
-    const auto dz = static_cast<float>(static_cast<double>(p[3 * j + 2]) - tz);
-    x[j] = r00 * dx + r01 * dy + r02 * dz;
-    y[j] = r10 * dx + r11 * dy + r12 * dz;
-    z[j] = r20 * dx + r21 * dy + r22 * dz;
-  }
-}
-
-// Eq. 5 without branches (selects), so that it vectorises.
+// Eq. 5 without branches (selects), so that it vectorises (locals and __restrict: see
+// toBaseFrameBody).
 UAMPC_SIMD_INLINE void projectBody(int n, const float* __restrict x, const float* __restrict y,
                                    const float* __restrict z, const PanoramaProjection& c, float* __restrict range,
                                    std::int32_t* __restrict column, std::int32_t* __restrict row) {

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <cstdint>
 
+#include "uampc/simd/dispatch.hpp"
+
 namespace uampc::mpc::detail {
 
 // Eq. 5's binning constants of one render.
@@ -27,16 +29,34 @@ void toBaseFrame(const Eigen::Vector3f* points_W, int n, const BaseFrameTransfor
 // The same for double points (render(); baseline build only, not a control step's path).
 void toBaseFrame(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z);
 
-// One point, inline (once per occupied pixel of a render): the operations of toBaseFrame's loop,
-// in its order, so the same bits (the test compares them).
+// The loop of toBaseFrame, written once: compiled into each of its builds, and into
+// baseFramePoint. Constants are copied into locals and arrays are __restrict: loads through a
+// reference or a possible alias keep GCC from vectorising it.
+template <class Scalar>
+UAMPC_SIMD_INLINE void toBaseFrameBody(const Eigen::Matrix<Scalar, 3, 1>* points_W, int n,
+                                       const BaseFrameTransform& T, float* __restrict x, float* __restrict y,
+                                       float* __restrict z) {
+  const Scalar* __restrict p = points_W->data();  // n packed (x, y, z): a Vector3 has no padding
+  const double tx = T.r_WB.x(), ty = T.r_WB.y(), tz = T.r_WB.z();
+  const float r00 = T.R_BW(0, 0), r01 = T.R_BW(0, 1), r02 = T.R_BW(0, 2);
+  const float r10 = T.R_BW(1, 0), r11 = T.R_BW(1, 1), r12 = T.R_BW(1, 2);
+  const float r20 = T.R_BW(2, 0), r21 = T.R_BW(2, 1), r22 = T.R_BW(2, 2);
+  for (int j = 0; j < n; ++j) {
+    const auto dx = static_cast<float>(static_cast<double>(p[3 * j]) - tx);
+    const auto dy = static_cast<float>(static_cast<double>(p[3 * j + 1]) - ty);
+    const auto dz = static_cast<float>(static_cast<double>(p[3 * j + 2]) - tz);
+    x[j] = r00 * dx + r01 * dy + r02 * dz;
+    y[j] = r10 * dx + r11 * dy + r12 * dz;
+    z[j] = r20 * dx + r21 * dy + r22 * dz;
+  }
+}
+
+// One point, inline (once per occupied pixel of a render), with the same bits as toBaseFrame.
 template <class Scalar>
 Eigen::Vector3f baseFramePoint(const Eigen::Matrix<Scalar, 3, 1>& p_W, const BaseFrameTransform& T) {
-  const auto dx = static_cast<float>(static_cast<double>(p_W.x()) - T.r_WB.x());
-  const auto dy = static_cast<float>(static_cast<double>(p_W.y()) - T.r_WB.y());
-  const auto dz = static_cast<float>(static_cast<double>(p_W.z()) - T.r_WB.z());
-  const Eigen::Matrix3f& R = T.R_BW;
-  return Eigen::Vector3f(R(0, 0) * dx + R(0, 1) * dy + R(0, 2) * dz, R(1, 0) * dx + R(1, 1) * dy + R(1, 2) * dz,
-                         R(2, 0) * dx + R(2, 1) * dy + R(2, 2) * dz);
+  Eigen::Vector3f p_B;
+  toBaseFrameBody(&p_W, 1, T, &p_B.x(), &p_B.y(), &p_B.z());
+  return p_B;
 }
 
 // Pixel (column, row) and range of n base-frame points; row -1 marks a point outside the range
