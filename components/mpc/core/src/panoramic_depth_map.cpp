@@ -75,7 +75,6 @@ std::uint64_t pack(float range, std::uint32_t index) {
   std::memcpy(&bits, &range, sizeof bits);
   return (static_cast<std::uint64_t>(bits) << 32) | index;
 }
-
 }  // namespace
 
 void PanoramicDepthMap::render(const std::vector<Eigen::Vector3d>& points_W, const Eigen::Isometry3d& T_WB) {
