@@ -94,8 +94,12 @@ void shiftAbsoluteTimes(sensor_msgs::msg::PointCloud2& cloud, double offset_s) {
   const double offset = offset_s / absoluteTimeScale(cloud, field);  // in the field's unit
   const std::size_t n = static_cast<std::size_t>(cloud.width()) * cloud.height();
   const std::size_t step = cloud.point_step();
-  for (std::size_t i = 0; i < n && (i * step + f->offset() + 8) <= cloud.data().size(); ++i) {
-    std::uint8_t* q = cloud.data().data() + i * step + f->offset();
+  // The accessors read once: each is a call into the generated types' library.
+  const std::size_t at = f->offset();
+  std::uint8_t* data = cloud.data().data();
+  const std::size_t size = cloud.data().size();
+  for (std::size_t i = 0; i < n && (i * step + at + 8) <= size; ++i) {
+    std::uint8_t* q = data + i * step + at;
     const double shifted = readAs<double>(q) + offset;
     std::memcpy(q, &shifted, 8);
   }
@@ -133,8 +137,8 @@ sensor_msgs::msg::PointCloud2 makeLivoxCloud(const ScanPoints& points, const std
   stamp.sec(static_cast<std::int32_t>(stamp_ns / 1'000'000'000));
   stamp.nanosec(static_cast<std::uint32_t>(stamp_ns % 1'000'000'000));
   cloud.header().stamp(stamp);
-  for (std::size_t i = 0; i < points.positions.size(); ++i) {
-    std::uint8_t* out = &cloud.data()[kStep * i];
+  std::uint8_t* out = cloud.data().data();
+  for (std::size_t i = 0; i < points.positions.size(); ++i, out += kStep) {
     std::memcpy(out, points.positions[i].data(), 12);
     const float intensity = points.intensities.empty() ? 0.0f : points.intensities[i];
     const std::uint8_t tag = 0;
