@@ -175,6 +175,17 @@ TEST(ScanCloud, RefusesCloudsItCannotRead) {
   }
   cloud.width(5);  // claims more points than data holds
   EXPECT_THROW(readCloud(cloud), std::runtime_error);
+  // A header whose width x height x point_step is 2^64, 0 in 64 bits: still "more than data holds",
+  // not an attempt to allocate 2^60 points.
+  cloud.width(1u << 30);
+  cloud.height(1u << 30);
+  cloud.point_step(16);
+  try {
+    readCloud(cloud);
+    ADD_FAILURE() << "a cloud of 2^60 points in 12 bytes was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("fewer than its 1152921504606846976 points"), std::string::npos) << e.what();
+  }
   auto bad_time = makeScanCloud(threePoints(), "lidar");
   bad_time.fields()[4].datatype(2);  // t as uint8
   EXPECT_THROW(findTimeField(bad_time), std::runtime_error);

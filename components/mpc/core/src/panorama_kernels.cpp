@@ -5,7 +5,6 @@
 
 #include "angles.hpp"
 #include "fast_atan2.hpp"
-#include "uampc/simd/dispatch.hpp"
 
 namespace uampc::mpc::detail {
 
@@ -35,46 +34,41 @@ UAMPC_SIMD_INLINE void projectBody(int n, const float* __restrict x, const float
   }
 }
 
+// Into the base frame as structure-of-arrays, then binned: both loops vectorise.
+template <class Scalar>
+UAMPC_SIMD_INLINE void binBody(const Eigen::Matrix<Scalar, 3, 1>* points_W, int n, const BaseFrameTransform& T,
+                               const PanoramaProjection& c, float* range, std::int32_t* column, std::int32_t* row) {
+  float x[kBinBlock], y[kBinBlock], z[kBinBlock];
+  toBaseFrameBody(points_W, n, T, x, y, z);
+  projectBody(n, x, y, z, c, range, column, row);
+}
+
 }  // namespace
 
 namespace builds {
-void toBaseFrameBaseline(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y,
-                         float* z) {
-  toBaseFrameBody(points_W, n, T, x, y, z);
+void binPointsBaseline(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T,
+                       const PanoramaProjection& c, float* range, std::int32_t* column, std::int32_t* row) {
+  binBody(points_W, n, T, c, range, column, row);
 }
-UAMPC_SIMD_AVX2 void toBaseFrameAvx2(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x,
-                                     float* y, float* z) {
-  toBaseFrameBody(points_W, n, T, x, y, z);
-}
-void projectBaseline(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c,
-                     float* range, std::int32_t* column, std::int32_t* row) {
-  projectBody(n, x, y, z, c, range, column, row);
-}
-UAMPC_SIMD_AVX2 void projectAvx2(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c,
-                                 float* range, std::int32_t* column, std::int32_t* row) {
-  projectBody(n, x, y, z, c, range, column, row);
+UAMPC_SIMD_AVX2 void binPointsAvx2(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T,
+                                   const PanoramaProjection& c, float* range, std::int32_t* column,
+                                   std::int32_t* row) {
+  binBody(points_W, n, T, c, range, column, row);
 }
 }  // namespace builds
 
-void toBaseFrame(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z) {
+void binPoints(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, const PanoramaProjection& c,
+               float* range, std::int32_t* column, std::int32_t* row) {
   if (simd::avx2()) {
-    builds::toBaseFrameAvx2(points_W, n, T, x, y, z);
+    builds::binPointsAvx2(points_W, n, T, c, range, column, row);
   } else {
-    builds::toBaseFrameBaseline(points_W, n, T, x, y, z);
+    builds::binPointsBaseline(points_W, n, T, c, range, column, row);
   }
 }
 
-void toBaseFrame(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z) {
-  toBaseFrameBody(points_W, n, T, x, y, z);
-}
-
-void project(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c, float* range,
-             std::int32_t* column, std::int32_t* row) {
-  if (simd::avx2()) {
-    builds::projectAvx2(n, x, y, z, c, range, column, row);
-  } else {
-    builds::projectBaseline(n, x, y, z, c, range, column, row);
-  }
+void binPoints(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, const PanoramaProjection& c,
+               float* range, std::int32_t* column, std::int32_t* row) {
+  binBody(points_W, n, T, c, range, column, row);
 }
 
 }  // namespace uampc::mpc::detail

@@ -1,6 +1,6 @@
-// The per-point loops of rendering a panorama (PanoramicDepthMap, Eq. 5), in two builds: the
-// SSE2 baseline and AVX2, chosen per process (uampc/simd/dispatch.hpp); both give the same bits,
-// and the test compares them. Internal to the library.
+// The per-point loop of rendering a panorama (PanoramicDepthMap, Eq. 5), in two builds: the SSE2
+// baseline and AVX2, chosen per process (uampc/simd/dispatch.hpp); both give the same bits, and
+// the test compares them. Internal to the library.
 #pragma once
 
 #include <Eigen/Core>
@@ -17,19 +17,25 @@ struct PanoramaProjection {
   int width = 0, height = 0;
 };
 
-// The base-frame offset of n world points, p_B = R_BW (p_W - r_WB), as three arrays: the
-// translation is removed in double (world coordinates far from the origin lose nothing), the
-// rotation applied in float, each coordinate summed left to right. Panorama pixels recompute a
-// point with baseFramePoint(), which gives the same bits.
+// World to base frame, p_B = R_BW (p_W - r_WB): the translation is removed in double (world
+// coordinates far from the origin lose nothing), the rotation applied in float.
 struct BaseFrameTransform {
   Eigen::Vector3d r_WB;
   Eigen::Matrix3f R_BW;
 };
-void toBaseFrame(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z);
-// The same for double points (render(); baseline build only, not a control step's path).
-void toBaseFrame(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, float* x, float* y, float* z);
 
-// The loop of toBaseFrame, written once: compiled into each of its builds, and into
+// Points per binPoints call, at most (its base-frame scratch lives on the stack).
+constexpr int kBinBlock = 256;
+
+// Eq. 5 for n <= kBinBlock world points: each one's pixel (column, row) and its range from the
+// base origin; row -1 marks a point outside the range window, or NaN (which fails both tests).
+void binPoints(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, const PanoramaProjection& c,
+               float* range, std::int32_t* column, std::int32_t* row);
+// The same for double points (render(); baseline build only, not a control step's path).
+void binPoints(const Eigen::Vector3d* points_W, int n, const BaseFrameTransform& T, const PanoramaProjection& c,
+               float* range, std::int32_t* column, std::int32_t* row);
+
+// binPoints' move into the base frame, written once: compiled into each of its builds, and into
 // baseFramePoint. Constants are copied into locals and arrays are __restrict: loads through a
 // reference or a possible alias keep GCC from vectorising it.
 template <class Scalar>
@@ -51,7 +57,8 @@ UAMPC_SIMD_INLINE void toBaseFrameBody(const Eigen::Matrix<Scalar, 3, 1>* points
   }
 }
 
-// One point, inline (once per occupied pixel of a render), with the same bits as toBaseFrame.
+// One point in the base frame (once per occupied pixel of a render), with the bits binPoints
+// binned it by.
 template <class Scalar>
 Eigen::Vector3f baseFramePoint(const Eigen::Matrix<Scalar, 3, 1>& p_W, const BaseFrameTransform& T) {
   Eigen::Vector3f p_B;
@@ -59,21 +66,12 @@ Eigen::Vector3f baseFramePoint(const Eigen::Matrix<Scalar, 3, 1>& p_W, const Bas
   return p_B;
 }
 
-// Pixel (column, row) and range of n base-frame points; row -1 marks a point outside the range
-// window, or NaN (which fails both tests).
-void project(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c, float* range,
-             std::int32_t* column, std::int32_t* row);
-
-// The two builds of each, for the test; the functions above call one of them.
+// The two builds, for the test; binPoints calls one of them.
 namespace builds {
-void toBaseFrameBaseline(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y,
-                         float* z);
-void toBaseFrameAvx2(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, float* x, float* y,
-                     float* z);
-void projectBaseline(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c,
-                     float* range, std::int32_t* column, std::int32_t* row);
-void projectAvx2(int n, const float* x, const float* y, const float* z, const PanoramaProjection& c, float* range,
-                 std::int32_t* column, std::int32_t* row);
+void binPointsBaseline(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T,
+                       const PanoramaProjection& c, float* range, std::int32_t* column, std::int32_t* row);
+void binPointsAvx2(const Eigen::Vector3f* points_W, int n, const BaseFrameTransform& T, const PanoramaProjection& c,
+                   float* range, std::int32_t* column, std::int32_t* row);
 }  // namespace builds
 
 }  // namespace uampc::mpc::detail

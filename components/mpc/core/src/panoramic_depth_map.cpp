@@ -98,8 +98,8 @@ void PanoramicDepthMap::renderPoints(const std::vector<Point>& points_W, const E
 
   // Pass 1: every point into its own pixel (Eq. 5), nearest wins. Float is ample for binning
   // (1e-7 relative against a 1-degree pixel); the translation is removed in double first. Per
-  // block: into the base frame as structure-of-arrays, project without branches (both vectorised,
-  // panorama_kernels.hpp), then scatter into the z-buffer (scalar).
+  // block: binned without branches (vectorised, panorama_kernels.hpp), then scattered into the
+  // z-buffer (scalar).
   {
     const detail::BaseFrameTransform T{T_WB.translation(), T_WB.linear().transpose().cast<float>()};
     detail::PanoramaProjection projection;
@@ -109,13 +109,12 @@ void PanoramicDepthMap::renderPoints(const std::vector<Point>& points_W, const E
     projection.rows_per_rad = static_cast<float>(height / kPi);
     projection.width = width;
     projection.height = height;
-    constexpr int kBlock = 256;
-    float x[kBlock], y[kBlock], z[kBlock], range[kBlock];
+    constexpr int kBlock = detail::kBinBlock;
+    float range[kBlock];
     std::int32_t column[kBlock], row[kBlock];
     for (std::size_t begin = 0; begin < points_W.size(); begin += kBlock) {
       const int n = static_cast<int>(std::min<std::size_t>(kBlock, points_W.size() - begin));
-      detail::toBaseFrame(&points_W[begin], n, T, x, y, z);
-      detail::project(n, x, y, z, projection, range, column, row);
+      detail::binPoints(&points_W[begin], n, T, projection, range, column, row);
       for (int j = 0; j < n; ++j) {
         if (row[j] < 0) continue;
         const int pixel = pixelIndex(column[j], row[j]);

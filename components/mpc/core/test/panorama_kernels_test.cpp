@@ -2,6 +2,7 @@
 // lockstep run renders the same panoramas on any x86-64 machine.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -40,30 +41,7 @@ std::uint32_t bitsOf(float value) {
   return bits;
 }
 
-TEST(PanoramaKernels, AvxBuildGivesTheBaselineBits) {
-  if (!simd::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: only the baseline build runs here";
-  // n = 1003: not a multiple of any vector width, so the builds' remainder loops run too.
-  BaseFrameTransform T;
-  T.r_WB = Eigen::Vector3d(1234.5678, -987.25, 3.75);  // far from the origin: the double step counts
-  const std::vector<Eigen::Vector3f> points = awkwardPoints(1003, T.r_WB.cast<float>());
-  const int n = static_cast<int>(points.size());
-  T.R_BW = Eigen::AngleAxisf(0.7F, Eigen::Vector3f(0.2F, -0.3F, 0.9F).normalized()).toRotationMatrix();
-  std::vector<float> xb(n), yb(n), zb(n), xa(n), ya(n), za(n);
-  builds::toBaseFrameBaseline(points.data(), n, T, xb.data(), yb.data(), zb.data());
-  builds::toBaseFrameAvx2(points.data(), n, T, xa.data(), ya.data(), za.data());
-  for (int j = 0; j < n; ++j) {
-    ASSERT_EQ(bitsOf(xb[j]), bitsOf(xa[j])) << "point " << j;
-    ASSERT_EQ(bitsOf(yb[j]), bitsOf(ya[j])) << "point " << j;
-    ASSERT_EQ(bitsOf(zb[j]), bitsOf(za[j])) << "point " << j;
-    // The single-point form (pixels recompute their point with it) agrees with the blocks.
-    const Eigen::Vector3f p = baseFramePoint(points[j], T);
-    ASSERT_EQ(bitsOf(p.x()), bitsOf(xb[j])) << "point " << j;
-    ASSERT_EQ(bitsOf(p.y()), bitsOf(yb[j])) << "point " << j;
-    ASSERT_EQ(bitsOf(p.z()), bitsOf(zb[j])) << "point " << j;
-  }
-
-  // Project the awkward points themselves too (as base-frame offsets), not only transformed ones.
-  for (int j = 0; j < 200; ++j) xb[j] = points[j].x(), yb[j] = points[j].y(), zb[j] = points[j].z();
+PanoramaProjection oneDegree() {
   PanoramaProjection c;
   c.min_range2 = 0.25F;
   c.max_range2 = 1600.0F;
@@ -71,22 +49,50 @@ TEST(PanoramaKernels, AvxBuildGivesTheBaselineBits) {
   c.height = 180;
   c.columns_per_rad = static_cast<float>(c.width / (2.0 * kPi));
   c.rows_per_rad = static_cast<float>(c.height / kPi);
-  std::vector<float> range_b(n), range_a(n);
-  std::vector<std::int32_t> column_b(n), column_a(n), row_b(n), row_a(n);
-  builds::projectBaseline(n, xb.data(), yb.data(), zb.data(), c, range_b.data(), column_b.data(), row_b.data());
-  builds::projectAvx2(n, xb.data(), yb.data(), zb.data(), c, range_a.data(), column_a.data(), row_a.data());
+  return c;
+}
+
+// Bins the points block by block with both builds and compares every output bit for bit; checks
+// that baseFramePoint gives the base-frame point each range was computed from. Returns how many
+// points fell in the range window (so that the comparison is known to cover the common case).
+int compareBuilds(const std::vector<Eigen::Vector3f>& points, const BaseFrameTransform& T) {
+  const PanoramaProjection c = oneDegree();
   int inside = 0;
-  for (int j = 0; j < n; ++j) {
-    ASSERT_EQ(row_b[j], row_a[j]) << "point " << j;
-    if (row_b[j] < 0) continue;  // outside the window: column and range are not used
-    ++inside;
-    ASSERT_EQ(column_b[j], column_a[j]) << "point " << j;
-    ASSERT_EQ(bitsOf(range_b[j]), bitsOf(range_a[j])) << "point " << j;
-    ASSERT_GE(column_b[j], 0);
-    ASSERT_LT(column_b[j], c.width);
-    ASSERT_LT(row_b[j], c.height);
+  for (std::size_t begin = 0; begin < points.size(); begin += kBinBlock) {
+    // The last block is short: the builds' remainder loops run too.
+    const int n = static_cast<int>(std::min<std::size_t>(kBinBlock, points.size() - begin));
+    float range_b[kBinBlock], range_a[kBinBlock];
+    std::int32_t column_b[kBinBlock], column_a[kBinBlock], row_b[kBinBlock], row_a[kBinBlock];
+    builds::binPointsBaseline(&points[begin], n, T, c, range_b, column_b, row_b);
+    builds::binPointsAvx2(&points[begin], n, T, c, range_a, column_a, row_a);
+    for (int j = 0; j < n; ++j) {
+      const std::size_t i = begin + static_cast<std::size_t>(j);
+      EXPECT_EQ(row_b[j], row_a[j]) << "point " << i;
+      if (row_b[j] < 0) continue;  // outside the window: column and range are not used
+      ++inside;
+      EXPECT_EQ(column_b[j], column_a[j]) << "point " << i;
+      EXPECT_EQ(bitsOf(range_b[j]), bitsOf(range_a[j])) << "point " << i;
+      EXPECT_GE(column_b[j], 0);
+      EXPECT_LT(column_b[j], c.width);
+      EXPECT_LT(row_b[j], c.height);
+      // The panorama stores this point for the pixel: the range must come from the same bits.
+      const Eigen::Vector3f p = baseFramePoint(points[i], T);
+      EXPECT_EQ(bitsOf(std::sqrt(p.x() * p.x() + p.y() * p.y() + p.z() * p.z())), bitsOf(range_b[j])) << "point " << i;
+    }
   }
-  EXPECT_GT(inside, n / 2);  // the comparison covered the common case, not only rejections
+  return inside;
+}
+
+TEST(PanoramaKernels, AvxBuildGivesTheBaselineBits) {
+  if (!simd::cpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: only the baseline build runs here";
+  BaseFrameTransform far;
+  far.r_WB = Eigen::Vector3d(1234.5678, -987.25, 3.75);  // far from the origin: the double step counts
+  far.R_BW = Eigen::AngleAxisf(0.7F, Eigen::Vector3f(0.2F, -0.3F, 0.9F).normalized()).toRotationMatrix();
+  const std::vector<Eigen::Vector3f> points = awkwardPoints(1003, far.r_WB.cast<float>());
+  EXPECT_GT(compareBuilds(points, far), static_cast<int>(points.size()) / 2);
+  // At the origin, unrotated: the awkward values reach the binning as they are (NaN, zeros, axes).
+  const BaseFrameTransform origin{Eigen::Vector3d::Zero(), Eigen::Matrix3f::Identity()};
+  EXPECT_GT(compareBuilds(awkwardPoints(1003, Eigen::Vector3f::Zero()), origin), 500);
 }
 
 }  // namespace

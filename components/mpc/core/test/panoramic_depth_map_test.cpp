@@ -272,10 +272,8 @@ TEST(DepthMapNormals, ResetForgetsEveryNormalEvenAfterTheCountWraps) {
   // A new map with a lone point where the wall's point was (so the same cache entry, which is
   // per centre pixel): no plane there, so no normal, and not the wall's stale one.
   const int centre = map.centrePixel(wall);
-  const double azimuth = (centre % map.width() + 0.5) * 2.0 * M_PI / map.width() - M_PI;
-  const double elevation = 0.5 * M_PI - (centre / map.width() + 0.5) * M_PI / map.height();
-  const Eigen::Vector3d lone(3.0 * std::cos(elevation) * std::cos(azimuth), 3.0 * std::cos(elevation) * std::sin(azimuth),
-                             3.0 * std::sin(elevation));
+  const Eigen::Vector3d lone =
+      3.0 * pixelCentreDirection(centre % map.width(), centre / map.width(), map.width(), map.height());
   map.render({lone}, Eigen::Isometry3d::Identity());
   ASSERT_EQ(map.centrePixel(centre), centre);
   normals.reset(map);
