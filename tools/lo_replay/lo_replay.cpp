@@ -57,7 +57,7 @@ void printUsage(std::FILE* out) {
       out,
       "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S (30)] "
       "[--motor RAD_PER_S (3.6)] [--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] "
-      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--max-registration-points N] [--registration-weakest-points N] [--registration-sample even|stable] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
+      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--max-registration-points N] [--registration-weakest-points N] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
       "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
       "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] "
       "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] [--plane-min-spread-ratio R] "
@@ -133,10 +133,7 @@ int replay(int argc, char** argv) {
       config.max_registration_points = tools::count(flag, value);
     else if (flag == "--registration-weakest-points")
       config.registration_weakest_points = tools::nonNegative(flag, value);
-    else if (flag == "--registration-sample") {
-      if (value != "even" && value != "stable") throw std::invalid_argument(flag + ": '" + value + "' is not even or stable");
-      config.registration_sample = value == "stable" ? lo::RegistrationSample::kStable : lo::RegistrationSample::kEven;
-    } else if (flag == "--imu")
+    else if (flag == "--imu")
       use_imu = tools::count(flag, value) != 0;
     else if (flag == "--degeneracy-threshold")
       config.degeneracy_threshold = tools::nonNegative(flag, value);

@@ -98,10 +98,6 @@ class LoComponent : public Component {
            "with max_registration_points, enough points register that the weakest pose direction keeps this many "
            "effective points (poor geometry registers every point; 0: the budget alone)")
         .between(0.0, 1e6);
-    b.bindChoice("registration_sample", c.registration_sample,
-                 {{"even", lo::RegistrationSample::kEven}, {"stable", lo::RegistrationSample::kStable}},
-                 "with max_registration_points: even spreads the sample over space; stable gives half of it to the "
-                 "pose directions the scan constrains least (see README, \"A registration budget\")");
     b.bind("map_voxel_size", c.map_voxel_size, "voxel size of the local map, m").between(0.01, 10.0);
     b.bind("map_mean_points", c.map_mean_points,
            "a map voxel's point is the mean of its first this many observations (1: the first point stays; see README)")

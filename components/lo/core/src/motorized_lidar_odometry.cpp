@@ -9,7 +9,6 @@
 
 #include "uampc/lo/derotation.hpp"
 #include "uampc/lo/deskew.hpp"
-#include "uampc/lo/stable_sample.hpp"
 #include "uampc/lo/voxel_downsample.hpp"
 
 namespace uampc::lo {
@@ -110,7 +109,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
 
   std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
   const std::size_t downsampled = keypoints.size();
-  keypoints = sampleForRegistration(std::move(keypoints), derotated.points);
+  keypoints = spatialSubset(std::move(keypoints), registrationBudget(downsampled), config_.map_voxel_size);
   result.points_used = keypoints.size();
   const double sampled_fraction =
       keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled);
@@ -209,22 +208,6 @@ std::size_t MotorizedLidarOdometry::registrationBudget(std::size_t downsampled_p
   const double needed =
       std::ceil(static_cast<double>(downsampled_points) * config_.registration_weakest_points / last_weakest_information_);
   return needed >= static_cast<double>(downsampled_points) ? 0 : std::max(budget, static_cast<std::size_t>(needed));
-}
-
-// The downsampled scan's points that register: all of them, or the budget's sample.
-std::vector<TimedPoint> MotorizedLidarOdometry::sampleForRegistration(std::vector<TimedPoint> keypoints,
-                                                                      const std::vector<TimedPoint>& raw) const {
-  const std::size_t budget = registrationBudget(keypoints.size());
-  if (config_.registration_sample == RegistrationSample::kStable) {
-    StableSampleOptions options;
-    options.sample_cell_size = config_.map_voxel_size;
-    // Normals from cells of three scan voxels: enough of the frame's points for a plane on
-    // surfaces the LiDAR sees at mid range, small enough to follow a corridor's walls.
-    options.normal_cell_size = 3.0 * config_.scan_voxel_size;
-    options.rotation_length = config_.degeneracy_scales.length;
-    return stableSubset(std::move(keypoints), raw, budget, options);
-  }
-  return spatialSubset(std::move(keypoints), budget, config_.map_voxel_size);
 }
 
 // The iterated update against the local map, undone if it needs an implausible acceleration.

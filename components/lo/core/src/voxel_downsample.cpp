@@ -92,25 +92,17 @@ std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, doub
   return out;
 }
 
-std::vector<std::size_t> spatialSubsetIndices(const std::vector<TimedPoint>& points, std::size_t max_points,
-                                              double cell_size) {
+std::vector<TimedPoint> spatialSubset(std::vector<TimedPoint> points, std::size_t max_points, double cell_size) {
+  if (max_points == 0 || points.size() <= max_points) return points;
   const std::vector<std::uint64_t> order = mortonOrder(points, cell_size);
-  std::vector<std::size_t> kept;
-  kept.reserve(max_points);
+  std::vector<TimedPoint> out;
+  out.reserve(max_points);
   // The middle point of each of max_points equal runs of the ordered points: deterministic, and
   // no run's point is favoured by where the runs start.
   const double run = static_cast<double>(order.size()) / static_cast<double>(max_points);
   for (std::size_t i = 0; i < max_points; ++i) {
-    kept.push_back(order[static_cast<std::size_t>((static_cast<double>(i) + 0.5) * run)]);
+    out.push_back(points[order[static_cast<std::size_t>((static_cast<double>(i) + 0.5) * run)]]);
   }
-  return kept;
-}
-
-std::vector<TimedPoint> spatialSubset(std::vector<TimedPoint> points, std::size_t max_points, double cell_size) {
-  if (max_points == 0 || points.size() <= max_points) return points;
-  std::vector<TimedPoint> out;
-  out.reserve(max_points);
-  for (const std::size_t index : spatialSubsetIndices(points, max_points, cell_size)) out.push_back(points[index]);
   return out;
 }
 

@@ -27,9 +27,6 @@
 
 namespace uampc::lo {
 
-// How a registration budget picks the scan's points (OdometryConfig::registration_sample).
-enum class RegistrationSample { kEven, kStable };
-
 // Defaults are the LO settings of docs/design.md section 1 where it names them.
 struct OdometryConfig {
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
@@ -52,10 +49,6 @@ struct OdometryConfig {
   // share kept): where geometry is poor every point registers, the budget saves time where it is
   // rich. After a frame that registered nothing, the next registers every point. 0: the budget alone.
   double registration_weakest_points = 0.0;
-  // How a budget picks its points: kEven spreads them evenly over space (spatialSubset); kStable
-  // spreads half of them so and gives the other half to the pose directions the scan constrains
-  // least (stableSubset, geometrically stable sampling). Measured in README, "A registration budget".
-  RegistrationSample registration_sample = RegistrationSample::kEven;
   double map_voxel_size = 0.3;   // m
   // How many observations a map voxel's point averages (LocalMap); 1: the first point stays (the
   // LO before this option). 20 was chosen with tools/lo_replay at constant motor speeds only,
@@ -213,8 +206,6 @@ class MotorizedLidarOdometry {
   UpdateSummary correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
                         const IteratedEkf& predicted, double end_time, double dt, OdometryResult& result);
   std::size_t registrationBudget(std::size_t downsampled_points) const;
-  std::vector<TimedPoint> sampleForRegistration(std::vector<TimedPoint> keypoints,
-                                                const std::vector<TimedPoint>& raw) const;
   void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
   void fillState(OdometryResult& result) const;
   // Whether the update from predicted to updated needs an acceleration beyond the configured ones.

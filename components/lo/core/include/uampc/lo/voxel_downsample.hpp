@@ -26,9 +26,4 @@ std::vector<TimedPoint> spatialOrder(const std::vector<TimedPoint>& points, doub
 // few thousand points a frame. max_points 0: no budget.
 std::vector<TimedPoint> spatialSubset(std::vector<TimedPoint> points, std::size_t max_points, double cell_size);
 
-// The indices of the points spatialSubset keeps when there are more than max_points (> 0), in
-// spatial order.
-std::vector<std::size_t> spatialSubsetIndices(const std::vector<TimedPoint>& points, std::size_t max_points,
-                                              double cell_size);
-
 }  // namespace uampc::lo
