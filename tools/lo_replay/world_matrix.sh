@@ -6,7 +6,8 @@
 # density worlds, the LiDAR-inertial campus loop), every run at a constant motor speed and with the
 # scenes' 2 cm range noise, and prints one line per run: its name, then lo_replay's summary.
 # LO_REPLAY_FLAGS are added to every run (e.g. --max-registration-points 2000). --only keeps the runs
-# whose name matches REGEX (grep -E). N runs at a time (default: the number of cores).
+# whose name matches REGEX (grep -E). N runs at a time (default: the number of cores); the lines come
+# in the order of the list below whatever order the runs finish in, and stderr says each as it ends.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 replay=build/bench/lo_replay
@@ -51,16 +52,29 @@ for seed in 1 2 3; do
 done
 runs+=("kth-imu-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 --imu 1 $noise")
 
+# Each run's line goes to its own file, and the lines are printed in the order above once all
+# have run (parallel runs finish in any order); stderr says each run as it finishes.
+results=$(mktemp -d)
+trap 'rm -rf "$results"' EXIT
+export results
+
 run_one() {
-  local name="${1%%|*}" args="${1#*|}"
+  local index="${1%%|*}" run="${1#*|}"
+  local name="${run%%|*}" args="${run#*|}"
   local summary
   # shellcheck disable=SC2086  # both are lists of words by construction
   summary=$("$replay" $args $EXTRA_FLAGS | grep '^summary:' || echo "summary: lo_replay failed")
-  printf '%-18s %s\n' "$name" "${summary#summary: }"
+  printf '%-18s %s\n' "$name" "${summary#summary: }" > "$results/$index"
+  echo "world_matrix: $name done" >&2
 }
 export -f run_one
 export replay
 
+count=0
 for run in "${runs[@]}"; do
-  if [ -z "$only" ] || [[ "${run%%|*}" =~ $only ]]; then printf '%s\0' "$run"; fi
+  if [ -z "$only" ] || [[ "${run%%|*}" =~ $only ]]; then
+    printf '%s|%s\0' "$count" "$run"
+    count=$((count + 1))
+  fi
 done | xargs -0 -n 1 -P "$jobs" bash -c 'run_one "$1"' _
+for ((i = 0; i < $(find "$results" -type f | wc -l); i++)); do cat "$results/$i"; done
