@@ -124,6 +124,71 @@ TEST(SlurmExperiment, AJobArrayOnARealClusterGivesTheLocalResultsAndResumes) {
   EXPECT_EQ(statuses(on_slurm), std::vector<std::string>(4, "ok"));
 }
 
+// docker/k8s/experiment-indexed-job.yaml, run as its Indexed Job would run it, as far as a machine
+// without Kubernetes can: the manifest is read (an Indexed Job of pods that are not restarted), each
+// index runs the container's command with $(JOB_COMPLETION_INDEX) expanded as the kubelet expands
+// it and the experiments volume at a directory of the test, then --collect gives a local run's
+// results, and a task run again does nothing. The test adds --domain-base only: unlike pods, the
+// tasks here share the host's network with other tests. Kubernetes itself is not tested.
+TEST(IndexedJobManifest, ItsTasksGiveTheLocalResults) {
+  const std::string dir = freshDirectory("indexed_job_test");
+  const YAML::Node job = YAML::LoadFile(sourcePath("docker/k8s/experiment-indexed-job.yaml"));
+  ASSERT_EQ(job["kind"].as<std::string>(), "Job");
+  ASSERT_EQ(job["spec"]["completionMode"].as<std::string>(), "Indexed");
+  const YAML::Node pod = job["spec"]["template"]["spec"];
+  ASSERT_EQ(pod["restartPolicy"].as<std::string>(), "Never");
+  const YAML::Node container = pod["containers"][0];
+  std::string volume;
+  for (const auto& mount : container["volumeMounts"]) {
+    if (mount["name"].as<std::string>() == "experiments") volume = mount["mountPath"].as<std::string>();
+  }
+  ASSERT_FALSE(volume.empty()) << "no experiments volume in the manifest";
+  const auto command = container["command"].as<std::vector<std::string>>();
+  ASSERT_GE(command.size(), 2u);
+  ASSERT_EQ(command[0], "uampc");
+  // The command with the index expanded and the volume's paths at the test's directory.
+  const auto taskArguments = [&](int index) {
+    std::string args;
+    for (std::size_t i = 1; i < command.size(); ++i) {
+      std::string a = command[i];
+      if (a == "$(JOB_COMPLETION_INDEX)") a = std::to_string(index);
+      if (a.rfind(volume, 0) == 0) a = dir + "/volume" + a.substr(volume.size());
+      args += " " + a;
+    }
+    return args + " --domain-base " + std::to_string(testDomain(DomainBlock::kSlurmExperiment, 8));
+  };
+  const std::string out = dir + "/volume" + command.back().substr(volume.size());
+  ASSERT_EQ(command[command.size() - 2], "--out");
+
+  const std::string experiment = dir + "/experiment.yaml";
+  std::ofstream(experiment) << "name: k8s_e2e\nduration: 2\nseeds: [1]\nscenes:\n"
+                               "  - {name: campus, scene: " +
+                                   sourcePath("config/scenes/campus_ua_mpc.yaml") +
+                                   "}\n"
+                                   "controllers:\n  - {name: ua_mpc, overrides: [controller.mode=ua_mpc]}\n"
+                                   "  - {name: zero, overrides: [controller.mode=zero]}\n"
+                                   "compare: {baseline: zero}\n";
+  const CommandResult planned = runUampc("experiment " + experiment + " --out " + out + " --plan-only");
+  ASSERT_EQ(planned.exit_code, 0) << planned.output;
+  EXPECT_NE(planned.output.find("completions: 2"), std::string::npos) << planned.output;
+  for (int index = 0; index < 2; ++index) {
+    const CommandResult task = runUampc(taskArguments(index));
+    ASSERT_EQ(task.exit_code, 0) << task.output;
+  }
+  const CommandResult again = runUampc(taskArguments(1));
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("finished before; nothing to do"), std::string::npos) << again.output;
+
+  const CommandResult collected = runUampc("experiment --collect " + out);
+  ASSERT_EQ(collected.exit_code, 0) << collected.output;
+  EXPECT_NE(collected.output.find("2 of 2 runs of k8s_e2e finished"), std::string::npos) << collected.output;
+  const std::string here = dir + "/local_out";
+  const CommandResult local = runUampc("experiment " + experiment + " --out " + here + " --jobs 2 --domain-base " +
+                                       std::to_string(testDomain(DomainBlock::kSlurmExperiment, 9)));
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  expectSameFigures(out, here);
+}
+
 TEST(SlurmExperiment, CollectAndRunTaskSayWhatIsWrong) {
   const std::string dir = freshDirectory("slurm_experiment_errors");
   CommandResult r = runUampc("experiment --collect " + dir);
