@@ -77,4 +77,5 @@ for run in "${runs[@]}"; do
     count=$((count + 1))
   fi
 done | xargs -0 -n 1 -P "$jobs" bash -c 'run_one "$1"' _
-for ((i = 0; i < $(find "$results" -type f | wc -l); i++)); do cat "$results/$i"; done
+finished=$(find "$results" -type f | wc -l)
+for ((i = 0; i < finished; i++)); do cat "$results/$i"; done
