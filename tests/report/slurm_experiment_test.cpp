@@ -65,6 +65,17 @@ void expectSameFigures(const std::string& a, const std::string& b) {
   }
 }
 
+// DIR/experiment.yaml: the campus scene under UA-MPC and zero speed, with the given duration and
+// seeds (YAML lines); returns its path.
+std::string writeExperiment(const std::string& dir, const std::string& name, const std::string& duration_and_seeds) {
+  const std::string path = dir + "/experiment.yaml";
+  std::ofstream(path) << "name: " << name << "\n" << duration_and_seeds << "\nscenes:\n  - {name: campus, scene: "
+                      << sourcePath("config/scenes/campus_ua_mpc.yaml")
+                      << "}\ncontrollers:\n  - {name: ua_mpc, overrides: [controller.mode=ua_mpc]}\n"
+                         "  - {name: zero, overrides: [controller.mode=zero]}\ncompare: {baseline: zero}\n";
+  return path;
+}
+
 std::vector<std::string> statuses(const std::string& out) {
   std::vector<std::string> s;
   for (const auto& run : runsOf(out)) s.push_back(run["status"].as<std::string>());
@@ -77,14 +88,7 @@ TEST(SlurmExperiment, AJobArrayOnARealClusterGivesTheLocalResultsAndResumes) {
   if (cluster.exitCode() == kSkipped) GTEST_SKIP() << cluster.output();
   ASSERT_TRUE(cluster.started()) << cluster.output();
 
-  const std::string experiment = dir + "/experiment.yaml";
-  std::ofstream(experiment) << "name: slurm_e2e\nduration: 3\nseeds: [1, 2]\nscenes:\n"
-                               "  - {name: campus, scene: " +
-                                   sourcePath("config/scenes/campus_ua_mpc.yaml") +
-                                   "}\n"
-                                   "controllers:\n  - {name: ua_mpc, overrides: [controller.mode=ua_mpc]}\n"
-                                   "  - {name: zero, overrides: [controller.mode=zero]}\n"
-                                   "compare: {baseline: zero}\n";
+  const std::string experiment = writeExperiment(dir, "slurm_e2e", "duration: 3\nseeds: [1, 2]");
   const std::string on_slurm = dir + "/slurm_out", here = dir + "/local_out";
   const std::string slurm_command = "experiment " + experiment + " --out " + on_slurm + " --backend slurm --domain-base " +
                                     std::to_string(testDomain(DomainBlock::kSlurmExperiment, 0));
@@ -160,14 +164,7 @@ TEST(IndexedJobManifest, ItsTasksGiveTheLocalResults) {
   const std::string out = dir + "/volume" + command.back().substr(volume.size());
   ASSERT_EQ(command[command.size() - 2], "--out");
 
-  const std::string experiment = dir + "/experiment.yaml";
-  std::ofstream(experiment) << "name: k8s_e2e\nduration: 2\nseeds: [1]\nscenes:\n"
-                               "  - {name: campus, scene: " +
-                                   sourcePath("config/scenes/campus_ua_mpc.yaml") +
-                                   "}\n"
-                                   "controllers:\n  - {name: ua_mpc, overrides: [controller.mode=ua_mpc]}\n"
-                                   "  - {name: zero, overrides: [controller.mode=zero]}\n"
-                                   "compare: {baseline: zero}\n";
+  const std::string experiment = writeExperiment(dir, "k8s_e2e", "duration: 2\nseeds: [1]");
   const CommandResult planned = runUampc("experiment " + experiment + " --out " + out + " --plan-only");
   ASSERT_EQ(planned.exit_code, 0) << planned.output;
   EXPECT_NE(planned.output.find("completions: 2"), std::string::npos) << planned.output;
