@@ -3,7 +3,8 @@
 // results equal a local run's, figure for figure and trajectory for trajectory (lockstep runs are
 // deterministic, whatever DDS transport carries them); a run that lost its done marker is the only
 // one resubmitted; --collect rebuilds the same results.json. Skipped (not passed) where the
-// cluster cannot start for lack of root.
+// cluster cannot start for lack of root. Also the Kubernetes manifest's tasks, run as its Indexed
+// Job would run them (IndexedJobManifest, below), and the errors of --collect and --run-task.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -150,19 +151,21 @@ TEST(IndexedJobManifest, ItsTasksGiveTheLocalResults) {
   const auto command = container["command"].as<std::vector<std::string>>();
   ASSERT_GE(command.size(), 2u);
   ASSERT_EQ(command[0], "uampc");
+  // A path on the volume, at the test's directory instead (others unchanged).
+  const auto onVolume = [&](const std::string& path) {
+    return path.rfind(volume, 0) == 0 ? dir + "/volume" + path.substr(volume.size()) : path;
+  };
+  ASSERT_EQ(command[command.size() - 2], "--out");
+  ASSERT_EQ(command.back().rfind(volume, 0), 0u) << "the experiment's directory is not on the volume";
+  const std::string out = onVolume(command.back());
   // The command with the index expanded and the volume's paths at the test's directory.
   const auto taskArguments = [&](int index) {
     std::string args;
     for (std::size_t i = 1; i < command.size(); ++i) {
-      std::string a = command[i];
-      if (a == "$(JOB_COMPLETION_INDEX)") a = std::to_string(index);
-      if (a.rfind(volume, 0) == 0) a = dir + "/volume" + a.substr(volume.size());
-      args += " " + a;
+      args += " " + (command[i] == "$(JOB_COMPLETION_INDEX)" ? std::to_string(index) : onVolume(command[i]));
     }
     return args + " --domain-base " + std::to_string(testDomain(DomainBlock::kSlurmExperiment, 8));
   };
-  const std::string out = dir + "/volume" + command.back().substr(volume.size());
-  ASSERT_EQ(command[command.size() - 2], "--out");
 
   const std::string experiment = writeExperiment(dir, "k8s_e2e", "duration: 2\nseeds: [1]");
   const CommandResult planned = runUampc("experiment " + experiment + " --out " + out + " --plan-only");
