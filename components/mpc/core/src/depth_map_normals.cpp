@@ -26,21 +26,24 @@ void DepthMapNormals::throwNotReset() {
   throw std::logic_error("DepthMapNormals::normal called before reset");
 }
 
-DepthMapNormals::State DepthMapNormals::compute(int pixel, Eigen::Vector3f* normal) {
+DepthMapNormals::State DepthMapNormals::compute(std::int32_t centre_pixel, Eigen::Vector3f* normal) {
   ++computed_count_;
-  return estimate(*map_, pixel, normal) ? kValid : kInvalid;
+  return estimate(*map_, centre_pixel, normal) ? kValid : kInvalid;
 }
 
-bool DepthMapNormals::estimate(const PanoramicDepthMap& map, int pixel,
+bool DepthMapNormals::estimate(const PanoramicDepthMap& map, std::int32_t centre_pixel,
                                Eigen::Vector3f* normal_B) const {
-  if (!map.occupied(pixel)) return false;
+  // The ring is walked from the point's own pixel, whatever pixel asked: a point's normal is then
+  // one value however the rays reach it, so U's rays may resolve pixels in any order (and the
+  // ring is centred on the point, not on the edge of its splat).
+  if (centre_pixel < 0) return false;
   const int width = map.width();
   const int height = map.height();
+  const int pixel = centre_pixel;
   const int u = pixel % width;
   const int v = pixel / width;
-  const Eigen::Vector3f& centre = map.point(pixel);
-  const float range = map.range(pixel);
-  const std::int32_t centre_pixel = map.centrePixel(pixel);  // names the centre point
+  const Eigen::Vector3f& centre = map.centrePoint(centre_pixel);
+  const float range = centre.norm();
   const float max_jump = static_cast<float>(config_.max_range_jump_ratio) * range;
 
   // The 8 ring directions in angular order around the pixel.

@@ -89,18 +89,18 @@ UncertaintyModel::RayTable UncertaintyModel::rayTable(const PanoramicDepthMap& m
 // What a ray through a pixel contributes, resolved on the first ray through it and reused by all
 // later rays and candidate angles of the same call: the 72 x 864 rays of a control step pass
 // through a few thousand distinct pixels, and resolving one (neighbourhood lookup, per-point normal
-// cache, Jacobian) costs cache misses in arrays as large as the local map. Pixels are resolved in
-// the order the rays reach them, so every normal is still estimated at the pixel that asked first,
-// and every Lambda is the same sum, in the same order, as without the memo. (Measured and rejected
-// earlier: resolving all those pixels up front, in raster order, cost more in extra passes over the
-// panorama than it saved.)
+// cache, Jacobian) costs cache misses in arrays as large as the local map. A pixel's Jacobian
+// depends on the pixel alone (its point's normal is estimated at the point's own pixel), so the
+// memo changes no Lambda: each is the same sum, in the same ray order, as without it. (Measured and
+// rejected earlier: resolving all those pixels up front, in raster order, cost more in extra passes
+// over the panorama than it saved.)
 struct UncertaintyModel::PixelJacobians {
   static constexpr std::int32_t kUnresolved = -2;
   static constexpr std::int32_t kNoHit = -1;  // no surface, or no reliable normal
 
   std::vector<std::int32_t> of_pixel;  // kUnresolved, kNoHit or an index into jacobians
   std::vector<Vector6d> jacobians;     // J = [ p x n ; n ] (base axes, see the header)
-  std::vector<std::int32_t> ray_hits;  // scratch of accumulate(): the Jacobian of each hit ray
+  std::vector<std::int32_t> ray_hits;  // scratch: per angle and ray, the ray's entry of of_pixel
 
   // Kept per thread: the buffers are reused, so a control step allocates nothing once they grew.
   static PixelJacobians& forMap(const PanoramicDepthMap& map) {
@@ -140,48 +140,67 @@ std::int32_t UncertaintyModel::resolve(const PanoramicDepthMap& map, DepthMapNor
   return static_cast<std::int32_t>(pixels.jacobians.size() - 1);
 }
 
-Matrix6d UncertaintyModel::accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals, const RayTable& table,
-                                      PixelJacobians& pixels, double theta) const {
+std::vector<Matrix6d> UncertaintyModel::informationSamples(const PanoramicDepthMap& map, DepthMapNormals& normals,
+                                                         double theta_start, double step, int count) const {
+  const RayTable table = rayTable(map);
+  PixelJacobians& pixels = PixelJacobians::forMap(map);
   const int width = map.width();
-  // theta in columns, reduced to [0, W): the same column arithmetic for any number of turns.
-  double shift = theta * table.columns_per_rad;
-  shift -= width * std::floor(shift / width);
-  // Two passes. The first finds the Jacobian of each ray that hits a surface with a normal, the
-  // second sums J J^T. Summing inside the first loop was slower: a call (resolve) clobbers all SSE
-  // registers, so the sums went through the stack, and reloading them stalled on store forwarding.
-  pixels.ray_hits.resize(table.rows.size());
-  std::size_t hits = 0;
-  for (std::size_t k = 0; k < table.rows.size(); ++k) {
-    int u = static_cast<int>(table.columns_at_zero[k] + shift);  // in [0, 2W)
-    if (u >= width) u -= width;
-    std::int32_t& hit = pixels.of_pixel[map.pixelIndex(u, table.rows[k])];
-    if (hit == PixelJacobians::kUnresolved) hit = resolve(map, normals, u, table.rows[k], pixels);
-    if (hit != PixelJacobians::kNoHit) pixels.ray_hits[hits++] = hit;
+  const std::size_t rays = table.rows.size();
+  const std::size_t samples = static_cast<std::size_t>(std::max(count, 0));
+  // Each candidate angle in columns, reduced to [0, W): the same column arithmetic for any number
+  // of turns.
+  std::vector<double> shifts(samples);
+  for (std::size_t s = 0; s < samples; ++s) {
+    double shift = (theta_start + static_cast<double>(s) * step) * table.columns_per_rad;
+    shifts[s] = shift - width * std::floor(shift / width);
   }
-  // Upper triangle of Lambda = sum_k J_k J_k^T: 21 products per ray instead of 36, summed in ray
-  // order (the same sums, bit for bit, as accumulating ray by ray).
-  double upper[21] = {};
-  for (std::size_t h = 0; h < hits; ++h) {
-    const double* J = pixels.jacobians[pixels.ray_hits[h]].data();
+  // Pass 1, ray by ray: the Jacobian of each ray at each angle. A ray keeps its row at every
+  // angle (R_BM(theta) turns about the base z axis), so its angles walk along one row of the
+  // panorama, the memo and the normals' cache: nearby memory, where angle by angle the 864 rays
+  // jumped across the whole panorama and most look-ups missed the cache. The order does not
+  // change a result: a pixel's Jacobian depends only on the pixel (its point's normal is
+  // estimated at the point's own pixel, DepthMapNormals).
+  pixels.ray_hits.resize(rays * samples);
+  for (std::size_t k = 0; k < rays; ++k) {
+    const int row = table.rows[k];
+    const double column_at_zero = table.columns_at_zero[k];
+    std::int32_t* of_row = &pixels.of_pixel[map.pixelIndex(0, row)];
+    for (std::size_t s = 0; s < samples; ++s) {
+      int u = static_cast<int>(column_at_zero + shifts[s]);  // in [0, 2W)
+      if (u >= width) u -= width;
+      std::int32_t& hit = of_row[u];
+      if (hit == PixelJacobians::kUnresolved) hit = resolve(map, normals, u, row, pixels);
+      pixels.ray_hits[s * rays + k] = hit;
+    }
+  }
+  // Pass 2, angle by angle: the upper triangle of Lambda = sum_k J_k J_k^T, 21 products per ray
+  // instead of 36, summed in ray order.
+  std::vector<Matrix6d> lambdas(samples);
+  for (std::size_t s = 0; s < samples; ++s) {
+    const std::int32_t* hits = &pixels.ray_hits[s * rays];
+    double upper[21] = {};
+    for (std::size_t k = 0; k < rays; ++k) {
+      if (hits[k] == PixelJacobians::kNoHit) continue;
+      const double* J = pixels.jacobians[hits[k]].data();
+      int e = 0;
+      for (int r = 0; r < 6; ++r) {
+        for (int c = r; c < 6; ++c) upper[e++] += J[r] * J[c];
+      }
+    }
     int e = 0;
     for (int r = 0; r < 6; ++r) {
-      for (int c = r; c < 6; ++c) upper[e++] += J[r] * J[c];
+      for (int c = r; c < 6; ++c) {
+        lambdas[s](r, c) = upper[e];
+        lambdas[s](c, r) = upper[e];
+        ++e;
+      }
     }
   }
-  Matrix6d lambda;
-  int e = 0;
-  for (int r = 0; r < 6; ++r) {
-    for (int c = r; c < 6; ++c) {
-      lambda(r, c) = upper[e];
-      lambda(c, r) = upper[e];
-      ++e;
-    }
-  }
-  return lambda;
+  return lambdas;
 }
 
 Matrix6d UncertaintyModel::information(const PanoramicDepthMap& map, DepthMapNormals& normals, double theta) const {
-  return accumulate(map, normals, rayTable(map), PixelJacobians::forMap(map), theta);
+  return informationSamples(map, normals, theta, 0.0, 1).front();
 }
 
 double UncertaintyModel::aOptimality(const Matrix6d& information) const {
@@ -211,12 +230,9 @@ double UncertaintyModel::uncertainty(const PanoramicDepthMap& map, DepthMapNorma
 
 std::vector<double> UncertaintyModel::sample(const PanoramicDepthMap& map, DepthMapNormals& normals, double theta_start,
                                              double step, int count) const {
-  const RayTable table = rayTable(map);
-  PixelJacobians& pixels = PixelJacobians::forMap(map);
-  std::vector<double> samples(static_cast<std::size_t>(std::max(count, 0)));
-  for (int s = 0; s < count; ++s) {
-    samples[s] = aOptimality(accumulate(map, normals, table, pixels, theta_start + s * step));
-  }
+  const std::vector<Matrix6d> lambdas = informationSamples(map, normals, theta_start, step, count);
+  std::vector<double> samples(lambdas.size());
+  for (std::size_t s = 0; s < lambdas.size(); ++s) samples[s] = aOptimality(lambdas[s]);
   return samples;
 }
 

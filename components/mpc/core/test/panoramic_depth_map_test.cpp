@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "synthetic_scenes.hpp"
 #include "uampc/mpc/depth_map_normals.hpp"
@@ -239,6 +240,36 @@ TEST(DepthMapNormals, PlanesGiveTheirNormalFacingTheOrigin) {
   // several pixels is estimated once.
   EXPECT_GT(normals.computedCount(), 0);
   EXPECT_LT(normals.computedCount(), static_cast<int>(map.occupiedCount()));
+}
+
+// A point splatted over several pixels has one normal, whichever of its pixels asks first: U's
+// rays may then resolve pixels in any order. Near walls (large splats) and a corner, where the
+// ring around the edge of a splat used to see one face and the ring around the point both.
+TEST(DepthMapNormals, APointsNormalDoesNotDependOnWhichOfItsPixelsAsks) {
+  test::Cloud cloud = test::corridor(-30.0, 30.0, 1.2);
+  test::addRectangle(cloud, {2.0, 0.4, -1.0}, {0, 0.6, 0}, {0, 0, 3}, 0.05);  // a pillar's corner at (2, 0.4)
+  test::addRectangle(cloud, {2.0, 0.4, -1.0}, {0.5, 0, 0}, {0, 0, 3}, 0.05);
+  PanoramicDepthMap map(oneDegree());
+  map.render(cloud, Eigen::Isometry3d::Identity());
+  // Every occupied pixel, asked first in raster order and then in reverse order.
+  const int pixels = map.width() * map.height();
+  DepthMapNormals forward;
+  DepthMapNormals backward;
+  forward.reset(map);
+  backward.reset(map);
+  std::vector<const Eigen::Vector3f*> first(pixels, nullptr);
+  for (int pixel = 0; pixel < pixels; ++pixel) {
+    if (map.occupied(pixel)) first[pixel] = forward.normal(pixel);
+  }
+  int splatted = 0;
+  for (int pixel = pixels - 1; pixel >= 0; --pixel) {
+    if (!map.occupied(pixel)) continue;
+    splatted += map.centrePixel(pixel) != pixel;
+    const Eigen::Vector3f* n = backward.normal(pixel);
+    ASSERT_EQ(n == nullptr, first[pixel] == nullptr) << "pixel " << pixel;
+    if (n != nullptr) EXPECT_EQ(*n, *first[pixel]) << "pixel " << pixel;
+  }
+  EXPECT_GT(splatted, 1000);  // the walls 1.2 m away are splatted over many pixels
 }
 
 TEST(DepthMapNormals, EmptyPixelHasNoNormal) {

@@ -45,7 +45,7 @@ class DepthMapNormals {
 
   // Unit normal (base axes) of the surface at an occupied pixel, or nullptr when the pixel is
   // empty or no reliable normal can be estimated there. Cached per local-map point (estimated at
-  // the first pixel of that point asked for) until the next reset().
+  // that point's own pixel, whichever of its pixels asked) until the next reset().
   // Inline: called once per ray and candidate angle, and nearly always answered by the cache.
   const Eigen::Vector3f* normal(int pixel) {
     if (map_ == nullptr) throwNotReset();
@@ -57,13 +57,14 @@ class DepthMapNormals {
     CachedNormal& cached = cache_[centre];
     if (cached.generation != generation_) {  // not asked since reset(): unknown
       cached.generation = generation_;
-      cached.state = compute(pixel, &cached.normal);
+      cached.state = compute(centre, &cached.normal);
     }
     return cached.state == kValid ? &cached.normal : nullptr;
   }
 
-  // The same estimate without the cache; returns false when there is no reliable normal.
-  bool estimate(const PanoramicDepthMap& map, int pixel, Eigen::Vector3f* normal_B) const;
+  // The same estimate without the cache, for the point whose own pixel is centre_pixel (a
+  // PanoramicDepthMap::centrePixel()); returns false when there is no reliable normal.
+  bool estimate(const PanoramicDepthMap& map, std::int32_t centre_pixel, Eigen::Vector3f* normal_B) const;
 
   // Number of normals computed since the last reset (valid or not): a cost indicator.
   int computedCount() const { return computed_count_; }
@@ -82,7 +83,7 @@ class DepthMapNormals {
   };
 
   [[noreturn]] static void throwNotReset();
-  State compute(int pixel, Eigen::Vector3f* normal);  // estimate() into the cache
+  State compute(std::int32_t centre_pixel, Eigen::Vector3f* normal);  // estimate() into the cache
 
   Config config_;
   const PanoramicDepthMap* map_ = nullptr;

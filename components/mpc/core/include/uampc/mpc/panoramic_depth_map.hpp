@@ -85,6 +85,9 @@ class PanoramicDepthMap {
   std::int32_t centrePixel(int pixel) const { return pixels_[pixel].centre; }
   // Winning point in the base frame (base axes, relative to the base origin); valid if occupied.
   const Eigen::Vector3f& point(int pixel) const { return pixels_[pixel].point_B; }
+  // A winning point named by its own pixel (a centrePixel() >= 0), also where a nearer point's
+  // splat covers that pixel and point() there is the other point.
+  const Eigen::Vector3f& centrePoint(std::int32_t centre_pixel) const { return centre_points_[centre_pixel]; }
   std::size_t occupiedCount() const { return occupied_count_; }
 
   // The occupied pixel a ray through (u, v) hits: (u, v) itself if occupied, otherwise the nearest

@@ -96,8 +96,9 @@ class UncertaintyModel {
   struct RayTable;
   struct PixelJacobians;
   RayTable rayTable(const PanoramicDepthMap& map) const;
-  Matrix6d accumulate(const PanoramicDepthMap& map, DepthMapNormals& normals, const RayTable& table,
-                      PixelJacobians& pixels, double theta) const;
+  // Lambda at theta_start + s * step, s = 0 .. count - 1.
+  std::vector<Matrix6d> informationSamples(const PanoramicDepthMap& map, DepthMapNormals& normals, double theta_start,
+                                           double step, int count) const;
   double rayWeight(const Eigen::Vector3f& p, const Eigen::Vector3f& n) const;
   std::int32_t resolve(const PanoramicDepthMap& map, DepthMapNormals& normals, int u, int v,
                        PixelJacobians& pixels) const;
