@@ -267,7 +267,9 @@ TEST(DepthMapNormals, APointsNormalDoesNotDependOnWhichOfItsPixelsAsks) {
     splatted += map.centrePixel(pixel) != pixel;
     const Eigen::Vector3f* n = backward.normal(pixel);
     ASSERT_EQ(n == nullptr, first[pixel] == nullptr) << "pixel " << pixel;
-    if (n != nullptr) EXPECT_EQ(*n, *first[pixel]) << "pixel " << pixel;
+    if (n != nullptr) {
+      EXPECT_EQ(*n, *first[pixel]) << "pixel " << pixel;
+    }
   }
   EXPECT_GT(splatted, 1000);  // the walls 1.2 m away are splatted over many pixels
 }
