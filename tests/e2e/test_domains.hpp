@@ -29,6 +29,7 @@ enum class DomainBlock {
   kDynamixel,
   kRigScene,
   kSlurmExperiment,
+  kSpeedTargets,  // tests/speed_targets (Python): index 0 only, 228 (Fast DDS's domains end at 232)
 };
 
 inline constexpr int kDomainsPerTest = 12;

@@ -1,0 +1,70 @@
+"""tools/speed_targets reads the benchmarks' own output: the parsers against what today's binaries
+print (so that a changed output format fails here, not in a session's measurement), and their errors.
+
+Run by CTest (speed_targets_test) with UAMPC_BUILD set to the build directory."""
+import os
+import re
+import subprocess
+import sys
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools", "speed_targets"))
+import speed_targets  # noqa: E402
+
+BUILD = os.environ.get("UAMPC_BUILD", os.path.join(ROOT, "build"))
+
+
+def domain_of_this_test():
+    """This test's DDS domain, from the tests' one list (tests/e2e/test_domains.hpp): its block's
+    place in the enum times the block size, so that no test beside it under ctest -j2 shares it."""
+    text = open(os.path.join(ROOT, "tests", "e2e", "test_domains.hpp")).read()
+    enum = re.search(r"enum class DomainBlock \{(.*?)\};", text, re.S).group(1)
+    blocks = re.findall(r"^\s*(k\w+)", enum, re.M)
+    per_test = int(re.search(r"kDomainsPerTest = (\d+)", text).group(1))
+    return (blocks.index("kSpeedTargets") + 1) * per_test  # kLockstep = 1
+
+
+def output_of(*command):
+    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, check=True).stdout
+
+
+class Parsers(unittest.TestCase):
+    def test_google_benchmark_time_and_counters(self):
+        line = ("BM_ControlStep/100000/1/5       7.20 ms         7.20 ms          101 depth_map_ms=2.45446 "
+                "occupied_px=52.558k solve_ms=0.89599")
+        self.assertEqual(speed_targets.google_benchmark(line, "BM_ControlStep/100000/1/5"), 7.20)
+        self.assertAlmostEqual(speed_targets.google_benchmark(line, "BM_ControlStep/100000/1/5", "occupied_px"), 52558)
+        self.assertEqual(speed_targets.google_benchmark(line, "BM_ControlStep/100000/1/5", "solve_ms"), 0.89599)
+        rays = "BM_Mid360FramePackets   4.55 ms  4.55 ms  156 rays_per_s=4.39411M/s returns_per_frame=7.22088k"
+        self.assertAlmostEqual(speed_targets.google_benchmark(rays, "BM_Mid360FramePackets", "rays_per_s"), 4.39411e6)
+        self.assertEqual(speed_targets.google_benchmark("BM_Solve   746 us   746 us   1031", "BM_Solve"), 0.746)
+
+    def test_what_is_missing_is_named(self):
+        with self.assertRaisesRegex(ValueError, "BM_Nothing"):
+            speed_targets.google_benchmark("BM_Solve   746 us   746 us   1031", "BM_Nothing")
+        with self.assertRaisesRegex(ValueError, "rays_per_s"):
+            speed_targets.google_benchmark("BM_Solve   746 us   746 us   1031", "BM_Solve", "rays_per_s")
+        with self.assertRaisesRegex(ValueError, "real time"):
+            speed_targets.real_time_factor("uampc: scene failed")
+        with self.assertRaisesRegex(ValueError, "one way"):
+            speed_targets.one_way_ms("round trip only")
+
+
+class TodaysOutputs(unittest.TestCase):
+    def test_mpc_bench(self):
+        output = output_of(os.path.join(BUILD, "bench", "mpc_bench"), "--benchmark_filter=BM_Solve",
+                           "--benchmark_min_time=0.01")
+        self.assertGreater(speed_targets.google_benchmark(output, "BM_Solve"), 0.0)
+
+    def test_launch(self):
+        output = output_of(os.path.join(BUILD, "bin", "uampc"), "launch",
+                           os.path.join(ROOT, "bench", "scenes", "lockstep_minimal.yaml"), "--set", "clock.duration=2",
+                           "--set", "domain_id=%d" % domain_of_this_test())
+        factor, seconds = speed_targets.real_time_factor(output)
+        self.assertGreater(factor, 1.0)
+        self.assertAlmostEqual(factor, 2.0 / seconds, delta=0.01 * factor)
+
+
+if __name__ == "__main__":
+    unittest.main()
