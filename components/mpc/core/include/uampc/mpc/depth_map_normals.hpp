@@ -6,9 +6,11 @@
 // of a pixel are free, and only the points that the LiDAR rays of U(theta) actually hit need a
 // normal; they are computed on demand and cached for the rest of the control step.
 //
-// The normal of a pixel is the area-weighted normal of the fan of triangles it forms with its
-// 8 ring neighbours (a Newell-style sum of cross products of consecutive neighbour offsets, as in
-// organised-cloud normal estimation). The neighbour in each direction is the first pixel, at most
+// The normal of a local-map point is the area-weighted normal of the fan of triangles it forms
+// with its 8 ring neighbours (a Newell-style sum of cross products of consecutive neighbour
+// offsets, as in organised-cloud normal estimation), found around the point's own pixel (where
+// Eq. 5 puts it, also when a nearer point's splat covers that pixel), whichever pixel of its splat
+// a ray reached: so a point has one normal, however the rays reach it. The neighbour in each direction is the first pixel, at most
 // neighbour_reach_px away, holding a different local-map point than the centre (skipping empty
 // pixels and the centre point's own splat, see PanoramicDepthMap); a neighbour whose range differs from the centre's by more
 // than max_range_jump_ratio is on another surface (occluding or occluded) and is not used. The
