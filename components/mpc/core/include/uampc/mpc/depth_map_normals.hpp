@@ -10,10 +10,11 @@
 // with its 8 ring neighbours (a Newell-style sum of cross products of consecutive neighbour
 // offsets, as in organised-cloud normal estimation), found around the point's own pixel (where
 // Eq. 5 puts it, also when a nearer point's splat covers that pixel), whichever pixel of its splat
-// a ray reached: so a point has one normal, however the rays reach it. The neighbour in each direction is the first pixel, at most
-// neighbour_reach_px away, holding a different local-map point than the centre (skipping empty
-// pixels and the centre point's own splat, see PanoramicDepthMap); a neighbour whose range differs from the centre's by more
-// than max_range_jump_ratio is on another surface (occluding or occluded) and is not used. The
+// a ray reached: so a point has one normal, however the rays reach it. The neighbour in each
+// direction is the first pixel, at most neighbour_reach_px away, holding a different local-map
+// point than the centre (skipping empty pixels and the centre point's own splat, see
+// PanoramicDepthMap); a neighbour whose range differs from the centre's by more than
+// max_range_jump_ratio is on another surface (occluding or occluded) and is not used. The
 // normal is rejected when too few neighbours remain or when a neighbour lies off the fitted plane
 // by more than max_off_plane_ratio of its distance (edges, corners, clutter): like the LO, which
 // only builds point-to-plane residuals on planar patches.
