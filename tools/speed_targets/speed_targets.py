@@ -30,6 +30,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+NUMBER = r"([0-9.]+(?:e[+-]?[0-9]+)?)"  # as C++ streams print a double (9.8e-05 for a short run)
 SIMULATED_STEP_S = 0.005  # clock.step of the scenes measured here (config/scenes/default.yaml)
 
 
@@ -66,7 +67,7 @@ def google_benchmark(output, name, counter=None):
 
 def real_time_factor(output):
     """The launcher's last line: 'uampc: 40 s of sim time in 9.6 s (4.17x real time), ...'."""
-    m = re.search(r"of sim time in ([0-9.]+) s \(([0-9.]+)x real time\)", output)
+    m = re.search(r"of sim time in %s s \(%sx real time\)" % (NUMBER, NUMBER), output)
     if not m:
         raise ValueError("no 'x real time' line in the launch's output")
     return float(m.group(2)), float(m.group(1))
@@ -74,7 +75,7 @@ def real_time_factor(output):
 
 def one_way_ms(output):
     """dds_transfer_bench: 'one way, 20000 points: 0.274 ms (...)'."""
-    m = re.search(r"one way, \d+ points: ([0-9.]+) ms", output)
+    m = re.search(r"one way, \d+ points: %s ms" % NUMBER, output)
     if not m:
         raise ValueError("no 'one way' line in dds_transfer_bench's output")
     return float(m.group(1))
