@@ -77,5 +77,5 @@ for run in "${runs[@]}"; do
     count=$((count + 1))
   fi
 done | xargs -0 -n 1 -P "$jobs" bash -c 'run_one "$1"' _
-finished=$(find "$results" -type f | wc -l)
-for ((i = 0; i < finished; i++)); do cat "$results/$i"; done
+# By index (numerically), whatever ran: a run whose file is missing cannot stop the others' lines.
+find "$results" -type f -printf '%f\n' | sort -n | while read -r i; do cat "$results/$i"; done

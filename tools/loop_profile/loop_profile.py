@@ -32,6 +32,8 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
+from launch_output import real_time_factor  # noqa: E402  (the launcher's last line, read once)
 def part_of(dso):
     """The part a frame's shared object names, or None to look further up the stack."""
     name = os.path.basename(dso)
@@ -61,10 +63,13 @@ def record(scene, duration, core, frequency, overrides, directory):
     for o in overrides:
         command += ["--set", o]
     run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    summary = re.search(r"uampc: ([0-9.]+) s of sim time in ([0-9.]+) s", run.stdout)
-    if run.returncode != 0 or not summary:
-        sys.exit("loop_profile: the run failed:\n" + run.stdout[-3000:])
-    return data, float(summary.group(2))
+    try:
+        if run.returncode != 0:
+            raise ValueError("exit code %d" % run.returncode)
+        _, wall_seconds = real_time_factor(run.stdout)
+    except ValueError as e:
+        sys.exit("loop_profile: the run failed (%s):\n%s" % (e, run.stdout[-3000:]))
+    return data, wall_seconds
 
 
 def samples_by_part(data):

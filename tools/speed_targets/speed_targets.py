@@ -30,7 +30,9 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-NUMBER = r"([0-9.]+(?:e[+-]?[0-9]+)?)"  # as C++ streams print a double (9.8e-05 for a short run)
+sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
+from launch_output import NUMBER, real_time_factor  # noqa: E402  (the launcher's last line, read once)
+
 SIMULATED_STEP_S = 0.005  # clock.step of the scenes measured here (config/scenes/default.yaml)
 
 
@@ -39,7 +41,8 @@ class BenchmarkFailed(Exception):
 
 
 def run(command, what):
-    """Runs a command; returns (stdout + stderr, CPU seconds of it and its children)."""
+    """Runs a command; returns (stdout + stderr, CPU seconds of it and its children, the largest max
+    RSS in KB of any child so far: a `--memory` run comes first)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -63,14 +66,6 @@ def google_benchmark(output, name, counter=None):
         if m:
             return float(m.group(1)) * {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9}[m.group(2)]
     raise ValueError("no line for %s%s in the benchmark's output" % (name, " with " + counter if counter else ""))
-
-
-def real_time_factor(output):
-    """The launcher's last line: 'uampc: 40 s of sim time in 9.6 s (4.17x real time), ...'."""
-    m = re.search(r"of sim time in %s s \(%sx real time\)" % (NUMBER, NUMBER), output)
-    if not m:
-        raise ValueError("no 'x real time' line in the launch's output")
-    return float(m.group(2)), float(m.group(1))
 
 
 def one_way_ms(output):
