@@ -201,7 +201,12 @@ static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>
   // names the processes waited for, asked only when the deadline has passed.
   auto waitProblem = [&](SteadyClock::time_point deadline, const std::function<std::string()>& late,
                          const char* what, SteadyClock::duration timeout) -> std::string {
-    if (std::string problem = check_processes(); !problem.empty()) return problem;
+    if (std::string problem = check_processes(); !problem.empty()) {
+      // A process that failed said why in an acknowledgement it delivered before exiting, which
+      // may have arrived since the last take: its reason, not just its exit status.
+      if (std::string reported = acks.take([](const uampc::msg::StepAck&) {}); !reported.empty()) return reported;
+      return problem;
+    }
     if (SteadyClock::now() > deadline) return noAcknowledgement(what, late(), timeout);
     listener.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
     return {};

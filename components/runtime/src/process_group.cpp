@@ -627,6 +627,16 @@ class ProcessRunner {
     progress_writer_->write(&ack);
   }
 
+  // Before a failed process exits: its last acknowledgement, which says why, is in its readers'
+  // hands. Otherwise the launcher may see the exit first and report only "exited with status 1"
+  // (seen in CI). Bounded: a reader that is gone does not keep the process.
+  void deliverFailure() {
+    const eprosima::fastrtps::Duration_t patience(1, 0);
+    for (DdsWriter* writer : {ack_writer_.get(), progress_writer_.get()}) {
+      if (writer) writer->dds()->wait_for_acknowledgments(patience);
+    }
+  }
+
   // Lockstep: the acknowledgements of step `step` from every process, summed into the number of
   // samples written on each topic; false on timeout or stop.
   bool awaitAcks(std::int64_t step, std::map<std::string, std::uint64_t>& expected, const std::atomic<bool>& stop) {
@@ -747,7 +757,10 @@ class ProcessRunner {
         const bool ok = deliverInputs(&expected) && fireTimers();
         if (!ok && stop) return 0;  // stopped while waiting for samples that will not come
         sendAck(step, t);
-        if (!ok) return 1;
+        if (!ok) {
+          deliverFailure();
+          return 1;
+        }
       }
       // Data may have arrived for later steps; the tick will come.
     }
@@ -783,6 +796,7 @@ class ProcessRunner {
       if (!alone && !awaitAcks(step - 1, expected, stop)) {
         if (stop) return 0;
         reportProgress(step, t);  // the failure, naming the processes this one waited for
+        deliverFailure();
         return 1;
       }
       const bool ok = deliverInputs(&expected) && fireTimers();
@@ -792,7 +806,10 @@ class ProcessRunner {
         reportProgress(step, t);
         next_progress = SteadyClock::now() + std::chrono::milliseconds(100);
       }
-      if (!ok) return 1;
+      if (!ok) {
+        deliverFailure();
+        return 1;
+      }
       if (alone) expected = writtenSoFar();
     }
     while (!stop) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
