@@ -83,10 +83,12 @@ void BM_SceneIntersectOnly(benchmark::State& state) {
   std::vector<Ray> rays;
   for (const auto& p : pattern) rays.push_back({Eigen::Vector3f(-37, 0, 1.5), p.direction, 40.0f});
   std::vector<Hit> hits;
+  // 0: single rays; 1: packets in firing order; 2: packets grouped by laser (as RayCaster casts)
   const bool packets = state.range(0) != 0;
+  const std::vector<std::uint32_t> order = state.range(0) == 2 ? packetOrder(pattern) : std::vector<std::uint32_t>{};
   for (auto _ : state) {
     if (packets) {
-      scene.intersect(rays, hits);
+      scene.intersect(rays, hits, order);
     } else {
       for (const auto& r : rays) benchmark::DoNotOptimize(scene.intersect(r));
     }
@@ -94,7 +96,7 @@ void BM_SceneIntersectOnly(benchmark::State& state) {
   state.counters["rays_per_s"] = benchmark::Counter(
       static_cast<double>(rays.size() * state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_SceneIntersectOnly)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SceneIntersectOnly)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_BuildCampusScene(benchmark::State& state) {
   for (auto _ : state) RayCastScene scene(campus());

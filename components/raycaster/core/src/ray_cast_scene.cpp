@@ -126,11 +126,18 @@ Hit RayCastScene::intersect(const Ray& ray) const {
   return toHit(rh.ray.tfar, rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z, ray.direction);
 }
 
-void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hits) const {
+void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hits,
+                             const std::vector<std::uint32_t>& order) const {
+  if (!order.empty() && order.size() != rays.size()) {
+    throw std::invalid_argument("RayCastScene::intersect: the order has " + std::to_string(order.size()) +
+                                " indices for " + std::to_string(rays.size()) + " rays");
+  }
+  auto index = [&](std::size_t i) -> std::size_t { return order.empty() ? i : order[i]; };
   hits.assign(rays.size(), Hit{});
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  static_assert(kPacketSize == 16, "rtcIntersect16");
   alignas(64) RTCRayHit16 packet{};
   alignas(64) int valid[16] = {};
   for (std::size_t first = 0; first < rays.size(); first += 16) {
@@ -140,7 +147,7 @@ void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hit
         valid[j] = 0;
         continue;
       }
-      const Ray& r = rays[first + j];
+      const Ray& r = rays[index(first + j)];
       valid[j] = -1;
       packet.ray.org_x[j] = r.origin.x();
       packet.ray.org_y[j] = r.origin.y();
@@ -160,8 +167,8 @@ void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hit
     rtcIntersect16(valid, embree_->scene, &context, &packet);
     for (std::size_t j = 0; j < count; ++j) {
       if (packet.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID) continue;
-      hits[first + j] = toHit(packet.ray.tfar[j], packet.hit.Ng_x[j], packet.hit.Ng_y[j], packet.hit.Ng_z[j],
-                              rays[first + j].direction);
+      const std::size_t k = index(first + j);
+      hits[k] = toHit(packet.ray.tfar[j], packet.hit.Ng_x[j], packet.hit.Ng_y[j], packet.hit.Ng_z[j], rays[k].direction);
     }
   }
 }

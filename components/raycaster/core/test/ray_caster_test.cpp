@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "uampc/frames/motorized_lidar.hpp"
@@ -226,6 +227,55 @@ TEST(RayCaster, PacketsAndSingleRaysAgree) {
   for (std::size_t i = 0; i < a.points.size(); ++i) {
     ASSERT_LT((a.points[i].position - b.points[i].position).norm(), 1e-4f);
   }
+}
+
+// Grouping a frame's rays by laser for Embree's packets (packetOrder) only changes the order in
+// which rays are traced: every ray's hit is the same, bit for bit, as in firing order.
+TEST(RayCastScene, PacketOrderDoesNotChangeAnyHit) {
+  world::TriangleMesh mesh = groundPlane();
+  mesh.addBox({5, -2, 0}, {7, 2, 3});
+  mesh.addBox({-3, -6, 0}, {3, -5, 4});
+  mesh.addCylinder({-4, 3, 0}, 0.5f, 4.0f, 12);
+  const RayCastScene scene(mesh);
+  for (const lidar::LidarModel& model : {lidar::livoxMid360(), lidar::livoxAvia(), lidar::velodyneVlp16()}) {
+    const std::vector<PatternPoint> pattern = scanPattern(model, 3);
+    std::vector<Ray> rays;
+    for (const PatternPoint& p : pattern) {
+      const Eigen::Isometry3d T = movingBase(p.time_offset);
+      rays.push_back({T.translation().cast<float>(), (T.linear() * p.direction.cast<double>()).cast<float>(), 40.0f});
+    }
+    const std::vector<std::uint32_t> order = packetOrder(pattern);
+    ASSERT_EQ(order.size(), pattern.size());
+    ASSERT_NE(order[1], 1u) << model.name << ": the order groups nothing";
+    std::vector<Hit> in_firing_order, grouped;
+    scene.intersect(rays, in_firing_order);
+    scene.intersect(rays, grouped, order);
+    std::size_t hits = 0;
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      ASSERT_EQ(in_firing_order[k].valid, grouped[k].valid) << model.name << " ray " << k;
+      ASSERT_EQ(in_firing_order[k].distance, grouped[k].distance) << model.name << " ray " << k;
+      ASSERT_EQ(in_firing_order[k].normal, grouped[k].normal) << model.name << " ray " << k;
+      hits += grouped[k].valid;
+    }
+    EXPECT_GT(hits, rays.size() / 10) << model.name;  // the comparison saw hits on every object
+  }
+  std::vector<Hit> hits;
+  EXPECT_THROW(scene.intersect(std::vector<Ray>(3, Ray{}), hits, {0, 1}), std::invalid_argument);
+}
+
+TEST(RayCaster, PacketOrderGroupsEachLasersShotsInWindows) {
+  std::vector<PatternPoint> points(2 * 16 * 3 + 5);
+  for (std::size_t k = 0; k < points.size(); ++k) points[k].ring = static_cast<std::uint16_t>(k % 3);
+  const std::vector<std::uint32_t> order = packetOrder(points);
+  ASSERT_EQ(order.size(), points.size());
+  std::vector<std::uint32_t> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 0; k < sorted.size(); ++k) ASSERT_EQ(sorted[k], k);  // a permutation
+  // The first packet: laser 0's first 16 shots, in firing order; the next: laser 1's.
+  for (std::size_t j = 0; j < 16; ++j) EXPECT_EQ(order[j], 3 * j);
+  for (std::size_t j = 0; j < 16; ++j) EXPECT_EQ(order[16 + j], 3 * j + 1);
+  // The second window starts after the first's 48 shots.
+  EXPECT_EQ(order[48], 48u);
 }
 
 TEST(RayCaster, PointMapsAreHitAsSmallSpheres) {

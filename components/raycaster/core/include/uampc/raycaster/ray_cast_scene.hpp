@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -44,8 +45,12 @@ class RayCastScene {
   Hit intersect(const Ray& ray) const;
 
   // Many rays, in packets of 16 (faster for bundles of rays from one origin); hits.size() ==
-  // rays.size() afterwards.
-  void intersect(const std::vector<Ray>& rays, std::vector<Hit>& hits) const;
+  // rays.size() afterwards, hits[k] for rays[k]. `order`, if not empty, is a permutation of the
+  // rays' indices: each packet takes the next 16 of it. Packets of nearly parallel rays are
+  // traversed faster (kPacketSize; RayCaster groups a pattern's rays by laser).
+  static constexpr std::size_t kPacketSize = 16;
+  void intersect(const std::vector<Ray>& rays, std::vector<Hit>& hits,
+                 const std::vector<std::uint32_t>& order = {}) const;
 
   std::size_t triangleCount() const { return triangles_; }
   std::size_t pointCount() const { return points_; }

@@ -52,6 +52,10 @@ struct Scan {
 using BasePoseAt = std::function<Eigen::Isometry3d(double t)>;  // T_WB at time t
 using MotorAngleAt = std::function<double(double t)>;           // theta at time t (rad)
 
+// The order in which a pattern's rays go to Embree's packets (RayCastScene::intersect): grouped
+// by laser (ring), each laser's shots in firing order, in windows of kPacketSize shots per laser.
+std::vector<std::uint32_t> packetOrder(const std::vector<PatternPoint>& points);
+
 class RayCaster {
  public:
   RayCaster(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points, RayCasterConfig config);
@@ -80,6 +84,7 @@ class RayCaster {
   // cast twice (a retry, a test), so this saves regenerating it.
   std::uint64_t cached_frame_ = ~std::uint64_t{0};
   std::vector<PatternPoint> cached_pattern_;
+  std::vector<std::uint32_t> packet_order_;  // the rays grouped by laser for Embree's packets
   std::vector<Ray> rays_;         // reused between frames
   frames::PoseKnots lidar_pose_;  // T_WL over the frame being cast
   std::vector<Hit> hits_;
