@@ -57,6 +57,26 @@ TEST(Supervision, RealTimeRestartPolicyRestartsThenGivesUp) {
   EXPECT_NE(r.output.find("run failed: process 'faulty'"), std::string::npos) << r.output;
 }
 
+// A launcher killed outright (SIGKILL: it cannot stop its processes) while a component hangs:
+// the processes get SIGTERM from the kernel (PR_SET_PDEATHSIG), and the hung one, which cannot
+// stop, ends itself after its grace instead of outliving the run forever.
+TEST(Supervision, AHungProcessDoesNotOutliveAKilledLauncher) {
+  const int domain = testDomain(DomainBlock::kSupervision, 6);
+  const std::string log = freshDirectory("killed_launcher") + "/launch.log";
+  const pid_t pid = startLaunch(sourcePath("tests/scenes/fault.yaml") + " --set fault.mode=hang --set domain_id=" +
+                                    std::to_string(domain) + " --set clock.ack_timeout=60",
+                                log, "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components"));
+  ASSERT_TRUE(waitFor([&] { return !processesOfRun(domain, "faulty").empty(); }, std::chrono::seconds(30)))
+      << readFile(log);
+  std::this_thread::sleep_for(std::chrono::seconds(2));  // the component is in its hang by now
+  kill(pid, SIGKILL);
+  EXPECT_EQ(exitCodeOf(pid), -1);  // killed by the signal
+  const bool gone = waitFor([&] { return processesOfRun(domain).empty(); }, std::chrono::seconds(30));
+  for (const pid_t left : processesOfRun(domain)) kill(left, SIGKILL);  // not left for the next test
+  EXPECT_TRUE(gone) << readFile(log);
+  EXPECT_TRUE(logHas(log, "process 'faulty' did not stop within 10 s of being asked to")) << readFile(log);
+}
+
 TEST(Supervision, CtrlCStopsEveryProcessCleanly) {
   const std::string log = freshDirectory("ctrl_c") + "/launch.log";
   const pid_t pid =

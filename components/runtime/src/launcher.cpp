@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -153,6 +154,21 @@ void removeWhatKilledProcessesLeft() {
   }
 }
 
+// A process group asked to stop that does not (a component hung in a callback) ends itself after
+// kStopGrace. The launcher kills such a process after 5 s (stopAll); this is for when the launcher
+// died first (killed, crashed): the process got SIGTERM through PR_SET_PDEATHSIG, and nobody would
+// ever kill it; a lockstep one would hold its DDS domain, a test's pipes or a terminal forever.
+constexpr std::chrono::seconds kStopGrace{10};
+void endIfTheStopHangs(const std::string& process) {
+  std::thread([process] {
+    while (!stopRequested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::this_thread::sleep_for(kStopGrace);
+    std::cerr << "uampc: process '" << process << "' did not stop within " << kStopGrace.count()
+              << " s of being asked to (a component is hung); ending it" << std::endl;
+    std::_Exit(1);  // the hung component holds the main thread: no destructor would finish
+  }).detach();
+}
+
 }  // namespace
 
 // The run's record in its output directory (run_record.hpp); false, said, when it cannot be written.
@@ -269,6 +285,7 @@ int runProcessCommand(const LaunchOptions& options, const std::string& process, 
               << "\n";
     return 2;
   }
+  endIfTheStopHangs(process);
   // 130 on Ctrl-C, like launch: the launcher counts it as a clean stop when it was stopping too.
   return exitCodeAfter(runProcessGroup(scene, process, options.output_directory, stopFlag(), own_clock));
 }
