@@ -66,8 +66,10 @@ TEST(Supervision, AHungProcessDoesNotOutliveAKilledLauncher) {
   const pid_t pid = startLaunch(sourcePath("tests/scenes/fault.yaml") + " --set fault.mode=hang --set domain_id=" +
                                     std::to_string(domain) + " --set clock.ack_timeout=60",
                                 log, "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components"));
-  ASSERT_TRUE(waitFor([&] { return !processesOfRun(domain, "faulty").empty(); }, std::chrono::seconds(30)))
-      << readFile(log);
+  if (!waitFor([&] { return !processesOfRun(domain, "faulty").empty(); }, std::chrono::seconds(30))) {
+    kill(-pid, SIGKILL);
+    FAIL() << "the process 'faulty' did not start\n" << readFile(log);
+  }
   std::this_thread::sleep_for(std::chrono::seconds(2));  // the component is in its hang by now
   kill(pid, SIGKILL);
   EXPECT_EQ(exitCodeOf(pid), -1);  // killed by the signal
