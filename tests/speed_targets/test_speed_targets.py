@@ -15,14 +15,18 @@ import speed_targets  # noqa: E402
 BUILD = os.environ.get("UAMPC_BUILD", os.path.join(ROOT, "build"))
 
 
-def domain_of_this_test():
-    """This test's DDS domain, from the tests' one list (tests/e2e/test_domains.hpp): its block's
-    place in the enum times the block size, so that no test beside it under ctest -j2 shares it."""
+def domain_blocks():
+    """The tests' one list of DDS domain blocks (tests/e2e/test_domains.hpp): (block names in enum
+    order, domains per block). Block 0 (domains below kLockstep's) is left free for a user's runs."""
     with open(os.path.join(ROOT, "tests", "e2e", "test_domains.hpp")) as header:
         text = header.read()
     enum = re.search(r"enum class DomainBlock \{(.*?)\};", text, re.S).group(1)
-    blocks = re.findall(r"^\s*(k\w+)", enum, re.M)
-    per_test = int(re.search(r"kDomainsPerTest = (\d+)", text).group(1))
+    return re.findall(r"^\s*(k\w+)", enum, re.M), int(re.search(r"kDomainsPerTest = (\d+)", text).group(1))
+
+
+def domain_of_this_test():
+    """This test's block's first domain, so that no test beside it under ctest -j2 shares it."""
+    blocks, per_test = domain_blocks()
     return (blocks.index("kSpeedTargets") + 1) * per_test  # kLockstep = 1
 
 
@@ -57,6 +61,13 @@ class Parsers(unittest.TestCase):
             speed_targets.real_time_factor("uampc: scene failed")
         with self.assertRaisesRegex(ValueError, "one way"):
             speed_targets.one_way_ms("round trip only")
+
+
+class Defaults(unittest.TestCase):
+    def test_the_default_domain_is_in_the_block_the_tests_leave_free(self):
+        _, per_test = domain_blocks()
+        self.assertLess(speed_targets.DEFAULT_DOMAIN, per_test)
+        self.assertNotEqual(speed_targets.DEFAULT_DOMAIN, 0)  # the default scenes' domain
 
 
 class TodaysOutputs(unittest.TestCase):

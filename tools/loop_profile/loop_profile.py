@@ -34,6 +34,8 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
 from launch_output import real_time_factor  # noqa: E402  (the launcher's last line, read once)
+
+
 def part_of(dso):
     """The part a frame's shared object names, or None to look further up the stack."""
     name = os.path.basename(dso)

@@ -379,6 +379,7 @@ class ProcessRunner {
     stop_ = &stop;
     if (!createComponents()) return 1;
     const int code = state_.lockstep ? runLockstep(stop) : runRealtime(stop);
+    if (code != 0) deliverFailure();
     for (auto& [name, component] : components_) {
       try {
         component->shutdown();
@@ -627,9 +628,10 @@ class ProcessRunner {
     progress_writer_->write(&ack);
   }
 
-  // Before a failed process exits: its last acknowledgement, which says why, is in its readers'
-  // hands. Otherwise the launcher may see the exit first and report only "exited with status 1"
-  // (seen in CI). Bounded: a reader that is gone does not keep the process.
+  // Before a failed lockstep process exits (run(), on any failure): its last acknowledgement, which
+  // says why, is in its readers' hands. Otherwise the launcher may see the exit first and report
+  // only "exited with status 1" (seen in CI). Bounded: a reader that is gone does not keep the
+  // process; without acknowledgement writers (real time, or a failure before they exist) a no-op.
   void deliverFailure() {
     const eprosima::fastrtps::Duration_t patience(1, 0);
     for (DdsWriter* writer : {ack_writer_.get(), progress_writer_.get()}) {
@@ -757,10 +759,7 @@ class ProcessRunner {
         const bool ok = deliverInputs(&expected) && fireTimers();
         if (!ok && stop) return 0;  // stopped while waiting for samples that will not come
         sendAck(step, t);
-        if (!ok) {
-          deliverFailure();
-          return 1;
-        }
+        if (!ok) return 1;
       }
       // Data may have arrived for later steps; the tick will come.
     }
@@ -796,7 +795,6 @@ class ProcessRunner {
       if (!alone && !awaitAcks(step - 1, expected, stop)) {
         if (stop) return 0;
         reportProgress(step, t);  // the failure, naming the processes this one waited for
-        deliverFailure();
         return 1;
       }
       const bool ok = deliverInputs(&expected) && fireTimers();
@@ -806,10 +804,7 @@ class ProcessRunner {
         reportProgress(step, t);
         next_progress = SteadyClock::now() + std::chrono::milliseconds(100);
       }
-      if (!ok) {
-        deliverFailure();
-        return 1;
-      }
+      if (!ok) return 1;
       if (alone) expected = writtenSoFar();
     }
     while (!stop) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));

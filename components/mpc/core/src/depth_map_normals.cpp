@@ -39,14 +39,13 @@ bool DepthMapNormals::estimate(const PanoramicDepthMap& map, std::int32_t centre
   if (centre_pixel < 0) return false;
   const int width = map.width();
   const int height = map.height();
-  const int pixel = centre_pixel;
-  const int u = pixel % width;
-  const int v = pixel / width;
+  const int u = centre_pixel % width;
+  const int v = centre_pixel / width;
   const Eigen::Vector3f& centre = map.centrePoint(centre_pixel);
   const float range = centre.norm();
   const float max_jump = static_cast<float>(config_.max_range_jump_ratio) * range;
 
-  // The 8 ring directions in angular order around the pixel.
+  // The 8 ring directions in angular order around the point's pixel.
   static constexpr int kDu[8] = {1, 1, 0, -1, -1, -1, 0, 1};
   static constexpr int kDv[8] = {0, -1, -1, -1, 0, 1, 1, 1};
   Eigen::Vector3f offsets[8];
@@ -58,7 +57,7 @@ bool DepthMapNormals::estimate(const PanoramicDepthMap& map, std::int32_t centre
         kDv[k] < 0 ? v : (kDv[k] > 0 ? height - 1 - v : config_.neighbour_reach_px);
     const int reach = std::min(config_.neighbour_reach_px, rows_left);
     int uu = u;
-    int q = pixel;
+    int q = centre_pixel;
     for (int step = 1; step <= reach; ++step) {
       // Columns wrap; stepping by one pixel needs no integer division (which cost most of the
       // time here when written as a modulo).
