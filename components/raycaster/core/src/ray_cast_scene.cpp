@@ -137,12 +137,12 @@ void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hit
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  static_assert(kPacketSize == 16, "rtcIntersect16");
-  alignas(64) RTCRayHit16 packet{};
-  alignas(64) int valid[16] = {};
-  for (std::size_t first = 0; first < rays.size(); first += 16) {
-    const std::size_t count = std::min<std::size_t>(16, rays.size() - first);
-    for (std::size_t j = 0; j < 16; ++j) {
+  static_assert(kPacketSize == 8, "rtcIntersect8");
+  alignas(64) RTCRayHit8 packet{};
+  alignas(64) int valid[kPacketSize] = {};
+  for (std::size_t first = 0; first < rays.size(); first += kPacketSize) {
+    const std::size_t count = std::min(kPacketSize, rays.size() - first);
+    for (std::size_t j = 0; j < kPacketSize; ++j) {
       if (j >= count) {
         valid[j] = 0;
         continue;
@@ -164,7 +164,7 @@ void RayCastScene::intersect(const std::vector<Ray>& rays, std::vector<Hit>& hit
       packet.hit.geomID[j] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][j] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect16(valid, embree_->scene, &context, &packet);
+    rtcIntersect8(valid, embree_->scene, &context, &packet);
     for (std::size_t j = 0; j < count; ++j) {
       if (packet.hit.geomID[j] == RTC_INVALID_GEOMETRY_ID) continue;
       const std::size_t k = index(first + j);

@@ -264,18 +264,19 @@ TEST(RayCastScene, PacketOrderDoesNotChangeAnyHit) {
 }
 
 TEST(RayCaster, PacketOrderGroupsEachLasersShotsInWindows) {
-  std::vector<PatternPoint> points(2 * 16 * 3 + 5);
+  constexpr std::size_t kPacket = RayCastScene::kPacketSize;
+  std::vector<PatternPoint> points(2 * kPacket * 3 + 5);
   for (std::size_t k = 0; k < points.size(); ++k) points[k].ring = static_cast<std::uint16_t>(k % 3);
   const std::vector<std::uint32_t> order = packetOrder(points);
   ASSERT_EQ(order.size(), points.size());
   std::vector<std::uint32_t> sorted = order;
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t k = 0; k < sorted.size(); ++k) ASSERT_EQ(sorted[k], k);  // a permutation
-  // The first packet: laser 0's first 16 shots, in firing order; the next: laser 1's.
-  for (std::size_t j = 0; j < 16; ++j) EXPECT_EQ(order[j], 3 * j);
-  for (std::size_t j = 0; j < 16; ++j) EXPECT_EQ(order[16 + j], 3 * j + 1);
-  // The second window starts after the first's 48 shots.
-  EXPECT_EQ(order[48], 48u);
+  // The first packet: laser 0's first kPacket shots, in firing order; the next: laser 1's.
+  for (std::size_t j = 0; j < kPacket; ++j) EXPECT_EQ(order[j], 3 * j);
+  for (std::size_t j = 0; j < kPacket; ++j) EXPECT_EQ(order[kPacket + j], 3 * j + 1);
+  // The second window starts after the first's 3 * kPacket shots.
+  EXPECT_EQ(order[3 * kPacket], 3 * kPacket);
 }
 
 TEST(RayCaster, PointMapsAreHitAsSmallSpheres) {

@@ -44,11 +44,15 @@ class RayCastScene {
   // First hit along one ray, from its origin up to max_distance.
   Hit intersect(const Ray& ray) const;
 
-  // Many rays, in packets of 16 (faster for bundles of rays from one origin); hits.size() ==
-  // rays.size() afterwards, hits[k] for rays[k]. `order`, if not empty, is a permutation of the
-  // rays' indices: each packet takes the next 16 of it. Packets of nearly parallel rays are
-  // traversed faster (kPacketSize; RayCaster groups a pattern's rays by laser).
-  static constexpr std::size_t kPacketSize = 16;
+  // Many rays, in packets of kPacketSize (faster for bundles of rays from one origin);
+  // hits.size() == rays.size() afterwards, hits[k] for rays[k]. `order`, if not empty, is a
+  // permutation of the rays' indices: each packet takes the next kPacketSize of it. Packets of
+  // nearly parallel rays are traversed faster (RayCaster groups a pattern's rays by laser).
+  // 8 rays: an AVX2 register's width of floats. Packets of 16 are emulated on AVX2 and cost more:
+  // a Mid-360 frame's intersections took 2.15-2.27 ms in packets of 16 against 1.91-1.93 ms in
+  // packets of 8 (`raycaster_core_bench` BM_SceneIntersectOnly/2, one core, three alternating
+  // rounds, 2026-11-28); the hits are the same.
+  static constexpr std::size_t kPacketSize = 8;
   void intersect(const std::vector<Ray>& rays, std::vector<Hit>& hits,
                  const std::vector<std::uint32_t>& order = {}) const;
 

@@ -31,7 +31,7 @@ struct RayCasterConfig {
   double dropout_probability = 0.0;   // chance that a return is lost
   std::uint64_t seed = 0;             // noise and dropout; frame k uses a seed mixed from (seed, k)
   float point_radius = 0.05f;         // m, spheres for point maps (see RayCastScene)
-  bool use_packets = true;            // cast in packets of 16 rays (same result, faster)
+  bool use_packets = true;            // cast in packets (RayCastScene::kPacketSize rays; same result, faster)
 };
 
 // One return, in the LiDAR frame at its own time (docs/design.md section 4 scan fields).
