@@ -1,8 +1,15 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "uampc/frames/detail/ray_rotation.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
 #include "uampc/frames/pose_knots.hpp"
+#include "uampc/simd/dispatch.hpp"
 
 namespace uampc::frames {
 namespace {
@@ -88,6 +95,94 @@ TEST(PoseKnots, InterpolatesAFastRigFarBelowFloatPrecision) {
   // A frame of one instant: every time gets that pose.
   knots.build(t0, t0, exact);
   EXPECT_LT((knots(t0).translation() - exact(t0).translation()).norm(), 1e-12);
+}
+
+bool sameBits(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(float) * 3) == 0;
+}
+
+// Random blended quaternions (not normalised, as a blend of two unit ones is) and unit directions,
+// with the awkward ones: a zero quaternion and a zero direction (returned as they are), a
+// quaternion far from unit length, and the axes.
+detail::RayBlock awkwardRays(std::mt19937& rng, int n) {
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+  detail::RayBlock block;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector4d q = Eigen::Vector4d(coefficient(rng), coefficient(rng), coefficient(rng), coefficient(rng));
+    const Eigen::Vector3d d = Eigen::Vector3d(coefficient(rng), coefficient(rng), coefficient(rng)).normalized();
+    block.qx[i] = q.x(), block.qy[i] = q.y(), block.qz[i] = q.z(), block.qw[i] = q.w();
+    block.dx[i] = static_cast<float>(d.x()), block.dy[i] = static_cast<float>(d.y()),
+    block.dz[i] = static_cast<float>(d.z());
+  }
+  block.qx[0] = block.qy[0] = block.qz[0] = block.qw[0] = 0.0;
+  block.dx[1] = block.dy[1] = block.dz[1] = 0.0;
+  block.qx[2] *= 1e3, block.qw[2] *= 1e3;
+  block.dx[3] = 1.0, block.dy[3] = block.dz[3] = 0.0;
+  return block;
+}
+
+// The vectorised ray rotation gives, bit for bit, what Eigen gives: normalised(float(
+// q.normalized() * d)) (the raycaster's rays were computed so before the loop was vectorised, and
+// lockstep runs keep their outputs), in both builds.
+TEST(RayRotation, IsEigensBitForBitInBothBuilds) {
+  std::mt19937 rng(3);
+  const int n = detail::RayBlock::kSize - 3;  // not a multiple of a vector's width
+  for (int round = 0; round < 20; ++round) {
+    detail::RayBlock baseline = awkwardRays(rng, n);
+    detail::RayBlock avx2 = baseline;
+    const detail::RayBlock in = baseline;
+    detail::builds::rotateRaysBaseline(n, baseline);
+    if (simd::cpuHasAvx2()) detail::builds::rotateRaysAvx2(n, avx2);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Quaterniond q(in.qw[i], in.qx[i], in.qy[i], in.qz[i]);
+      const Eigen::Vector3d d(in.dx[i], in.dy[i], in.dz[i]);
+      const Eigen::Vector3f expected = (q.normalized() * d).cast<float>().normalized();
+      const Eigen::Vector3f got(baseline.ux[i], baseline.uy[i], baseline.uz[i]);
+      ASSERT_TRUE(sameBits(got, expected)) << "ray " << i << ": " << got.transpose() << " against "
+                                            << expected.transpose();
+      if (simd::cpuHasAvx2()) {
+        ASSERT_TRUE(sameBits(Eigen::Vector3f(avx2.ux[i], avx2.uy[i], avx2.uz[i]), expected)) << "AVX2, ray " << i;
+      }
+    }
+  }
+  if (!simd::cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU: only the baseline build was compared";
+}
+
+// placeRays: each ray's origin is the knots' position at its time (the same bits), and its
+// direction the knots' rotation of it; over several blocks and a partial one, times before, within
+// and after the knots.
+TEST(PoseKnots, PlacesEveryRayWithThePoseAtItsTime) {
+  const auto pose = [](double t) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(7.2 * t, Eigen::Vector3d(0.3, -0.5, 1.0).normalized()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(-40.0 + 5.0 * t, 2.0 * t * t, 1.5);
+    return T;
+  };
+  PoseKnots knots;
+  knots.build(0.0, 0.0999, pose);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> time(-0.01, 0.11);
+  std::uniform_real_distribution<float> coordinate(-1.0F, 1.0F);
+  const std::size_t n = 3 * detail::RayBlock::kSize + 17;
+  std::vector<double> times(n);
+  std::vector<Eigen::Vector3f> directions(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    times[k] = time(rng);
+    directions[k] = Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng)).normalized();
+  }
+  std::vector<int> written(n, 0);
+  knots.placeRays(
+      n, [&](std::size_t k) { return times[k]; }, [&](std::size_t k) { return directions[k]; },
+      [&](std::size_t k, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) {
+        ASSERT_LT(k, n);
+        ++written[k];
+        const Eigen::Isometry3d T = knots(times[k]);
+        EXPECT_TRUE(sameBits(origin, T.translation().cast<float>())) << "ray " << k;
+        const Eigen::Vector3f expected = (T.linear() * directions[k].cast<double>()).cast<float>();
+        EXPECT_LT((direction - expected).norm(), 1e-6F) << "ray " << k;
+        EXPECT_NEAR(direction.norm(), 1.0F, 1e-6F);
+      });
+  EXPECT_EQ(std::count(written.begin(), written.end(), 1), static_cast<long>(n));  // each once
 }
 
 }  // namespace

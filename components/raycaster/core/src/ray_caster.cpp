@@ -88,14 +88,12 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const B
     return base_pose_at(t) * frames::lidarPoseInBase(motor_angle_at(t), config_.calibration);
   });
   rays_.resize(points.size());
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    Eigen::Vector3d origin, direction;
-    lidar_pose_.placeRay(frame_start + static_cast<double>(points[k].time_offset), points[k].direction.cast<double>(),
-                         origin, direction);
-    rays_[k].origin = origin.cast<float>();
-    rays_[k].direction = direction.cast<float>().normalized();
-    rays_[k].max_distance = max_range;
-  }
+  lidar_pose_.placeRays(
+      points.size(), [&](std::size_t k) { return frame_start + static_cast<double>(points[k].time_offset); },
+      [&](std::size_t k) { return points[k].direction; },
+      [&](std::size_t k, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) {
+        rays_[k] = {origin, direction, max_range};
+      });
   if (config_.use_packets) {
     scene_.intersect(rays_, hits_, packet_order_);
   } else {

@@ -15,6 +15,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "uampc/frames/detail/ray_rotation.hpp"
+
 namespace uampc::frames {
 
 class PoseKnots {
@@ -47,13 +49,36 @@ class PoseKnots {
     return T;
   }
 
-  // The same pose applied to a ray, for the ~20k rays of a frame: the origin and the unit
-  // direction in the world of a direction `d` of the moving frame, without building the rotation
-  // matrix (a third of the raycaster's time per frame).
-  void placeRay(double t, const Eigen::Vector3d& d, Eigen::Vector3d& origin, Eigen::Vector3d& direction) const {
-    const Blend b = blendAt(t);
-    origin = translation(b);
-    direction = rotation(b) * d;
+  // The same pose applied to the ~20k rays of a frame, without building a rotation matrix per ray:
+  // ray k leaves at time_at(k) (s) along direction_at(k) (Eigen::Vector3f, in the moving frame);
+  // write(k, origin, direction) gets its origin and unit direction in the world, in float. The
+  // rotation's normalisation and the rotated direction's are square roots and divisions per ray,
+  // most of the placement's cost, so a block of rays goes through them together, vectorised
+  // (detail::rotateRays); the bits are Eigen's (frames_test).
+  template <class TimeAt, class DirectionAt, class Write>
+  void placeRays(std::size_t n, const TimeAt& time_at, const DirectionAt& direction_at, const Write& write) const {
+    detail::RayBlock block;
+    Eigen::Vector3f origins[detail::RayBlock::kSize];
+    for (std::size_t first = 0; first < n; first += detail::RayBlock::kSize) {
+      const int count = static_cast<int>(std::min<std::size_t>(detail::RayBlock::kSize, n - first));
+      for (int i = 0; i < count; ++i) {
+        const Blend b = blendAt(time_at(first + i));
+        const Eigen::Vector4d q = blendedRotation(b);  // (x, y, z, w), not normalised
+        block.qx[i] = q.x();
+        block.qy[i] = q.y();
+        block.qz[i] = q.z();
+        block.qw[i] = q.w();
+        const Eigen::Vector3d d = direction_at(first + i).template cast<double>();
+        block.dx[i] = d.x();
+        block.dy[i] = d.y();
+        block.dz[i] = d.z();
+        origins[i] = translation(b).template cast<float>();
+      }
+      detail::rotateRays(count, block);
+      for (int i = 0; i < count; ++i) {
+        write(first + i, origins[i], Eigen::Vector3f(block.ux[i], block.uy[i], block.uz[i]));
+      }
+    }
   }
 
   std::size_t size() const { return translations_.size(); }
@@ -69,11 +94,10 @@ class PoseKnots {
     const std::size_t j = u <= 0.0 ? 0 : std::min(static_cast<std::size_t>(u), last);
     return {j, u - static_cast<double>(j)};
   }
-  Eigen::Quaterniond rotation(const Blend& b) const {
-    Eigen::Quaterniond q;
-    q.coeffs() = (1.0 - b.a) * rotations_[b.j].coeffs() + b.a * rotations_[b.j + 1].coeffs();
-    return q.normalized();
+  Eigen::Vector4d blendedRotation(const Blend& b) const {
+    return (1.0 - b.a) * rotations_[b.j].coeffs() + b.a * rotations_[b.j + 1].coeffs();
   }
+  Eigen::Quaterniond rotation(const Blend& b) const { return Eigen::Quaterniond(blendedRotation(b)).normalized(); }
   Eigen::Vector3d translation(const Blend& b) const {
     return (1.0 - b.a) * translations_[b.j] + b.a * translations_[b.j + 1];
   }
