@@ -44,6 +44,23 @@ std::map<std::string, std::vector<std::pair<Time, Time>>> arrivals(const std::st
   return by_topic;
 }
 
+// What a run in real time must deliver at least.
+struct RealTimeCounts {
+  std::size_t scans, odometry, motor_states, servo_packets, latencies;
+};
+
+#if defined(__SANITIZE_THREAD__)
+constexpr bool kUnderThreadSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+constexpr bool kUnderThreadSanitizer = true;
+#else
+constexpr bool kUnderThreadSanitizer = false;
+#endif
+#else
+constexpr bool kUnderThreadSanitizer = false;
+#endif
+
 double percentile(std::vector<double> values, double p) {
   std::sort(values.begin(), values.end());
   return values[std::min(values.size() - 1, static_cast<std::size_t>(p * (values.size() - 1) + 0.5))];
@@ -82,11 +99,15 @@ TEST(DynamixelBridge, TheRigSceneRunsOnARecordedLidarAndTheEmulatedServo) {
   const auto& scans = heard.at("/livox/lidar");
   const auto& odometry = heard.at("/lo/odometry");
   const auto& commands = heard.at("/motor/command");
-  // 6 s at 10 Hz, 60 scans; best-effort on a loaded machine loses some.
-  EXPECT_GE(scans.size(), 40u);
-  EXPECT_GE(odometry.size(), 30u);
-  EXPECT_GE(heard.at("/motor/state").size(), 1400u);  // 14 s at 200 Hz, less the start and a loaded machine
-  EXPECT_GT(emulator.packetsReceived(), 2000u);
+  // 6 s at 10 Hz, 60 scans; best-effort on a loaded machine loses some. ThreadSanitizer's build runs
+  // the LO and UA-MPC several times slower than real time, and its runs kept 32-38 scans and 1369
+  // motor states (2026-11-28): there the run must still work, race-free, at a lower rate.
+  const RealTimeCounts expected = kUnderThreadSanitizer ? RealTimeCounts{20, 15, 1000, 1000, 10}
+                                                        : RealTimeCounts{40, 30, 1400, 2000, 25};
+  EXPECT_GE(scans.size(), expected.scans);
+  EXPECT_GE(odometry.size(), expected.odometry);
+  EXPECT_GE(heard.at("/motor/state").size(), expected.motor_states);  // 14 s at 200 Hz, less the start
+  EXPECT_GT(emulator.packetsReceived(), expected.servo_packets);
 
   // Scan arrival -> the first command published after the odometry of that scan (the bridge writes
   // each command on the bus as it arrives: one 16-byte write, 0.3 ms at 1 Mbps).
@@ -99,7 +120,7 @@ TEST(DynamixelBridge, TheRigSceneRunsOnARecordedLidarAndTheEmulatedServo) {
     if (scan == scans.rend() || command == commands.end()) continue;
     latencies.push_back((command->first - scan->first).seconds());
   }
-  ASSERT_GE(latencies.size(), 25u);
+  ASSERT_GE(latencies.size(), expected.latencies);
   std::cout << "scan arrival to motor command, " << latencies.size() << " scans: median "
             << percentile(latencies, 0.5) * 1e3 << " ms, p99 " << percentile(latencies, 0.99) * 1e3 << " ms\n";
 }
