@@ -58,13 +58,18 @@ std::vector<PatternPoint> scanPattern(const lidar::LidarModel& m, std::uint64_t 
 
 ScanPatternGenerator::ScanPatternGenerator(lidar::LidarModel model)
     : model_(std::move(model)), points_(pointsPerFrame(model_)) {
+  if (model_.kind == lidar::ScanPatternKind::kSpinning) return;
+  times_.resize(points_);
+  for (std::size_t k = 0; k < points_; ++k) times_[k] = static_cast<double>(k) / model_.points_per_second;
+  for (int laser = 0; laser < model_.lasers; ++laser) {
+    laser_phases_.push_back(static_cast<double>(laser) / model_.lasers);
+  }
   if (model_.kind != lidar::ScanPatternKind::kZigzag) return;
   cos_azimuth_.resize(points_);
   sin_azimuth_.resize(points_);
   for (std::size_t k = 0; k < points_; ++k) {
-    const double t = static_cast<double>(k) / model_.points_per_second;
     // One head turn per frame.
-    const double azimuth = 2.0 * M_PI * t * model_.frame_rate_hz;
+    const double azimuth = 2.0 * M_PI * times_[k] * model_.frame_rate_hz;
     cos_azimuth_[k] = std::cos(azimuth);
     sin_azimuth_[k] = std::sin(azimuth);
   }
@@ -92,12 +97,11 @@ void ScanPatternGenerator::generate(std::uint64_t frame_index, std::vector<Patte
     }
     case lidar::ScanPatternKind::kZigzag: {
       const double lo = m.min_elevation_deg * kDegToRad, hi = m.max_elevation_deg * kDegToRad;
-      for (std::size_t k = 0; k < n; ++k) {
-        const double t = static_cast<double>(k) / m.points_per_second;
-        const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
+      const std::size_t lasers = laser_phases_.size();
+      for (std::size_t k = 0, laser = 0; k < n; ++k, laser = laser + 1 == lasers ? 0 : laser + 1) {
+        const double t = times_[k];
         // The lasers sweep the elevation band as triangle waves.
-        const double p =
-            frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) + static_cast<double>(laser) / m.lasers);
+        const double p = frac(phase(m.sweep_frequency_hz, frame_index, m.frame_rate_hz, t) + laser_phases_[laser]);
         const double wave = p < 0.5 ? 2.0 * p : 2.0 - 2.0 * p;
         pattern[k] = {direction(cos_azimuth_[k], sin_azimuth_[k], lo + (hi - lo) * wave), static_cast<float>(t),
                       static_cast<std::uint16_t>(laser)};
@@ -107,12 +111,11 @@ void ScanPatternGenerator::generate(std::uint64_t frame_index, std::vector<Patte
     case lidar::ScanPatternKind::kRosette: {
       const double half_h = 0.5 * m.horizontal_fov_deg * kDegToRad;
       const double half_v = 0.5 * m.vertical_fov_deg * kDegToRad;
-      for (std::size_t k = 0; k < n; ++k) {
-        const double t = static_cast<double>(k) / m.points_per_second;
-        const std::size_t laser = k % static_cast<std::size_t>(m.lasers);
+      const std::size_t lasers = laser_phases_.size();
+      for (std::size_t k = 0, laser = 0; k < n; ++k, laser = laser + 1 == lasers ? 0 : laser + 1) {
+        const double t = times_[k];
         // Two prisms turning opposite ways; their deflections add up to a point in the unit disk.
-        const double a1 =
-            2.0 * M_PI * (phase(m.prism1_hz, frame_index, m.frame_rate_hz, t) + static_cast<double>(laser) / m.lasers);
+        const double a1 = 2.0 * M_PI * (phase(m.prism1_hz, frame_index, m.frame_rate_hz, t) + laser_phases_[laser]);
         const double a2 = -2.0 * M_PI * phase(m.prism2_hz, frame_index, m.frame_rate_hz, t);
         const double u = 0.5 * (std::cos(a1) + std::cos(a2));
         const double v = 0.5 * (std::sin(a1) + std::sin(a2));

@@ -27,8 +27,8 @@ std::vector<PatternPoint> scanPattern(const lidar::LidarModel& model, std::uint6
 
 // The same patterns frame after frame, keeping what does not change between frames: a zigzag
 // head's azimuth is the same at the same point of every frame, so the sine and cosine of it are
-// computed once (the trigonometry was most of a Mid-360 pattern's 0.7 ms). Same points, bit for
-// bit, as scanPattern.
+// computed once (the trigonometry was most of a Mid-360 pattern's 0.7 ms), and so are each point's
+// firing time and each laser's phase offset. Same points, bit for bit, as scanPattern.
 class ScanPatternGenerator {
  public:
   explicit ScanPatternGenerator(lidar::LidarModel model);
@@ -39,6 +39,10 @@ class ScanPatternGenerator {
   lidar::LidarModel model_;
   std::size_t points_;
   std::vector<double> cos_azimuth_, sin_azimuth_;  // zigzag: per point of a frame
+  // Zigzag and rosette: each point's firing time in the frame, k / points_per_second (s), and each
+  // laser's phase offset, laser / lasers: the same values every frame, so the two divisions per
+  // point are done once (same operations, same bits).
+  std::vector<double> times_, laser_phases_;
 };
 
 }  // namespace uampc::raycaster
