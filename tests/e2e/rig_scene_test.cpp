@@ -49,14 +49,8 @@ struct RealTimeCounts {
   std::size_t scans, odometry, motor_states, servo_packets, latencies;
 };
 
-#if defined(__SANITIZE_THREAD__)
+#ifdef __SANITIZE_THREAD__  // GCC's mark of -fsanitize=thread (UAMPC_SANITIZE=thread)
 constexpr bool kUnderThreadSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
-constexpr bool kUnderThreadSanitizer = true;
-#else
-constexpr bool kUnderThreadSanitizer = false;
-#endif
 #else
 constexpr bool kUnderThreadSanitizer = false;
 #endif
