@@ -26,6 +26,11 @@ it off, 0 of 9 runs did (2026-11-28). The program itself runs as it does anywher
 
   tools/loop_profile/loop_profile.py [--scene config/scenes/default.yaml] [--short 10] [--long 40]
                                      [--core 0] [--frequency 499] [--set NAME=VALUE ...]
+                                     [--functions N]
+
+With --functions N it also prints, for each part above 5 % of the loop, its N costliest functions
+(the function each sample was taken in, as `perf report` names it, inlined code counted in the
+function it was inlined into), the same way per simulated second.
 
 Needs perf (Debian: linux-perf) and a built build/bin/uampc. Prints a Markdown table.
 """
@@ -81,49 +86,85 @@ def record(scene, duration, core, frequency, overrides, directory):
     return data, wall_seconds
 
 
-def samples_by_part(data):
-    script = subprocess.run(["perf", "script", "-i", data, "-F", "comm,tid,ip,sym,dso"], stdout=subprocess.PIPE,
-                            stderr=subprocess.DEVNULL, text=True).stdout
+NOT_UNWOUND = "not unwound (a library's leaf, no caller)"
+KERNEL_AND_OTHER = "kernel and other"
+
+
+def dso_of(frame):
+    """The shared object a `perf script` frame line names in its last parentheses."""
+    return frame[frame.rfind("(") + 1:frame.rfind(")")]
+
+
+def owner_of(frames):
+    """The part a sample's frames (leaf first) belong to."""
+    for frame in frames:
+        part = part_of(dso_of(frame))
+        if part:
+            return part
+    return KERNEL_AND_OTHER if dso_of(frames[0]).startswith("[kernel") else NOT_UNWOUND
+
+
+def leaf_function(frames):
+    """The function the sample was taken in, as `perf report` names it: the first frame that is not
+    inlined into another, with its shared object's file name."""
+    frame = next((f for f in frames if dso_of(f) != "inlined"), frames[0])
+    symbol = frame.strip().split(None, 1)[1] if len(frame.split()) > 1 else frame.strip()
+    symbol = symbol[:symbol.rfind("(")].strip()
+    return "%s (%s)" % (symbol, os.path.basename(dso_of(frame)))
+
+
+def samples_by_part(script):
+    """From `perf script -F comm,tid,ip,sym,dso` output: samples per part, and per part the
+    samples per leaf function."""
     counts = collections.Counter()
+    functions = collections.defaultdict(collections.Counter)
     for block in script.split("\n\n"):
         frames = [line for line in block.splitlines()[1:] if line.strip()]
         if not frames:
             continue
-        part = None
-        for frame in frames:
-            dso = frame[frame.rfind("(") + 1:frame.rfind(")")]
-            part = part_of(dso)
-            if part:
-                break
-        if part is None:
-            leaf_dso = frames[0][frames[0].rfind("(") + 1:frames[0].rfind(")")]
-            part = "kernel and other" if leaf_dso.startswith("[kernel") else "not unwound (a library's leaf, no caller)"
+        part = owner_of(frames)
         counts[part] += 1
-    return counts
+        functions[part][leaf_function(frames)] += 1
+    return counts, functions
+
+
+def perf_script(data):
+    return subprocess.run(["perf", "script", "-i", data, "-F", "comm,tid,ip,sym,dso"], stdout=subprocess.PIPE,
+                          stderr=subprocess.DEVNULL, text=True).stdout
+
+
+def per_simulated_second(short_counts, long_counts, ms_per_sample, seconds):
+    """(key, CPU ms per simulated second) from the samples of a short and a long run, costliest first:
+    the difference of the two runs, so that start-up drops out."""
+    rows = [(key, (long_counts[key] - short_counts[key]) * ms_per_sample / seconds)
+            for key in set(short_counts) | set(long_counts)]
+    rows.sort(key=lambda r: (-r[1], r[0]))
+    return rows
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--scene", default=os.path.join(ROOT, "config/scenes/default.yaml"))
+    parser.add_argument("--scene", default=os.path.join(ROOT, "config/scenes/default.yaml"),
+                        help="the scene to run (default: the default scene)")
     parser.add_argument("--short", type=float, default=10.0, help="s of sim time of the short run")
     parser.add_argument("--long", type=float, default=40.0, help="s of sim time of the long run")
-    parser.add_argument("--core", type=int, default=0)
+    parser.add_argument("--core", type=int, default=0, help="the core both runs are pinned to (taskset)")
     parser.add_argument("--frequency", type=int, default=499, help="samples per CPU second")
-    parser.add_argument("--set", action="append", default=[], dest="overrides", metavar="NAME=VALUE")
+    parser.add_argument("--set", action="append", default=[], dest="overrides", metavar="NAME=VALUE",
+                        help="an override for both runs, as `uampc launch --set` takes it (repeatable)")
+    parser.add_argument("--functions", type=int, default=0, metavar="N",
+                        help="also the N costliest functions inside each part above 5 %% of the loop")
     args = parser.parse_args()
     if not args.long > args.short:
         sys.exit("loop_profile: --long must be longer than --short")
     with tempfile.TemporaryDirectory(prefix="loop_profile.") as directory:
         short_data, short_wall = record(args.scene, args.short, args.core, args.frequency, args.overrides, directory)
         long_data, long_wall = record(args.scene, args.long, args.core, args.frequency, args.overrides, directory)
-        short_counts, long_counts = samples_by_part(short_data), samples_by_part(long_data)
+        short_counts, short_functions = samples_by_part(perf_script(short_data))
+        long_counts, long_functions = samples_by_part(perf_script(long_data))
     seconds = args.long - args.short
     ms_per_sample = 1000.0 / args.frequency
-    rows = []
-    for part in set(short_counts) | set(long_counts):
-        per_s = (long_counts[part] - short_counts[part]) * ms_per_sample / seconds
-        rows.append((part, per_s))
-    rows.sort(key=lambda r: -r[1])
+    rows = per_simulated_second(short_counts, long_counts, ms_per_sample, seconds)
     total = sum(r[1] for r in rows)
     startup = (sum(short_counts.values()) * ms_per_sample - total * args.short) / 1000.0
     print("| part | CPU ms per simulated s | share |")
@@ -135,6 +176,16 @@ def main():
           % startup)
     print("Wall time: %g s of sim time in %.2f s, %g s in %.2f s: %.1fx real time between the two."
           % (args.short, short_wall, args.long, long_wall, seconds / (long_wall - short_wall)))
+    if args.functions > 0:
+        print("\n| part | function | CPU ms per simulated s | share of the part |")
+        print("|---|---|---|---|")
+        for part, part_per_s in rows:
+            if part_per_s < 0.05 * total:
+                continue
+            functions = per_simulated_second(short_functions[part], long_functions[part], ms_per_sample, seconds)
+            for function, per_s in functions[:args.functions]:
+                print("| %s | %s | %.1f | %.0f %% |" % (part, function.replace("|", "\\|"), per_s,
+                                                       100.0 * per_s / part_per_s))
 
 
 if __name__ == "__main__":
