@@ -37,8 +37,8 @@ Needs perf (Debian: linux-perf) and a built build/bin/uampc. Prints a Markdown t
 import argparse
 import collections
 import os
-import re
 import platform
+import re
 import subprocess
 import sys
 import tempfile
@@ -71,9 +71,11 @@ def part_of(dso):
 
 def record(scene, duration, core, frequency, overrides, directory):
     data = os.path.join(directory, "perf_%g.data" % duration)
-    command = ["taskset", "-c", str(core), "setarch", platform.machine(), "-R", "perf", "record", "-q", "-e", "cpu-clock", "-F", str(frequency),
-               "--call-graph", "dwarf,16384", "-o", data, "--", os.path.join(ROOT, "build/bin/uampc"), "launch",
-               scene, "--set", "clock.duration=%g" % duration, "--out", os.path.join(directory, "run_%g" % duration)]
+    # setarch -R: the address-space randomisation off, so that perf keeps every stack (module docstring).
+    command = ["taskset", "-c", str(core), "setarch", platform.machine(), "-R",
+               "perf", "record", "-q", "-e", "cpu-clock", "-F", str(frequency), "--call-graph", "dwarf,16384",
+               "-o", data, "--", os.path.join(ROOT, "build/bin/uampc"), "launch", scene,
+               "--set", "clock.duration=%g" % duration, "--out", os.path.join(directory, "run_%g" % duration)]
     for o in overrides:
         command += ["--set", o]
     run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
