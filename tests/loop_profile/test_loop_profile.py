@@ -4,9 +4,12 @@ without perf or a run.
 
 Run by CTest (loop_profile_test)."""
 import collections
+import contextlib
+import io
 import os
 import sys
 import unittest
+from unittest import mock
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools", "loop_profile"))
@@ -77,6 +80,16 @@ class Counting(unittest.TestCase):
         long = collections.Counter({"lo": 400, "mpc": 350, "start-up": 40, "kernel": 3})
         rows = loop_profile.per_simulated_second(short, long, ms_per_sample=2.0, seconds=30.0)
         self.assertEqual(rows, [("lo", 20.0), ("mpc", 20.0), ("kernel", 0.2), ("start-up", 0.0)])
+
+
+class Randomisation(unittest.TestCase):
+    def test_where_it_cannot_be_turned_off_the_profile_runs_with_it_and_says_so(self):
+        warning = io.StringIO()
+        with mock.patch.object(loop_profile.platform, "machine", return_value="no-such-architecture"), \
+                contextlib.redirect_stderr(warning):
+            self.assertEqual(loop_profile.without_randomisation(), [])
+        self.assertIn("cannot turn the address-space randomisation off", warning.getvalue())
+        self.assertIn("no-such-architecture", warning.getvalue())
 
 
 if __name__ == "__main__":

@@ -22,7 +22,9 @@ in a library (libm, libc, ...) but perf found no caller of ours above it.
 The runs are recorded with address-space randomisation off (`setarch -R`, for the profiled run only):
 with it on, about one run in three lost the callers of every sample in the C and maths libraries
 (sine, cosine, log, memcpy, malloc: 15 % of the loop's samples then land in "not unwound"); with
-it off, 0 of 9 runs did (2026-11-28). The program itself runs as it does anywhere else.
+it off, 0 of 9 runs did (2026-11-28). The program itself runs as it does anywhere else. Where the
+randomisation cannot be turned off (a container's seccomp profile may refuse it), it says so and
+profiles with it on.
 
   tools/loop_profile/loop_profile.py [--scene config/scenes/default.yaml] [--short 10] [--long 40]
                                      [--core 0] [--frequency 499] [--set NAME=VALUE ...]
@@ -69,13 +71,28 @@ def part_of(dso):
     return None  # the C library, libm, Ceres, PCL, Embree, the kernel: whoever called them
 
 
-def record(scene, duration, core, frequency, overrides, directory):
+def without_randomisation():
+    """The command prefix that runs a program with the address-space randomisation off, so that perf
+    keeps every stack (module docstring); empty, with a warning, where that is not allowed (e.g. a
+    container whose seccomp profile refuses the personality call)."""
+    prefix = ["setarch", platform.machine(), "-R"]
+    try:
+        check = subprocess.run(prefix + ["true"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    except OSError as e:
+        check = subprocess.CompletedProcess(prefix, 1, stderr=str(e))
+    if check.returncode == 0:
+        return prefix
+    print("loop_profile: cannot turn the address-space randomisation off (%s); profiling with it on: "
+          "watch the 'not unwound' row" % check.stderr.strip(), file=sys.stderr)
+    return []
+
+
+def record(scene, duration, core, frequency, overrides, directory, prefix):
     data = os.path.join(directory, "perf_%g.data" % duration)
-    # setarch -R: the address-space randomisation off, so that perf keeps every stack (module docstring).
-    command = ["taskset", "-c", str(core), "setarch", platform.machine(), "-R",
-               "perf", "record", "-q", "-e", "cpu-clock", "-F", str(frequency), "--call-graph", "dwarf,16384",
-               "-o", data, "--", os.path.join(ROOT, "build/bin/uampc"), "launch", scene,
-               "--set", "clock.duration=%g" % duration, "--out", os.path.join(directory, "run_%g" % duration)]
+    command = ["taskset", "-c", str(core)] + prefix + [
+        "perf", "record", "-q", "-e", "cpu-clock", "-F", str(frequency), "--call-graph", "dwarf,16384",
+        "-o", data, "--", os.path.join(ROOT, "build/bin/uampc"), "launch", scene,
+        "--set", "clock.duration=%g" % duration, "--out", os.path.join(directory, "run_%g" % duration)]
     for o in overrides:
         command += ["--set", o]
     run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -159,9 +176,12 @@ def main():
     args = parser.parse_args()
     if not args.long > args.short:
         sys.exit("loop_profile: --long must be longer than --short")
+    prefix = without_randomisation()
     with tempfile.TemporaryDirectory(prefix="loop_profile.") as directory:
-        short_data, short_wall = record(args.scene, args.short, args.core, args.frequency, args.overrides, directory)
-        long_data, long_wall = record(args.scene, args.long, args.core, args.frequency, args.overrides, directory)
+        short_data, short_wall = record(args.scene, args.short, args.core, args.frequency, args.overrides, directory,
+                                        prefix)
+        long_data, long_wall = record(args.scene, args.long, args.core, args.frequency, args.overrides, directory,
+                                      prefix)
         short_counts, short_functions = samples_by_part(perf_script(short_data))
         long_counts, long_functions = samples_by_part(perf_script(long_data))
     seconds = args.long - args.short
