@@ -22,7 +22,7 @@ const char* directionName(PortDirection d) { return d == PortDirection::kInput ?
 run_files::Json portJson(const PortSpec& port) {
   return {{"name", port.name},         {"direction", directionName(port.direction)},
           {"type", port.type_name},    {"topic", port.default_topic},
-          {"qos", toString(port.qos)}, {"doc", port.doc}};
+          {"qos", toString(port.qos)}, {"doc", port.doc}, {"for_viewers", port.for_viewers}};
 }
 
 run_files::Json parameterJson(const ParameterSpec& param) {
@@ -30,6 +30,7 @@ run_files::Json parameterJson(const ParameterSpec& param) {
   if (param.default_value) json["default"] = jsonValue(*param.default_value);
   if (param.min) json["min"] = *param.min;
   if (param.max) json["max"] = *param.max;
+  if (param.zero_is_off) json["zero_is_off"] = true;
   if (!param.choices.empty()) json["choices"] = param.choices;
   if (param.rig) json["rig"] = true;
   json["doc"] = param.doc;
@@ -71,7 +72,7 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
     for (const auto& port : ports) {
       std::cout << "  " << std::left << std::setw(7) << directionName(port.direction) << std::setw(port_name)
                 << port.name << std::setw(port_type) << port.type_name << std::setw(port_topic) << port.default_topic
-                << "[" << toString(port.qos) << "] " << port.doc << "\n";
+                << "[" << toString(port.qos) << "] " << port.doc << (port.for_viewers ? " (for viewers)" : "") << "\n";
     }
     if (spec.scenePortResolver()) std::cout << "  ports  decided by the scene: " << spec.scenePortsDoc() << "\n";
     const auto& parameters = spec.parameters();
@@ -82,7 +83,7 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
                 << toString(param.type) << (param.required() ? "required" : "= " + toString(*param.default_value));
       if (param.min || param.max) {
         std::cout << " in [" << (param.min ? formatNumber(*param.min) : "-inf") << ", "
-                  << (param.max ? formatNumber(*param.max) : "inf") << "]";
+                  << (param.max ? formatNumber(*param.max) : "inf") << "]" << (param.zero_is_off ? " or 0 (off)" : "");
       }
       if (!param.choices.empty()) {
         std::cout << " one of";

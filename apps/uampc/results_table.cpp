@@ -30,7 +30,9 @@ int indexOf(const std::vector<std::string>& names, const std::string& name) {
 std::string lossesOfTrack(const ResultsTable& t) {
   std::string md =
       "## Losses of track\n\nRuns that lost track (the estimated speed more than 1 m/s off the true one over 1 s, "
-      "at some point; when, in the Runs table) of the finished runs.\n\n| controller |";
+      "at some point; when, in the Runs table) of the finished runs; \"at start-up\": lost within the first " +
+      std::to_string(static_cast<int>(kStartUpLossWindowS)) +
+      " s, where the LO's first map, not the controller, decides (docs/decisions/start-hold.md).\n\n| controller |";
   for (const auto& s : t.scenes) md += " " + s + " |";
   md += "\n|---|";
   for (std::size_t i = 0; i < t.scenes.size(); ++i) md += "---|";
@@ -38,7 +40,9 @@ std::string lossesOfTrack(const ResultsTable& t) {
   for (std::size_t c = 0; c < t.controllers.size(); ++c) {
     md += "| " + t.controllers[c] + " |";
     for (std::size_t s = 0; s < t.scenes.size(); ++s) {
-      md += " " + std::to_string(t.lost_runs[c][s]) + " lost of " + std::to_string(t.finished_runs[c][s]) + " |";
+      const int start_up = t.start_up_lost_runs[c][s];
+      md += " " + std::to_string(t.lost_runs[c][s]) + " lost of " + std::to_string(t.finished_runs[c][s]) +
+            (start_up > 0 ? " (" + std::to_string(start_up) + " at start-up)" : "") + " |";
     }
     md += "\n";
   }
@@ -62,11 +66,13 @@ ResultsTable summarize(const Experiment& experiment, const std::vector<RunResult
   std::vector<std::vector<double>> ate_sum(nc, std::vector<double>(ns, 0.0)), cmplt_sum = ate_sum;
   t.finished_runs.assign(nc, std::vector<int>(ns, 0));
   t.lost_runs = t.finished_runs;
+  t.start_up_lost_runs = t.finished_runs;
   for (const RunResult& r : results) {
     const int c = indexOf(t.controllers, r.controller), s = indexOf(t.scenes, r.scene);
     if (c < 0 || s < 0 || !r.finished()) continue;
     ++t.finished_runs[c][s];
     if (std::isfinite(r.metrics.runaway_time_s)) ++t.lost_runs[c][s];
+    if (r.metrics.runaway_time_s <= kStartUpLossWindowS) ++t.start_up_lost_runs[c][s];
     if (std::isfinite(r.metrics.ate_m)) {
       ate_sum[c][s] += r.metrics.ate_m;
       ++t.ate[c][s].runs;

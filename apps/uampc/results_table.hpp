@@ -17,6 +17,10 @@ struct MeanOverSeeds {
   int runs = 0;            // finished runs with a finite figure
 };
 
+// s of simulated time within which a loss of track counts as a start-up loss: the LO's thin first map
+// decides it, not the controller (docs/decisions/start-hold.md).
+inline constexpr double kStartUpLossWindowS = 10.0;
+
 struct ResultsTable {
   std::vector<std::string> scenes;
   std::vector<std::string> controllers;
@@ -30,6 +34,7 @@ struct ResultsTable {
   // estimated speed strayed more than 1 m/s from the truth's). A mean over seeds hides a lost run;
   // this does not.
   std::vector<std::vector<int>> finished_runs, lost_runs;
+  std::vector<std::vector<int>> start_up_lost_runs;  // of lost_runs, lost within kStartUpLossWindowS
   std::string subject;
   std::string baseline;
   int subject_index = -1;  // -1: not among the controllers

@@ -30,7 +30,7 @@ struct FakeFigures {
 const std::map<std::tuple<std::string, std::string, int>, FakeFigures> kFigures{
     {{"alpha", "ua_mpc", 1}, {1.0, 100}},       {{"alpha", "ua_mpc", 2}, {2.0, 110}},
     {{"alpha", "constant_3.6", 1}, {4.0, 100}}, {{"alpha", "constant_3.6", 2}, {6.0, 100}},
-    {{"alpha", "zero", 1}, {8.0, NAN, 3.5}},    {{"alpha", "zero", 2}, {9.0, NAN, 4.25}},
+    {{"alpha", "zero", 1}, {8.0, NAN, 3.5}},    {{"alpha", "zero", 2}, {9.0, NAN, 14.25}},
     {{"beta", "ua_mpc", 1}, {3.0, 50}},         {{"beta", "ua_mpc", 2}, {4.0, 50}},
     {{"beta", "constant_3.6", 1}, {10.0, 40}},  {{"beta", "constant_3.6", 2}, {20.0, 60, 7.0}},
     {{"beta", "zero", 1}, {29.5, 20}},

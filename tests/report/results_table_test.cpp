@@ -56,9 +56,12 @@ TEST(ResultsTable, CountsLossesOfTrackThatMeansHide) {
   EXPECT_EQ(t.lost_runs[1], (std::vector<int>{0, 1}));  // constant_3.6: beta seed 2
   EXPECT_EQ(t.lost_runs[2], (std::vector<int>{2, 0}));  // zero: both alpha seeds
   EXPECT_EQ(t.finished_runs[2], (std::vector<int>{2, 1}));
+  // Losses within the first 10 s are the start's, counted apart: zero's alpha seed 2 lost at 14.25 s.
+  EXPECT_EQ(t.start_up_lost_runs[1], (std::vector<int>{0, 1}));
+  EXPECT_EQ(t.start_up_lost_runs[2], (std::vector<int>{1, 0}));
   const std::string md = renderMarkdown(fake.experiment, t, fake.results);
-  EXPECT_NE(md.find("| constant_3.6 | 0 lost of 2 | 1 lost of 2 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| zero | 2 lost of 2 | 0 lost of 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| constant_3.6 | 0 lost of 2 | 1 lost of 2 (1 at start-up) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| zero | 2 lost of 2 (1 at start-up) | 0 lost of 1 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| beta | constant_3.6 | 2 | reused | 20.000 | 10.000 | 60 | 66 | 3.60 | 7.0 |"), std::string::npos)
       << md;
   EXPECT_NE(md.find("| beta | ua_mpc | 1 | reused | 3.000 | 1.500 | 50 | 55 | 3.60 | never |"), std::string::npos) << md;

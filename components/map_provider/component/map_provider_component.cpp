@@ -24,7 +24,8 @@ class MapProvider : public Component {
     spec.summary = "Serves the world (procedural or a PCD/PLY map) and plays the ground-truth trajectory";
     spec.output<msg::WorldMesh>("world", "/world/mesh", QosPreset::kLatched, "world surfaces, in chunks");
     spec.output<sensor_msgs::msg::PointCloud2>("map", "/world/points", QosPreset::kLatched,
-                                               "point sample of the world, for viewers");
+                                               "point sample of the world, for viewers")
+        .forViewers();
     spec.output<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
                                                  "ground-truth base pose T_WB at sim time");
     world::WorldSettings defaults;
@@ -106,6 +107,21 @@ class MapProvider : public Component {
            "world: around_trajectory: share of path length that is open, 0 to 1, overriding density_profile "
            "(-1: density_profile's)")
         .between(-1.0, 1.0);
+    b.bind("point_map_resolution", s.point_map_resolution,
+           "> 0: the world becomes a point map of this resolution, m (surfaces sampled, one point per voxel; a "
+           "loaded point map is downsampled to it), each point drawn as a splat facing the ray, as the "
+           "reference simulator renders a dataset's map (0: meshes stay meshes; see "
+           "docs/decisions/point-map-splats.md)")
+        .between(0.05, 10.0)
+        .orOff();
+    b.bind("splat_radius", s.splat_radius,
+           "half-width of each point map point's splat, m (0: 0.55 sqrt(3) times the map's resolution, "
+           "point_map_resolution or else map_voxel_size, as the reference simulator; 0.05 m when neither is set)")
+        .between(0.0, 5.0);
+    b.bind("start_hold", s.start_hold,
+           "s the rig stands still at the trajectory's first pose, then eases into the path over 2 s (0: "
+           "it moves from the start; see docs/decisions/start-hold.md)")
+        .between(0.0, 60.0);
   }
 
   static world::WorldSettings settingsFrom(const Context& ctx) {
@@ -133,7 +149,7 @@ class MapProvider : public Component {
       m.world(world_.description);
       m.chunk(chunk++);
       m.chunk_count(count);
-      m.point_radius(0.05f);
+      m.point_radius(world_.point_radius);
     };
     for (std::size_t c = 0; c < mesh_chunks; ++c) {
       msg::WorldMesh m;

@@ -159,7 +159,7 @@ class SceneValidator {
   void applyOverrides(YAML::Node& root, const std::vector<Override>& overrides);
   void readTopLevel(const YAML::Node& root, Scene& scene);
   void readClock(const YAML::Node& node, Scene& scene);
-  void readExternalTopics(const YAML::Node& node, Scene& scene);
+  void readTopicList(const YAML::Node& node, const std::string& key, std::vector<std::string>& topics);
   void readSecurity(const YAML::Node& node, Scene& scene);
   void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
   void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec, Scene& scene);
@@ -269,7 +269,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
   applyOverrides(root, overrides);
   checkKeys(root,
             {"name", "domain_id", "dds_profile", "security", "seed", "clock", "on_crash", "max_restarts", "rig",
-             "external_topics", "components"},
+             "external_topics", "outputs_for_tools", "components"},
             "the scene");
   readRigNode(root);
   readTopLevel(root, scene);
@@ -331,7 +331,10 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
         scene.max_restarts = *v;
     }
   }
-  if (const YAML::Node topics = root["external_topics"]) readExternalTopics(topics, scene);
+  if (const YAML::Node topics = root["external_topics"]) readTopicList(topics, "external_topics", scene.external_topics);
+  if (const YAML::Node topics = root["outputs_for_tools"]) {
+    readTopicList(topics, "outputs_for_tools", scene.outputs_for_tools);
+  }
   if (root["on_crash"]) {
     if (auto v = scalar<std::string>(root["on_crash"], "on_crash")) {
       if (*v == "stop")
@@ -609,9 +612,10 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
       return false;
     }
     if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max)) {
+      if (spec.zero_is_off && v == 0.0) return true;
       std::ostringstream msg;
       msg << what << " is " << node.Scalar() << ", out of bounds [" << (spec.min ? formatNumber(*spec.min) : "-inf")
-          << ", " << (spec.max ? formatNumber(*spec.max) : "inf") << "]";
+          << ", " << (spec.max ? formatNumber(*spec.max) : "inf") << "]" << (spec.zero_is_off ? " (or 0: off)" : "");
       error(node, msg.str());
       return false;
     }
@@ -684,22 +688,22 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
   return std::nullopt;
 }
 
-// external_topics: [/livox/lidar, ...]: ROS topic names, each once.
-void SceneValidator::readExternalTopics(const YAML::Node& node, Scene& scene) {
+// external_topics: [/livox/lidar, ...] and outputs_for_tools: [/lidar/points, ...]: ROS topic
+// names, each once.
+void SceneValidator::readTopicList(const YAML::Node& node, const std::string& key, std::vector<std::string>& topics) {
   if (!node.IsSequence()) {
-    error(node, "external_topics must be a list of topics, e.g. [/livox/lidar]");
+    error(node, key + " must be a list of topics, e.g. [/livox/lidar]");
     return;
   }
   for (const auto& item : node) {
-    const auto topic = scalar<std::string>(item, "an external topic");
+    const auto topic = scalar<std::string>(item, "a topic of " + key);
     if (!topic) continue;
     if (!std::regex_match(*topic, topicPattern()))
-      error(item, "external topic '" + *topic + "' is not a ROS topic name (e.g. /livox/lidar)");
-    else if (std::find(scene.external_topics.begin(), scene.external_topics.end(), *topic) !=
-             scene.external_topics.end())
-      error(item, "external topic " + *topic + " is listed twice");
+      error(item, key + ": '" + *topic + "' is not a ROS topic name (e.g. /livox/lidar)");
+    else if (std::find(topics.begin(), topics.end(), *topic) != topics.end())
+      error(item, key + ": " + *topic + " is listed twice");
     else
-      scene.external_topics.push_back(*topic);
+      topics.push_back(*topic);
   }
 }
 

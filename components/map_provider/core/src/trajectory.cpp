@@ -164,4 +164,26 @@ void applyAttitudeMode(std::vector<TimedPose>& poses, AttitudeMode mode,
   }
 }
 
+Trajectory withHeldStart(const Trajectory& trajectory, double hold, double ease) {
+  if (!(hold > 0.0)) return trajectory;
+  if (!(ease > 0.0)) throw std::invalid_argument("withHeldStart: the ease must take a positive time");
+  const double start = trajectory.startTime();
+  auto sampleAt = [&](double t_new, double tau) {
+    const Eigen::Isometry3d T = trajectory.poseAt(std::min(start + tau, trajectory.endTime()));
+    return TimedPose{t_new, T.translation(), Eigen::Quaterniond(T.linear())};
+  };
+  std::vector<TimedPose> poses{sampleAt(start, 0.0)};
+  constexpr double kEaseSampleStep = 0.02;  // s
+  const int ease_steps = static_cast<int>(std::ceil(ease / kEaseSampleStep));
+  for (int k = 0; k <= ease_steps; ++k) {
+    const double s = ease * k / ease_steps;  // s since the hold ended
+    poses.push_back(sampleAt(start + hold + s, s * s / (2.0 * ease)));
+  }
+  const double delay = hold + ease / 2.0;
+  for (const auto& p : trajectory.poses()) {
+    if (p.time + delay > poses.back().time) poses.push_back({p.time + delay, p.position, p.orientation});
+  }
+  return Trajectory(std::move(poses), trajectory.interpolation());
+}
+
 }  // namespace uampc::world

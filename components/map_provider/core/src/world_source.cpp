@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "uampc/world/generated_paths.hpp"
+#include "uampc/world/point_sampling.hpp"
 #include "uampc/world/procedural_worlds.hpp"
 #include "uampc/world/short_number.hpp"
 #include "uampc/world/trajectory_io.hpp"
@@ -64,6 +65,30 @@ Trajectory generatedPath(const std::vector<Eigen::Vector3d>& waypoints, bool clo
   return pathThroughWaypoints(waypoints, config);
 }
 
+// Any world as a point map of the scene's resolution, each point a splat (see
+// docs/decisions/point-map-splats.md); a mesh world with no resolution stays a mesh.
+void applyPointMapSettings(const WorldSettings& s, World& w) {
+  if (s.point_map_resolution > 0.0 && !w.mesh.empty()) {
+    const double expected = expectedPointMapSize(w.mesh.area(), s.point_map_resolution);
+    if (expected > kMaxPointMapPoints) {
+      throw std::runtime_error("point_map_resolution " + shortNumber(s.point_map_resolution) + " m would make about " +
+                               shortNumber(std::round(expected / 1e6)) + " million points of this world's " +
+                               shortNumber(std::round(w.mesh.area())) + " m2 of surface, more than " +
+                               shortNumber(kMaxPointMapPoints / 1e6) + " million: choose a coarser resolution");
+    }
+    w.points = surfacePointMap(w.mesh, s.point_map_resolution, s.seed);
+    w.mesh = TriangleMesh{};
+  } else if (s.point_map_resolution > 0.0) {
+    w.points = voxelDownsample(w.points, s.point_map_resolution);
+  }
+  if (w.points.empty()) return;
+  const double resolution = s.point_map_resolution > 0.0 ? s.point_map_resolution : s.map_voxel_size;
+  const double radius = s.splat_radius > 0.0 ? s.splat_radius
+                        : resolution > 0.0   ? kReferenceSplatFactor * resolution
+                                             : kUnknownResolutionSplatRadius;
+  w.point_radius = static_cast<float>(radius);
+}
+
 }  // namespace
 
 World buildWorld(const WorldSettings& s) {
@@ -111,12 +136,16 @@ World buildWorld(const WorldSettings& s) {
   } else {
     throw std::runtime_error("unknown world '" + s.world + "'");
   }
+  applyPointMapSettings(s, w);
+  w.trajectory = withHeldStart(w.trajectory, s.start_hold, kStartEaseTime);
   const std::string profile = s.world != "around_trajectory" ? ""
                               : s.open_fraction == WorldSettings::kUseProfile
                                   ? ", density profile " + s.density_profile
                                   : ", open fraction " + shortNumber(s.open_fraction);
   w.description = s.world + (s.world == "file" ? " " + s.map_file : " seed " + std::to_string(s.seed)) + profile +
-                  ", trajectory " + (from_file ? s.trajectory_file : "generated");
+                  ", trajectory " + (from_file ? s.trajectory_file : "generated") +
+                  (w.points.empty() ? "" : ", point map with splats of " + shortNumber(w.point_radius) + " m") +
+                  (s.start_hold > 0.0 ? ", held still for " + shortNumber(s.start_hold) + " s" : "");
   return w;
 }
 

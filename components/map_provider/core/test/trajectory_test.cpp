@@ -249,5 +249,31 @@ TEST(TrajectorySmooth, PassesThroughSamplesWithContinuousVelocity) {
   EXPECT_THROW(interpolationFromName("cubic"), std::invalid_argument);
 }
 
+// A held start stands still, then accelerates evenly into the trajectory's own motion and follows
+// it, hold + ease / 2 later.
+TEST(TrajectoryHeldStart, StandsStillThenEasesIntoThePath) {
+  std::vector<TimedPose> poses;
+  for (int k = 0; k <= 100; ++k) {
+    TimedPose p;
+    p.time = 5.0 + 0.1 * k;  // 2 m/s along x, from t = 5 s
+    p.position = {2.0 * 0.1 * k, 1.0, 0.0};
+    poses.push_back(p);
+  }
+  const Trajectory path(poses);
+  const double hold = 3.0, ease = 2.0;
+  const Trajectory held = withHeldStart(path, hold, ease);
+  EXPECT_DOUBLE_EQ(held.startTime(), 5.0);
+  for (double t : {5.0, 6.5, 8.0}) EXPECT_NEAR((held.poseAt(t).translation() - Eigen::Vector3d(0, 1, 0)).norm(), 0.0, 1e-12);
+  auto speed = [&](double t) { return (held.poseAt(t + 0.01).translation() - held.poseAt(t).translation()).norm() / 0.01; };
+  EXPECT_NEAR(speed(8.0 + 0.5), 2.0 * 0.5 / ease, 0.05);  // a quarter of the way through the ease
+  EXPECT_NEAR(speed(8.0 + 1.5), 2.0 * 1.5 / ease, 0.05);
+  const double delay = hold + ease / 2.0;
+  for (double t : {6.0, 10.0, 14.9}) {
+    EXPECT_NEAR((held.poseAt(t + delay).translation() - path.poseAt(t).translation()).norm(), 0.0, 1e-9) << t;
+  }
+  EXPECT_DOUBLE_EQ(held.endTime(), path.endTime() + delay);
+  EXPECT_EQ(withHeldStart(path, 0.0, ease).poses().size(), path.poses().size());
+}
+
 }  // namespace
 }  // namespace uampc::world

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <tuple>
 
 #include "uampc/world/generated_paths.hpp"
 #include "uampc/world/point_sampling.hpp"
@@ -408,6 +409,50 @@ TEST(VoxelDownsample, PointsBeyondTheIndexRangeKeepAVoxelOfTheirOwn) {
   EXPECT_EQ(out[0], points[0]);
   EXPECT_EQ(out[1], points[1]);
   EXPECT_EQ(out[2], points[2]);
+}
+
+// A mesh as a point map: at most one point per voxel, every point on a surface, every voxel the
+// surface crosses filled, the same points for the same seed.
+TEST(SurfacePointMap, OnePointPerVoxelOnTheSurface) {
+  TriangleMesh plane;
+  plane.addGroundRectangle(0.0f, 0.0f, 20.0f, 10.0f, 0.2f);  // one layer of 0.4 m voxels
+  const auto points = surfacePointMap(plane, 0.4, 7);
+  EXPECT_EQ(points.size(), 50u * 25u);
+  std::map<std::tuple<int, int, int>, int> voxels;
+  for (const auto& p : points) {
+    ASSERT_NEAR(p.z(), 0.2f, 1e-5f);
+    ++voxels[{static_cast<int>(std::floor(p.x() / 0.4f)), static_cast<int>(std::floor(p.y() / 0.4f)),
+              static_cast<int>(std::floor(p.z() / 0.4f))}];
+  }
+  EXPECT_EQ(voxels.size(), points.size());
+  EXPECT_EQ(surfacePointMap(plane, 0.4, 7), points);
+  EXPECT_NEAR(expectedPointMapSize(plane.area(), 0.4), 1250.0, 1e-6);
+}
+
+TEST(SurfacePointMap, WorldsBecomePointMapsWithTheReferenceSplats) {
+  WorldSettings settings;
+  settings.world = "corridor";
+  settings.point_map_resolution = 0.4;
+  const World world = buildWorld(settings);
+  EXPECT_TRUE(world.mesh.empty());
+  EXPECT_GT(world.points.size(), 1000u);
+  EXPECT_NEAR(world.point_radius, 0.55 * std::sqrt(3.0) * 0.4, 1e-6);
+  EXPECT_NE(world.description.find("point map"), std::string::npos);
+  settings.splat_radius = 0.25;
+  EXPECT_FLOAT_EQ(buildWorld(settings).point_radius, 0.25f);
+}
+
+TEST(SurfacePointMap, RefusesAResolutionThatWouldMakeTooManyPoints) {
+  WorldSettings settings;
+  settings.world = "campus";
+  settings.point_map_resolution = 0.001;
+  try {
+    buildWorld(settings);
+    FAIL() << "a 1 mm point map of the campus was built";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("point_map_resolution"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("million points"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -80,7 +80,9 @@ RayCastScene::RayCastScene(const world::TriangleMesh& mesh, const std::vector<Ei
     triangles_ = mesh.triangles.size();
   }
   if (!points.empty()) {
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    // A ray-facing disc at the point's own depth, as the reference simulator draws a map point as a
+    // screen-facing splat (docs/decisions/point-map-splats.md).
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_DISC_POINT);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
                                                           4 * sizeof(float), points.size()));
     check(device, "allocating point buffers");

@@ -279,7 +279,7 @@ TEST(RayCaster, PacketOrderGroupsEachLasersShotsInWindows) {
   EXPECT_EQ(order[3 * kPacket], 3 * kPacket);
 }
 
-TEST(RayCaster, PointMapsAreHitAsSmallSpheres) {
+TEST(RayCaster, PointMapsAreHitAsSplatsAroundTheirPoints) {
   std::vector<Eigen::Vector3f> points;
   for (int i = -300; i <= 300; ++i) {
     for (int j = -300; j <= 300; ++j) points.emplace_back(0.05f * i, 0.05f * j, 0.0f);
@@ -297,9 +297,25 @@ TEST(RayCaster, PointMapsAreHitAsSmallSpheres) {
   const auto calibration = MotorLidarCalibration::referenceRig();
   for (const auto& p : scan.points) {
     const Eigen::Vector3d p_W = frames::lidarToWorld(p.position.cast<double>(), 0.0, calibration, base(0.0));
-    ASSERT_GT(p_W.z(), -1e-3);
-    ASSERT_LT(p_W.z(), 0.04 + 1e-3);
+    // A splat faces the ray, so it reaches up to its radius on either side of the plane.
+    ASSERT_LT(std::abs(p_W.z()), 0.04 + 1e-3);
   }
+}
+
+// A splat is hit at its point's own depth along the ray, wherever the ray crosses it, and only
+// within its radius of the point.
+TEST(RayCastScene, SplatsFaceTheRayAtTheirPointsDepth) {
+  const RayCastScene scene(world::TriangleMesh{}, {Eigen::Vector3f(5.0f, 0.0f, 0.0f)}, 0.2f);
+  for (float offset : {0.0f, 0.1f, 0.19f}) {
+    Ray ray{Eigen::Vector3f::Zero(), Eigen::Vector3f(5.0f, offset, 0.0f).normalized(), 100.0f};
+    const Hit hit = scene.intersect(ray);
+    ASSERT_TRUE(hit.valid) << offset;
+    const float depth = ray.direction.dot(Eigen::Vector3f(5.0f, 0.0f, 0.0f));
+    EXPECT_NEAR(hit.distance, depth, 1e-4f) << offset;
+    EXPECT_NEAR(hit.normal.dot(-ray.direction), 1.0f, 1e-4f) << offset;
+  }
+  Ray beside{Eigen::Vector3f::Zero(), Eigen::Vector3f(5.0f, 0.21f, 0.0f).normalized(), 100.0f};
+  EXPECT_FALSE(scene.intersect(beside).valid);
 }
 
 }  // namespace

@@ -36,6 +36,7 @@ struct ParameterSpec {
   std::string doc;
   std::optional<double> min;                    // numeric bounds, inclusive
   std::optional<double> max;
+  bool zero_is_off = false;                     // 0 is allowed besides [min, max]: it switches off
   std::vector<std::string> choices;             // allowed strings; empty: any
   // Part of the rig (the LiDAR, its model and its mounting on the motor): set once in the scene's
   // rig: block and given to every component that declares it, never in one component's params.
@@ -47,6 +48,7 @@ struct ParameterSpec {
   ParameterSpec& atLeast(double v) { min = v; return *this; }
   ParameterSpec& atMost(double v) { max = v; return *this; }
   ParameterSpec& between(double lo, double hi) { min = lo; max = hi; return *this; }
+  ParameterSpec& orOff() { zero_is_off = true; return *this; }
   ParameterSpec& oneOf(std::vector<std::string> allowed) { choices = std::move(allowed); return *this; }
   ParameterSpec& partOfRig() { rig = true; return *this; }
 };

@@ -70,6 +70,12 @@ class Trajectory {
 // simulation plays it and the evaluator compares against it, every controller sees the same one.
 Trajectory movingAverage(const Trajectory& trajectory, double window);
 
+// The trajectory preceded by `hold` seconds at its first pose, from which it accelerates evenly into
+// its own motion over `ease` seconds (time runs as tau = (t - hold)^2 / (2 ease) there, so the
+// speed grows linearly from 0 to the trajectory's); afterwards it is the trajectory, later by
+// hold + ease / 2. The eased stretch is resampled every 20 ms. See docs/decisions/start-hold.md.
+Trajectory withHeldStart(const Trajectory& trajectory, double hold, double ease);
+
 // Replaces each orientation according to the mode; correction is applied on the right (in the
 // body frame): R_WB = R_file * correction. MCD's z-down body frame needs a rotation of pi about x.
 void applyAttitudeMode(std::vector<TimedPose>& poses, AttitudeMode mode,

@@ -32,12 +32,32 @@ struct WorldSettings {
   std::string density_profile = "rich";
   double open_fraction = kUseProfile;
   static constexpr double kUseProfile = -1.0;
+  // Point-map worlds (docs/decisions/point-map-splats.md): > 0 turns any world into a point map of
+  // this resolution, m (a loaded point map is downsampled to it); 0 keeps meshes as meshes.
+  double point_map_resolution = 0.0;
+  // m, the half-width of each point's ray-facing splat; 0: kReferenceSplatFactor times the map's
+  // resolution, as the reference simulator draws them.
+  double splat_radius = 0.0;
+  // s the rig stands still at the trajectory's first pose before it eases into the path over
+  // kStartEaseTime (0: it moves from the start). See docs/decisions/start-hold.md.
+  double start_hold = 0.0;
   std::uint64_t seed = 1;
 };
+
+// The reference simulator's splat half-width per unit of map resolution: MARSIM's
+// cover_dis = 0.55 * sqrt(3) * downsample_resolution.
+inline constexpr double kReferenceSplatFactor = 0.9526279441628825;  // 0.55 * sqrt(3)
+// The splat radius of a point map whose resolution nobody gave (the spheres' radius before splats).
+inline constexpr double kUnknownResolutionSplatRadius = 0.05;
+// A world turned into a point map may have at most this many points (about 1.6 GB as splats).
+inline constexpr double kMaxPointMapPoints = 1e8;
+// s over which a held start accelerates evenly into the trajectory's own speed.
+inline constexpr double kStartEaseTime = 2.0;
 
 struct World {
   TriangleMesh mesh;
   std::vector<Eigen::Vector3f> points;  // point maps only
+  float point_radius = static_cast<float>(kUnknownResolutionSplatRadius);  // m, each point's splat
   Trajectory trajectory;                // starts at time 0 (sim time)
   std::string description;
   std::vector<std::string> warnings;

@@ -1,10 +1,12 @@
 // The world as Embree sees it: built once, then queried by many rays.
 //
 // Triangles are cast against exactly. A point map has no surfaces, so each of its points becomes
-// a sphere of radius point_radius (Embree sphere points): a ray hits the first sphere it meets,
-// so ranges to a point map carry an error of up to point_radius, and a map sparser than about
-// 2 * point_radius lets rays slip through. Choose point_radius near the map's point spacing
-// (e.g. half the voxel size used to downsample it, or a little more).
+// a splat: a disc of radius point_radius centred on the point and facing the ray (Embree's disc
+// points), hit at the point's own depth, as the reference simulator draws each map point as a
+// screen-facing square at its depth. A ray hits the nearest splat it passes within point_radius
+// of; with the reference's radius, 0.55 sqrt(3) times the map's resolution, neighbouring splats
+// overlap and rays do not slip between them. docs/decisions/point-map-splats.md says where this
+// departs from the reference.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,7 +33,8 @@ struct Ray {
 
 class RayCastScene {
  public:
-  // Throws std::runtime_error if Embree fails or the world holds nothing.
+  // Throws std::runtime_error if Embree fails or the world holds nothing. point_radius: each point's
+// splat, m.
   // build_threads: threads Embree may use to build its BVH (queries always run on the caller's).
   RayCastScene(const world::TriangleMesh& mesh, const std::vector<Eigen::Vector3f>& points = {},
                float point_radius = 0.05f, int build_threads = 1);

@@ -30,7 +30,7 @@ struct RayCasterConfig {
                                       // return is reported in, not the one it was cast along
   double dropout_probability = 0.0;   // chance that a return is lost
   std::uint64_t seed = 0;             // noise and dropout; frame k uses a seed mixed from (seed, k)
-  float point_radius = 0.05f;         // m, spheres for point maps (see RayCastScene)
+  float point_radius = 0.05f;         // m, splats of point maps (see RayCastScene)
   bool use_packets = true;            // cast in packets (RayCastScene::kPacketSize rays; same result, faster)
 };
 
