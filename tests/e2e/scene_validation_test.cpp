@@ -184,6 +184,18 @@ TEST(SceneValidation, SilentPortsAreWarningsOneLinePerTopicWithASuggestion) {
       << launch.output;
 }
 
+// The shipped scenes start without a warning: outputs for viewers (TF, the world's points, running
+// metrics) that nobody in the scene reads are expected; the same topic from an output not for
+// viewers still warns (above).
+TEST(SceneValidation, ShippedScenesValidateWithoutWarnings) {
+  for (const char* scene : {"config/scenes/default.yaml", "config/scenes/mcd_kth_pointmap.yaml",
+                            "config/scenes/campus_ua_mpc.yaml", "config/scenes/default_split.yaml"}) {
+    const CommandResult r = runUampc(std::string("validate ") + sourcePath(scene));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << scene << ":\n" << r.output;
+  }
+}
+
 TEST(SceneValidation, GraphPrintsMermaidByDefault) {
   const CommandResult r = runUampc("graph " + sourcePath("config/scenes/default_split.yaml"));
   ASSERT_EQ(r.exit_code, 0) << r.output;

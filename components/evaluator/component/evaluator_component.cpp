@@ -64,7 +64,8 @@ class EvaluatorComponent : public Component {
     spec.input<msg::Metrics>("mpc_timing", "/mpc/timing", QosPreset::kSensor, "controller timings");
     spec.input<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,
                                         "controller's panoramic depth map (32FC1), saved as snapshots");
-    spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT");
+    spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT")
+        .forViewers();
     evaluator::CompletenessConfig defaults;
     ParameterBinding binding(spec);
     bindCompletenessParameters(binding, defaults);
@@ -92,7 +93,7 @@ class EvaluatorComponent : public Component {
     calibration_ = adapters::rigCalibration(ctx);
     const std::string& out = ctx.outputDirectory();
     if (out.empty()) {
-      ctx.log().warn("no output directory (uampc launch --out DIR): figures are logged but no files written");
+      ctx.log().info("no output directory (uampc launch --out DIR): figures are logged but no files written");
     } else {
       std::filesystem::create_directories(out);
       motor_csv_ = std::make_unique<run_files::RowWriter<run_files::MotorRow>>(

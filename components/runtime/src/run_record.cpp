@@ -123,6 +123,8 @@ std::string resolvedSceneYaml(const Scene& scene) {
   out << YAML::Key << "max_restarts" << YAML::Value << scene.max_restarts;
   if (!scene.external_topics.empty())
     out << YAML::Key << "external_topics" << YAML::Value << YAML::Flow << scene.external_topics;
+  if (!scene.outputs_for_tools.empty())
+    out << YAML::Key << "outputs_for_tools" << YAML::Value << YAML::Flow << scene.outputs_for_tools;
   emitClock(out, scene.clock);
   if (!scene.rig.empty()) {
     out << YAML::Key << "rig" << YAML::Value << YAML::BeginMap;

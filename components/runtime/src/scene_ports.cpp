@@ -232,7 +232,11 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
                                                 " (fine if another host or program publishes it)"));
       }
     }
-    if (readers.empty()) {
+    const bool for_viewers =
+        std::all_of(writers.begin(), writers.end(), [](const Binding& b) { return b.port->for_viewers; }) ||
+        std::find(scene.outputs_for_tools.begin(), scene.outputs_for_tools.end(), topic) !=
+            scene.outputs_for_tools.end();
+    if (readers.empty() && !for_viewers) {
       scene.warnings.push_back(diagnostic(
           whereSet(writers.front()), "warning",
           "nobody in the scene reads " + topic + ", written by " + portList(writers) +

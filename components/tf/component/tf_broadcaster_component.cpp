@@ -79,9 +79,11 @@ class TfBroadcaster : public Component {
     spec.input<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
                                                 "true base poses: map_frame -> ground_truth_frame");
     spec.output<tf2_msgs::msg::TFMessage>("tf", "/tf", QosPreset::kSensor,
-                                          "one message per encoder state, odometry and ground-truth pose");
+                                          "one message per encoder state, odometry and ground-truth pose")
+        .forViewers();
     spec.output<tf2_msgs::msg::TFMessage>("tf_static", "/tf_static", QosPreset::kLatched,
-                                          "base_frame -> motor_frame and rotor_frame -> lidar_frame, once at start");
+                                          "base_frame -> motor_frame and rotor_frame -> lidar_frame, once at start")
+        .forViewers();
     adapters::declareRigParameters(spec);
     for (const FrameParameter& f : kFrameParameters) spec.param(f.name, f.default_value, f.doc);
     spec.param("map_to_odom", true,

@@ -26,6 +26,14 @@ struct PortSpec {
   // serialized has a DDS reader of its own; typed inputs of one process on one topic and QoS share
   // one (Scene::readersOf counts them so).
   bool serialized = false;
+  // An output for viewers and tools (TF, a map to look at, running metrics): that nobody in the
+  // scene reads it is expected, not a mistake worth a warning.
+  bool for_viewers = false;
+
+  PortSpec& forViewers() {
+    for_viewers = true;
+    return *this;
+  }
 };
 
 // What a component that decides its ports from the scene (ComponentSpec::scenePorts) is given.

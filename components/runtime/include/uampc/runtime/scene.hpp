@@ -78,6 +78,9 @@ struct Scene {
   // Topics published outside the scene (external_topics:), such as a LiDAR driver's on a rig: read
   // by the scene's components, written by none of them, and neither an error nor a warning.
   std::vector<std::string> external_topics;
+  // Outputs the scene writes for viewers and tools (outputs_for_tools:): that no component of the
+  // scene reads them is expected, not a warning (as for ports declared PortSpec::forViewers).
+  std::vector<std::string> outputs_for_tools;
   std::vector<ComponentInstance> components;  // in file order
   // The rig's parameters (ParameterSpec::rig) that the scene's components declare, resolved: the
   // rig: block's values, defaults filled in. Each such component has the same value in its params.
