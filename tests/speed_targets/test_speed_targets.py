@@ -1,5 +1,5 @@
 """tools/speed_targets reads the benchmarks' own output: the parsers against what today's binaries
-print (so that a changed output format fails here, not in a session's measurement), and their errors.
+print (so that a changed output format fails here, not in a measurement), and their errors.
 
 Run by CTest (speed_targets_test) with UAMPC_BUILD set to the build directory."""
 import argparse
