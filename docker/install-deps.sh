@@ -41,7 +41,7 @@ else
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# ---- MCAP recordings (issue 13) ----
+# ---- MCAP recordings ----
 # libzstd and liblz4 compress the chunks of uampc's MCAP files; node and npm run the independent
 # reader of its test (tests/mcap_js: Foxglove's @mcap/core and @foxglove/rosmsg2-serialization,
 # pinned by tests/mcap_js/package-lock.json). node and npm count as present whoever installed them:
@@ -57,7 +57,7 @@ if [ ${#mcap_missing[@]} -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq --no-install-recommends "${mcap_missing[@]}"
 fi
-# tests/ci_lint checks the CI files with GitHub's workflow parser and GitLab's CI schema (issue 15),
+# tests/ci_lint checks the CI files with GitHub's workflow parser and GitLab's CI schema,
 # pinned the same way by its package-lock.json.
 checkout="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 for npm_dir in tests/mcap_js tests/ci_lint; do

@@ -1,5 +1,6 @@
-// An experiment: the paper's evaluation as one YAML file (docs/design.md section 1). It names scenes,
-// controllers and seeds; `uampc experiment` runs every combination with `uampc launch`.
+// An experiment: the paper's evaluation as one YAML file (docs/dev/architecture.md section 1). It
+// names scenes, controllers and seeds; `uampc experiment` runs every combination with
+// `uampc launch`.
 //
 //   name: paper_table              # optional; defaults to the file name
 //   duration: 60                   # optional: s of sim time per run (--set clock.duration)

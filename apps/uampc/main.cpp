@@ -393,7 +393,7 @@ class UampcCli {
     sub->add_flag("--restamp", o.restamp,
                   "Move every header stamp (and a PointCloud2's absolute point times) to the present, as if the\n"
                   "recording were happening now: for a real-time system that pairs the played samples with live ones\n"
-                  "by stamp (a recorded LiDAR beside a live motor, docs/hardware.md).");
+                  "by stamp (a recorded LiDAR beside a live motor, docs/user/rig.md).");
     sub->add_option("--security", o.security_dir,
                     "Join a secured domain with the player identity of DIR (uampc security init), which may\n"
                     "publish every topic, the motor's commands too.")
@@ -423,7 +423,7 @@ class UampcCli {
         ->type_name("N");
     init->add_flag("--sign-metadata", o.sign_metadata,
                    "Also sign every submessage around the samples (heartbeats, acknowledgements), so that an\n"
-                   "outsider cannot disturb delivery; costs more CPU (README, \"Security\").");
+                   "outsider cannot disturb delivery; costs more CPU (docs/user/security.md, \"Cost\").");
     commands_.push_back({sub, [this] { return uampc::app::securityInitCommand(options_.security); }});
   }
 

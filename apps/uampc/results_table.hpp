@@ -1,4 +1,4 @@
-// The paper's table (docs/design.md section 1): one row per controller, "<scene> ATE m" and
+// The paper's table (docs/dev/architecture.md section 1): one row per controller, "<scene> ATE m" and
 // "<scene> CMPLT" per scene as means over seeds, and a row-wise summary: the ATE summed over
 // scenes, its ratio to the baseline's (the paper: UA-MPC more than 60% below constant speed) and
 // CMPLT per scene relative to the baseline (the paper: less than 2% below).

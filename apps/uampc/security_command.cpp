@@ -53,8 +53,8 @@ std::string isoTime(int days) {
 // liveliness are encrypted, and on every topic only permitted participants read and write; the
 // samples are encrypted and authenticated (AES-GCM): an outsider can neither read nor forge them.
 // Signing the submessages around them too (heartbeats, acknowledgements: metadata SIGN) cost the
-// three-process loop 29 % more CPU against 8 % without (README, "Security"), and only keeps an
-// outsider from disturbing delivery, which flooding does anyway: it is an option.
+// three-process loop 29 % more CPU against 8 % without (docs/results/security-overhead.md), and
+// only keeps an outsider from disturbing delivery, which flooding does anyway: it is an option.
 std::string governanceXml(bool sign_metadata) {
   return R"(<?xml version="1.0" encoding="UTF-8"?>
 <!-- uampc's DDS Security governance (uampc security init): every domain, every topic protected. -->

@@ -1,7 +1,7 @@
 // `uampc topic list | echo TOPIC | hz TOPIC | bw TOPIC`: looking at a running system's topics from
-// DDS discovery, like `ros2 topic` (README "Looking at topics"). Works beside any DDS system on the
-// domain, uampc's or another vendor's; echo decodes the types registered in this uampc
-// (messageDefinition, cdr_decoder.hpp) and prints only the size of others.
+// DDS discovery, like `ros2 topic` (docs/user/topics-and-recordings.md, "Looking at topics"). Works
+// beside any DDS system on the domain, uampc's or another vendor's; echo decodes the types
+// registered in this uampc (messageDefinition, cdr_decoder.hpp) and prints only the size of others.
 #pragma once
 
 #include <functional>

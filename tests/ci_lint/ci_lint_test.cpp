@@ -1,4 +1,4 @@
-// The CI files (issue 15, item 5) checked as their services read them, without the network:
+// The CI files (docs/dev/testing.md, "Sanitizers and CI") checked as their services read them, without the network:
 // .github/workflows/ci.yml with GitHub's own workflow parser, .gitlab-ci.yml against GitLab's CI
 // schema (tests/ci_lint/lint_ci.mjs). Both must hold the two jobs users rely on: the Docker image
 // (which runs the test suite) and the ASan/UBSan workflow preset in debian:12 with a ccache cache.

@@ -1,4 +1,4 @@
-// Checks CI files without the network (issue 15, item 5):
+// Checks CI files without the network (docs/dev/testing.md, "Sanitizers and CI"):
 //   node lint_ci.mjs github FILE...   GitHub Actions workflows, with GitHub's own parser
 //                                      (@actions/workflow-parser: the workflow schema, expressions,
 //                                      job graph), as the Actions service reads them

@@ -1,6 +1,6 @@
 // A scene's dds_profile takes effect: the transports a Fast DDS profile names are the ones a
-// participant opens (issue 15: the profile's transports, segment size and security files used to
-// be ignored). Each case makes its participant in a child process, because Fast DDS keeps the
+// participant opens (the profile's transports, segment size and security files used to be
+// ignored). Each case makes its participant in a child process, because Fast DDS keeps the
 // profiles it has loaded for the life of the process.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

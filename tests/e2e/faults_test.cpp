@@ -1,6 +1,6 @@
-// Faults a run survives (issue 15): the launcher killed, a process group killed or stopped, two runs
-// on one DDS domain, an output directory that cannot be written or disappears. Each is detected and
-// named, nothing hangs, and what was written stays valid.
+// Faults a run survives (docs/user/faults.md): the launcher killed, a process group killed or
+// stopped, two runs on one DDS domain, an output directory that cannot be written or disappears.
+// Each is detected and named, nothing hangs, and what was written stays valid.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>

@@ -71,7 +71,7 @@ TEST(LoDrift, UnderOnePercentOfDistanceOver300MetresOnARichCampusAtConstantSpeed
 }
 
 // Through the campus's row of poor blocks (plain walls, a lawn) at 3 m/s, where the LiDAR-only LO
-// ran away (README, "The LO in degenerate geometry"): in LiDAR-inertial mode it holds, never says
+// ran away (docs/results/lo-degenerate-geometry.md): in LiDAR-inertial mode it holds, never says
 // it is lost, and reports the degenerate directions it crosses on /lo/metrics.
 TEST(LoDrift, LidarInertialHoldsThroughThePoorRowAndReportsItDegenerate) {
   const std::string out = freshDirectory("lo_poor_row");

@@ -2,8 +2,8 @@
 // nothing along its 300 m axis) with the scenes' 2 cm range noise. Past its first 20 s, where the
 // end wall behind the start still holds the axis, every frame must report the axis degenerate. Each
 // plane's normal, fitted to a few noisy map points, tilts at random and lends the axis information
-// no surface provides; before the LO discounted it, 9 % of these frames were reported (README, "The
-// LO in degenerate geometry").
+// no surface provides; before the LO discounted it, 9 % of these frames were reported
+// (docs/results/lo-degenerate-geometry.md, "The plain corridor").
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -1,6 +1,7 @@
-// Recording and replay end to end (issue 13): the default scene recorded by the recorder component
-// is read by Foxglove's own MCAP reader, replayed into the LO with the same odometry as the live run,
-// survives a SIGKILL of the recorder, and goes through uampc play and uampc record over DDS intact.
+// Recording and replay end to end (docs/user/topics-and-recordings.md): the default scene recorded
+// by the recorder component is read by Foxglove's own MCAP reader, replayed into the LO with the
+// same odometry as the live run, survives a SIGKILL of the recorder, and goes through uampc play
+// and uampc record over DDS intact.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,7 +1,8 @@
 // config/scenes/rig_mid360.yaml as it runs on hardware, in real time: the emulated servo
 // (tools/dynamixel_emulator) for the motor, and `uampc play --restamp` of a simulation recorded in
 // livox_ros_driver2's layout for the LiDAR. Apart from dynamixel_bridge_test because it runs the LO
-// and UA-MPC in real time, which a sanitizer build is too slow for (README "Sanitizers and CI").
+// and UA-MPC in real time, which a sanitizer build is too slow for (docs/dev/testing.md,
+// "Sanitizers and CI").
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Runs that say what they were (issue 13, item 6), and Ctrl-C (item 5): `uampc launch --out DIR`
+// Runs that say what they were, and Ctrl-C (docs/user/experiments.md): `uampc launch --out DIR`
 // writes the resolved scene (DIR/scene.yaml) that reproduces the run, metrics.json says which
 // scene, seed, parameters and versions made it; Ctrl-C exits 130 whether the scene was still
 // starting or running.

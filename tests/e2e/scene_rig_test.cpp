@@ -1,5 +1,6 @@
-// The rig once (issue 16): the LiDAR's model, tilt and offset are written once in a scene's rig:
-// block (or --set rig.NAME=VALUE) and reach every installed component that declares them.
+// The rig once (docs/user/scenes.md, "The rig"): the LiDAR's model, tilt and offset are written
+// once in a scene's rig: block (or --set rig.NAME=VALUE) and reach every installed component that
+// declares them.
 #include <gtest/gtest.h>
 
 #include <filesystem>

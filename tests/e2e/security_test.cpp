@@ -1,4 +1,4 @@
-// DDS Security end to end (issue 15, item 4): `uampc security init` makes a CA, identities and
+// DDS Security end to end (docs/user/security.md): `uampc security init` makes a CA, identities and
 // signed documents for tests/scenes/security_loop.yaml; its secured run gives the same outputs as
 // the plain one; a stranger on the domain (a plain Fast DDS participant in this process) neither
 // reads its scans nor moves its motor; a process whose permissions do not grant /motor/command

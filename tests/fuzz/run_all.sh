@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# A short run of every fuzz target over its committed corpus (CI, from .ci/run; README "Fuzzing").
+# A short run of every fuzz target over its committed corpus (CI, from .ci/run; docs/dev/testing.md).
 # Builds the `fuzz` preset (build-fuzz/, only the fuzz targets and what they load), then runs each
 # target for FUZZ_RUNS inputs (default 3000) from random seed FUZZ_SEED (default 1), at most
 # FUZZ_SECONDS (default 30), starting from a copy of tests/fuzz/<name>/corpus (the committed seeds
 # are not changed; new inputs are thrown away). A fixed seed and count make CI's run the same
 # inputs every time, so that it passes or fails with the code, not with luck (a time limit that
 # cuts it short only leaves out the sequence's tail). Longer, random runs are for finding bugs
-# (README). Exits non-zero at the first crash, leak, timeout or out-of-memory; the input that did
-# it is left in build-fuzz/fuzz/artifacts/<name>/.
+# (docs/dev/testing.md, "Fuzzing"). Exits non-zero at the first crash, leak, timeout or
+# out-of-memory; the input that did it is left in build-fuzz/fuzz/artifacts/<name>/.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -18,7 +18,7 @@ lock=(flock /tmp/uampc-build.lock)
 command -v flock >/dev/null 2>&1 || lock=()
 
 # As in the asan test presets: GCC 12's sanitizer runtime can misread a dynamic TLS block (the
-# component plugins the fuzzers load have them) and crash LeakSanitizer's tracer (README
+# component plugins the fuzzers load have them) and crash LeakSanitizer's tracer (docs/dev/testing.md,
 # "Sanitizers and CI"). Options the caller set are kept; this one is added.
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}intercept_tls_get_addr=0"
 

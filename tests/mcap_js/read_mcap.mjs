@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// An independent reader for uampc's MCAP files (issue 13): Foxglove's own @mcap/core opens the
+// An independent reader for uampc's MCAP files: Foxglove's own @mcap/core opens the
 // file with its indexed reader (footer, summary and its CRC, chunk indexes, message indexes, chunk
 // CRCs), decompresses chunks with @mcap/support's zstd and lz4, parses every ros2msg schema with
 // @foxglove/rosmsg and decodes every CDR message with @foxglove/rosmsg2-serialization. A second

@@ -129,7 +129,7 @@ TEST_F(ExperimentFileTest, NamesMustBeUniqueAndSafeForDirectories) {
 }
 
 // A name of 300 characters was valid in --dry-run and aborted the run (the directory name was too
-// long); keys written twice or that are not names are refused as in scenes (issue 15).
+// long); keys written twice or that are not names are refused as in scenes (docs/user/faults.md).
 TEST_F(ExperimentFileTest, NamesAreBoundedAndKeysAreNamesWrittenOnce) {
   const std::string long_name(300, 'n');
   const auto e =

@@ -1,7 +1,8 @@
 """tools/speed_targets reads the benchmarks' own output: the parsers against what today's binaries
-print (so that a changed output format fails here, not in a session's measurement), and their errors.
+print (so that a changed output format fails here, not in a measurement), and their errors.
 
 Run by CTest (speed_targets_test) with UAMPC_BUILD set to the build directory."""
+import argparse
 import os
 import re
 import subprocess
@@ -68,6 +69,38 @@ class Defaults(unittest.TestCase):
         _, per_test = domain_blocks()
         self.assertLess(speed_targets.DEFAULT_DOMAIN, per_test)
         self.assertNotEqual(speed_targets.DEFAULT_DOMAIN, 0)  # the default scenes' domain
+
+
+class MarkdownFile(unittest.TestCase):
+    """--write-markdown's file: the printed table under a header that says how to regenerate it."""
+
+    ROWS = [("max RSS of a 900 s default run", "217 MB", "< 300 MB", True),
+            ("LO frame (`lo_bench /300/1/0/0`)", "20.9 ms", "<= 5 ms", False)]
+
+    def document(self, **options):
+        args = argparse.Namespace(core=0, memory=True, only=None, write_markdown=os.path.join(
+            ROOT, "docs", "results", "performance.md"))
+        for key, value in options.items():
+            setattr(args, key, value)
+        return speed_targets.markdown_document(["memory", "lo"], self.ROWS, args, today="2026-11-28")
+
+    def test_header_table_and_command(self):
+        text = self.document()
+        self.assertTrue(text.startswith("# Performance\n"))
+        self.assertIn("`tools/speed_targets/speed_targets.py --write-markdown docs/results/performance.md "
+                      "--memory`", text)
+        self.assertIn("Measured on 2026-11-28", text)
+        self.assertIn("- `lo`: `lo_bench BM_RegisterScan20k/300/1/0/0`", text)
+        self.assertIn("\n".join(speed_targets.table_lines(self.ROWS)), text)
+        self.assertTrue(all(len(line) <= 100 for line in text.splitlines() if not line.startswith("|")))
+
+    def test_the_regenerating_command_keeps_the_options(self):
+        text = self.document(memory=False, only="lo")
+        self.assertIn("--write-markdown docs/results/performance.md --only lo`", text)
+        self.assertNotIn("performance.md --memory", text)
+
+    def test_every_target_is_described(self):
+        self.assertEqual(sorted(speed_targets.DESCRIPTIONS), sorted(speed_targets.NAMES))
 
 
 class TodaysOutputs(unittest.TestCase):

@@ -63,7 +63,7 @@ void printUsage(std::FILE* out) {
       "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] [--plane-min-spread-ratio R] "
       "[--path-speed M_PER_S] [--poor-rows N]\n"
       "Replays the simulated motorized LiDAR at a constant motor speed into the LO, without DDS, and prints per\n"
-      "frame the errors against ground truth, then a summary line (README, \"Where the loop's time goes\"). Unset LO options take\n"
+      "frame the errors against ground truth, then a summary line (docs/dev/testing.md, \"Development tools\"). Unset LO options take\n"
       "the LO's defaults.\n");
 }
 

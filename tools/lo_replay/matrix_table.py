@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """matrix_table.py LABEL=FILE [LABEL=FILE ...]
 
-Turns the outputs of world_matrix.sh (one file per set of LO flags) into the Markdown table README
-gives ("A registration budget"): one row per run, one column per file, each cell "RMS / worst
-position (m)" or "lost at T s", then a row of the LO's mean time per frame and, against the first
-column, how many runs each column lost (a run that failed counts as lost) and in how many of the
-runs both held its worst position was worse or better by more than 5 %.
+Turns the outputs of world_matrix.sh (one file per set of LO flags) into the Markdown table of
+docs/results/lo-degenerate-geometry.md ("A registration budget"): one row per run, one column per
+file, each cell "RMS / worst position (m)" or "lost at T s", then a row of the LO's mean time per
+frame and, against the first column, how many runs each column lost (a run that failed counts as
+lost) and in how many of the runs both held its worst position was worse or better by more than 5 %.
 """
 import re
 import sys

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # world_matrix.sh [--jobs N] [--only REGEX] [LO_REPLAY_FLAGS ...]
 #
-# Runs build/bench/lo_replay over the worlds on which the LO's parameters are decided (README, "A
-# registration budget", and the sections it follows: whole MCD trajectories, the indoor worlds, the
-# density worlds, the LiDAR-inertial campus loop), every run at a constant motor speed and with the
-# scenes' 2 cm range noise, and prints one line per run: its name, then lo_replay's summary.
+# Runs build/bench/lo_replay over the worlds on which the LO's parameters are decided (whole MCD
+# trajectories, the indoor worlds, the density worlds, the LiDAR-inertial campus loop;
+# docs/results/lo-degenerate-geometry.md, "A registration budget"), every run at a constant motor speed
+# and with the scenes' 2 cm range noise, and prints one line per run: its name, then lo_replay's summary.
 # LO_REPLAY_FLAGS are added to every run (e.g. --max-registration-points 2000). --only keeps the runs
-# whose name matches REGEX (grep -E). N runs at a time (default: the number of cores); the lines come
-# in the order of the list below whatever order the runs finish in, and stderr says each as it ends.
+# whose name matches REGEX (grep -E). N runs at a time (default: the number of cores); the lines come in
+# the order of the list below whatever order the runs finish in, and stderr says each as it ends.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 replay=build/bench/lo_replay

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where the whole loop's time goes, per simulated second (issue 17).
+"""Where the whole loop's time goes, per simulated second (docs/dev/profiling.md).
 
 Runs a scene twice under `perf record` (software clock sampling with DWARF call stacks: this VM has
 no hardware counters), a short and a long run on one core (`taskset -c CORE`), and prints the CPU

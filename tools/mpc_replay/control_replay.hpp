@@ -1,8 +1,9 @@
 // Replays UA-MPC's control steps from a run's uncertainty.csv (the evaluator writes one row per
 // step: time, theta_start, delta_theta, command, then the U samples over one turn) with other
-// controller options, to see what they do to the command (issue 12, item 2) without rerunning
-// the simulation. Open loop: the angles and U samples are the recorded run's, so what is measured
-// is the controller's response to identical inputs, not where it would have steered the LiDAR.
+// controller options, to see what they do to the command (docs/results/controller-options.md)
+// without rerunning the simulation. Open loop: the angles and U samples are the recorded run's, so
+// what is measured is the controller's response to identical inputs, not where it would have
+// steered the LiDAR.
 #pragma once
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 17's speed targets, each measured on one core, in one table.
+"""uampc's speed targets, each measured on one core, in one table.
 
 Runs every benchmark the targets name on one core (`taskset -c CORE`), one after the other, and
 prints a Markdown table of figure, value, target and whether it is met on this machine today:
@@ -13,21 +13,28 @@ prints a Markdown table of figure, value, target and whether it is met on this m
   split       bench/scenes/default_two_processes.yaml against `loop`: slower by       <= 10 %
   memory      the default scene, 900 s: max RSS (only with --memory: about 4 min)     < 300 MB
 
-The machine's speed moves from day to day by more than most changes (README, "Where the loop's
-time goes"): compare figures from one run of this tool, or alternate builds.
+The machine's speed moves from day to day by more than most changes (docs/dev/profiling.md,
+"Measuring on a shared machine"): compare figures from one run of this tool, or alternate builds.
 
   tools/speed_targets/speed_targets.py [--only NAME[,NAME...]] [--core 0] [--memory]
-                                       [--domain 11] [--build build]
+                                       [--domain 11] [--build build] [--write-markdown PATH]
+
+--write-markdown PATH also writes the table into PATH, under a header that says what each row is,
+when and on which machine (`uname -m`, `nproc`) it was measured, and how to regenerate it:
+docs/results/performance.md is written so.
 
 Exit codes: 0 the table was printed (targets missed are not errors), 1 a benchmark failed, 2 bad
 arguments or a benchmark binary not built.
 """
 import argparse
+import datetime
 import os
+import platform
 import re
 import resource
 import subprocess
 import sys
+import textwrap
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "tools", "common"))
@@ -160,16 +167,101 @@ class Targets:
 
 NAMES = ["loop", "lo", "mpc", "raycaster", "lockstep", "pointcloud", "split", "memory"]
 
+# What each row measures, for the header of --write-markdown's file.
+DESCRIPTIONS = {
+    "memory": "the default scene run for 900 s of sim time in one process: the largest max RSS of its "
+              "processes (only with `--memory`)",
+    "loop": "the default scene (`config/scenes/default.yaml`), 40 s of sim time, in one process: the "
+            "launcher's real-time factor of the loop, start-up apart",
+    "lo": "`lo_bench BM_RegisterScan20k/300/1/0/0`: one 20k-point Mid-360 frame registered by the LO "
+          "(0.3 m scan voxels, each frame's own velocity, no registration budget)",
+    "mpc": "`mpc_bench BM_ControlStep/100000/1/5`: one UA-MPC control step on a 100k-point local map "
+           "(1-degree panorama, U every 5 degrees), with its depth map, U and solve parts",
+    "raycaster": "`raycaster_core_bench BM_Mid360FramePackets`: a Mid-360 frame on the campus, cast in "
+                 "Embree packets: rays per second and ms per frame",
+    "lockstep": "`bench/scenes/lockstep_minimal.yaml` (a motor bridge and a constant-speed controller), "
+                "the CPU time of a %d s run minus a %d s run: the lockstep runtime's own cost per step"
+                % (LOCKSTEP_LONG_S, LOCKSTEP_SHORT_S),
+    "pointcloud": "`dds_transfer_bench`: a 20k-point PointCloud2 between two processes over Fast DDS, one "
+                  "way, median",
+    "split": "`bench/scenes/default_two_processes.yaml` (the default loop in a simulator and an estimation "
+             "process), 40 s: real-time factor, and how much slower than the `loop` row",
+}
+
+
+def cpu_count():
+    """What `nproc` prints: the CPUs this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count()
+
+
+def table_lines(rows):
+    """The Markdown table this tool prints, one line per row."""
+    lines = ["| figure (one core) | value | target | |", "|---|---|---|---|"]
+    for figure, value, target, met in rows:
+        lines.append("| %s | %s | %s | %s |" % (figure, value, target, "met" if met else "**missed**"))
+    return lines
+
+
+def regenerating_command(args):
+    """The command line that writes the same file again, its path relative to the checkout."""
+    path = os.path.abspath(args.write_markdown)
+    if path.startswith(ROOT + os.sep):
+        path = os.path.relpath(path, ROOT)
+    command = "tools/speed_targets/speed_targets.py --write-markdown %s" % path
+    if args.memory:
+        command += " --memory"
+    if args.only:
+        command += " --only %s" % args.only
+    return command
+
+
+def markdown_document(names, rows, args, today=None):
+    """The file --write-markdown writes: a header (what each row is, when and where it was measured,
+    how to regenerate it), then the table."""
+    today = today or datetime.date.today().isoformat()
+    command = regenerating_command(args)
+    def wrapped(text, indent=""):
+        """Lines of at most 100 characters, never broken inside a `code span`."""
+        keep = "\0"  # stands for a space inside a code span while the text is wrapped
+        text = re.sub(r"`[^`]*`", lambda m: m.group(0).replace(" ", keep), text)
+        return [line.replace(keep, " ") for line in
+                textwrap.wrap(text, width=100, subsequent_indent=indent, break_long_words=False,
+                              break_on_hyphens=False)]
+
+    lines = ["# Performance", ""]
+    lines += wrapped("Generated by `%s`; do not edit by hand." % command)
+    lines += [""] + wrapped(
+        "The machine-dependent figures of uampc: its speed targets, each measured on one core "
+        "(`taskset -c %s`), one after the other, in a Release build. Measured on %s on an %s machine with %d "
+        "CPUs (`uname -m`, `nproc`). Figures of the same code move from day to day (on a shared virtual "
+        "machine by 20-50 %%): compare figures from one run of the script, or alternate builds "
+        "(docs/dev/profiling.md)." % (args.core, today, platform.machine(), cpu_count()))
+    lines += ["", "What each row measures:", ""]
+    for name in names:
+        lines += wrapped("- `%s`: %s." % (name, DESCRIPTIONS[name]), indent="  ")
+    lines += [""] + table_lines(rows) + [""]
+    lines += wrapped("To regenerate it: build (`cmake --workflow --preset build`), then run `%s` from the "
+                     "checkout (about 3 minutes, 4 more for `--memory`)." % command)
+    return "\n".join(lines) + "\n"
+
 
 def main(argv):
-    parser = argparse.ArgumentParser(description="Issue 17's speed targets on one core, in one table.")
+    parser = argparse.ArgumentParser(description="uampc's speed targets on one core, in one table.")
     parser.add_argument("--only", help="comma-separated subset of: " + ", ".join(NAMES))
     parser.add_argument("--core", type=int, default=0, help="the core every benchmark runs on (default 0)")
     parser.add_argument("--memory", action="store_true", help="also the 900 s run's max RSS (about 4 min)")
     parser.add_argument("--domain", type=int, default=DEFAULT_DOMAIN,
                         help="DDS domain of the runs (default %d)" % DEFAULT_DOMAIN)
     parser.add_argument("--build", default="build", help="build directory, relative to the checkout")
+    parser.add_argument("--write-markdown", metavar="PATH",
+                        help="also write the table, with what each row is and the date and machine it was "
+                             "measured on, into PATH (e.g. docs/results/performance.md)")
     args = parser.parse_args(argv)
+    if args.write_markdown and not os.path.isdir(os.path.dirname(os.path.abspath(args.write_markdown))):
+        parser.error("--write-markdown %s: its directory does not exist" % args.write_markdown)
     names = [n for n in NAMES if n != "memory" or args.memory]
     if args.only:
         names = [n.strip() for n in args.only.split(",")]
@@ -190,10 +282,11 @@ def main(argv):
     except (BenchmarkFailed, ValueError) as e:
         print("speed_targets: %s" % e, file=sys.stderr)
         return 1
-    print("| figure (one core) | value | target | |")
-    print("|---|---|---|---|")
-    for figure, value, target, met in rows:
-        print("| %s | %s | %s | %s |" % (figure, value, target, "met" if met else "**missed**"))
+    print("\n".join(table_lines(rows)))
+    if args.write_markdown:
+        with open(args.write_markdown, "w") as out:
+            out.write(markdown_document(names, rows, args))
+        print("speed_targets: wrote %s" % args.write_markdown, file=sys.stderr)
     return 0
 
 

@@ -60,8 +60,8 @@ void printProbe(const tools::ProbeResult& r) {
               r.spearman_oracle_error, r.lo_lost ? "  LO lost: ignored" : "");
 }
 
-// log10 U against log10 of a measured figure, one colour per probe (the figure of README's
-// "U checked against the LO").
+// log10 U against log10 of a measured figure, one colour per probe (the figures of
+// docs/results/u-check.md, in docs/results/figures/).
 void writeFigure(const std::string& path, const std::string& source, const std::vector<tools::ProbeResult>& probes,
                  bool posterior_trace) {
   app::svg::LinePlot plot;

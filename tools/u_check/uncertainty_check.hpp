@@ -1,5 +1,6 @@
 // The U check: does the controller's predicted uncertainty U(theta) rank the motor angles the way
-// the LO's registration actually fares at them? (issue 12, item 1; docs/design.md section 1, UA-MPC step 3)
+// the LO's registration actually fares at them? (docs/dev/architecture.md section 1, UA-MPC step 3;
+// the results: docs/results/u-check.md)
 //
 // At a probe time t on a world's path:
 // 1. The LO runs LiDAR-only from t - warmup to t with the motor at a constant speed, started at

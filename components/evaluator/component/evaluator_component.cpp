@@ -1,4 +1,4 @@
-// evaluator: measures a run as the paper does (docs/design.md section 1, "Evaluation").
+// evaluator: measures a run as the paper does (docs/dev/architecture.md section 1, "Evaluation").
 //   ATE: the LO's poses against ground truth interpolated at their exact stamps, unaligned (the
 //        paper's figure) and after SE(3) Umeyama alignment; RPE over 10 m and 100 m.
 //   CMPLT: distinct 0.5 m voxels hit by the LO's registered scans per 5 s window, and the same from

@@ -1,7 +1,7 @@
-// lo: LiDAR odometry for a motorized LiDAR (docs/design.md sections 1 and 2). Takes scans in the LiDAR
-// frame with per-point times and the encoder states, runs uampc_lo_core, and publishes the base
-// odometry with covariance, the registered scan and the local map (world frame), and its figures
-// (degeneracy, correspondences, processing time).
+// lo: LiDAR odometry for a motorized LiDAR (docs/dev/architecture.md sections 1 and 2). Takes scans
+// in the LiDAR frame with per-point times and the encoder states, runs uampc_lo_core, and publishes
+// the base odometry with covariance, the registered scan and the local map (world frame), and its
+// figures (degeneracy, correspondences, processing time).
 #include <chrono>
 #include <cctype>
 #include <deque>
@@ -92,7 +92,7 @@ class LoComponent : public Component {
     b.bind("scan_voxel_size", c.scan_voxel_size, "voxel downsampling of the scan, m").between(0.01, 10.0);
     b.bind("max_registration_points", c.max_registration_points,
            "a downsampled scan with more points registers this many, spread evenly over space (0: all; see "
-           "README, \"A registration budget\")")
+           "docs/results/lo-degenerate-geometry.md, \"A registration budget\")")
         .between(0, 10000000);
     b.bind("registration_weakest_points", c.registration_weakest_points,
            "with max_registration_points, enough points register that the weakest pose direction keeps this many "
@@ -100,7 +100,8 @@ class LoComponent : public Component {
         .between(0.0, 1e6);
     b.bind("map_voxel_size", c.map_voxel_size, "voxel size of the local map, m").between(0.01, 10.0);
     b.bind("map_mean_points", c.map_mean_points,
-           "a map voxel's point is the mean of its first this many observations (1: the first point stays; see README)")
+           "a map voxel's point is the mean of its first this many observations (1: the first point stays; see "
+           "docs/results/lo-degenerate-geometry.md, \"The map's points\")")
         .between(1, 255);
     b.bind("map_radius", c.map_radius, "local-map points farther than this from the base are dropped, m")
         .between(1.0, 10000.0);
@@ -115,10 +116,11 @@ class LoComponent : public Component {
     b.bind("max_iterations", c.max_iterations, "iterated EKF: at most this many re-linearisations").between(1, 100);
     b.bind("degeneracy_aware", c.degeneracy_aware,
            "leave the state directions a scan does not constrain to the motion prior (suits LiDAR-inertial rigs in "
-           "corridors and tunnels; see README)");
+           "corridors and tunnels; see docs/decisions/lo-degeneracy-aware-off.md)");
     b.bind("frame_velocity_std_linear", c.frame_velocity_std_linear,
            "how far a frame's deskew velocity may differ from the filter's, m/s; 0 with frame_velocity_std_angular "
-           "0: the paper's LO, the filter's velocity deskews every frame (see README)")
+           "0: the paper's LO, the filter's velocity deskews every frame (see "
+           "docs/results/lo-degenerate-geometry.md, \"Each frame's own velocity\")")
         .between(0.0, 100.0);
     b.bind("frame_velocity_std_angular", c.frame_velocity_std_angular,
            "how far a frame's deskew angular velocity may differ from the filter's, rad/s (see "

@@ -1,4 +1,4 @@
-// map_provider: the simulated world and the ground truth (docs/design.md section 2).
+// map_provider: the simulated world and the ground truth (docs/dev/architecture.md section 2).
 // Publishes the world's surfaces once (latched, in chunks) for ray-casters in any process, a
 // point-cloud sample of it for viewers and tools, and the ground-truth base pose at sim time.
 #include <algorithm>
@@ -101,7 +101,7 @@ class MapProvider : public Component {
     b.bind("density_profile", s.density_profile,
            "world: around_trajectory: how built-up the path's stretches (30-90 m, seeded) are; open stretches "
            "(lawn, car park, one long wall, a street of two) make up this share of the path: " +
-               profileFractions() + " (chosen with constant motor speeds only, see README)")
+               profileFractions() + " (chosen with constant motor speeds only, see docs/results/scenes-where-the-motor-matters.md)")
         .oneOf(profileNames());
     b.bind("open_fraction", s.open_fraction,
            "world: around_trajectory: share of path length that is open, 0 to 1, overriding density_profile "

@@ -9,13 +9,13 @@ namespace uampc::mcap::detail {
 
 namespace {
 
-// zstd at level -1 with long-distance matching, chosen by measurement (README, "Recordings": size
-// and cost). The recorder runs beside the system it records and may cost it at most 10 % of its
-// real-time factor. Half of a default run's bytes are /lo/local_map, a 540 kB cloud that changes
-// little from one sample to the next: level 1's 512 kB window cannot reach the previous sample, so
-// it compresses a 4 MiB chunk only 1.41x at 0.53 GB/s, whereas long-distance matching finds the
-// repeats across the whole chunk (2.32x at 0.98 GB/s on one core of this machine). The window
-// follows the chunk: zstd shrinks it to the size of the input it is given.
+// zstd at level -1 with long-distance matching, chosen by measurement
+// (docs/results/recording-cost.md). The recorder runs beside the system it records and may cost it
+// at most 10 % of its real-time factor. Half of a default run's bytes are /lo/local_map, a 540 kB
+// cloud that changes little from one sample to the next: level 1's 512 kB window cannot reach the
+// previous sample, so it compresses a 4 MiB chunk only 1.41x at 0.53 GB/s, whereas long-distance
+// matching finds the repeats across the whole chunk (2.32x at 0.98 GB/s on one core of this
+// machine). The window follows the chunk: zstd shrinks it to the size of the input it is given.
 constexpr int kZstdLevel = -1;
 
 void checkLz4(std::size_t result, const char* what) {

@@ -1,5 +1,5 @@
-// Our MCAP files read by an independent reader (issue 13: "prove it against an independent
-// reader"): tests/mcap_js/read_mcap.mjs opens them with Foxglove's @mcap/core indexed reader and
+// Our MCAP files read by an independent reader, not only by our own (docs/user/topics-and-recordings.md):
+// tests/mcap_js/read_mcap.mjs opens them with Foxglove's @mcap/core indexed reader and
 // decodes every message with @foxglove/rosmsg2-serialization from the ros2msg schema in the file.
 // The schemas (rosbag2's concatenated definitions) and the CDR bytes are written here by hand, so
 // that the values the JS reader prints can only match if container, schema and CDR are all right.

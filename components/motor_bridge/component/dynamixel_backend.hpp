@@ -1,4 +1,4 @@
-// backend: dynamixel, an X-series servo on a serial bus (docs/hardware.md), and what the bridge does
+// backend: dynamixel, an X-series servo on a serial bus (docs/user/rig.md), and what the bridge does
 // when the bus fails:
 //   - each operation is tried 1 + max_retries times, reply_timeout each, so one tick never blocks
 //     for more than a few tens of milliseconds;

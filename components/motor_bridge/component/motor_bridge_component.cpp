@@ -1,8 +1,8 @@
-// motor_bridge: the only component that touches the motor (docs/design.md section 2).
+// motor_bridge: the only component that touches the motor (docs/dev/architecture.md section 2).
 // Subscribes speed commands, drives the motor, publishes encoder states as sensor_msgs/JointState
 // (position = encoder angle theta, multi-turn; velocity = omega), and falls back to a safe speed
 // when commands stop arriving. Backends: "sim", the simulated motor of uampc_motor_core, and
-// "dynamixel", an X-series servo on a serial bus (docs/hardware.md).
+// "dynamixel", an X-series servo on a serial bus (docs/user/rig.md).
 #include <cmath>
 #include <memory>
 

@@ -1,7 +1,8 @@
-// mpc: the motor controller (docs/design.md section 1; the paper's Section II). Mode ua_mpc runs
-// UA-MPC on the LO's local map and pose; modes constant and zero are the paper's baselines.
-// Every control period it publishes the motor command, the uncertainty profile (U samples, the
-// planned horizon, predicted U), the panoramic depth map as a 32FC1 image, and its timings.
+// mpc: the motor controller (docs/dev/architecture.md section 1; the paper's Section II). Mode
+// ua_mpc runs UA-MPC on the LO's local map and pose; modes constant and zero are the paper's
+// baselines. Every control period it publishes the motor command, the uncertainty profile (U
+// samples, the planned horizon, predicted U), the panoramic depth map as a 32FC1 image, and its
+// timings.
 #include <algorithm>
 #include <cstring>
 
@@ -83,7 +84,7 @@ class MpcComponent : public Component {
     b.bindDegrees("sample_step_deg", c.sample_step, "delta_theta between U samples, degrees").between(0.5, 90.0);
     b.bind("u_filter_weight", c.u_filter_weight,
            "U samples averaged over control steps per motor angle, F <- (1 - w) F + w U (1: each step's own, as "
-           "in the paper; README \"Results\")")
+           "in the paper; docs/results/controller-options.md)")
         .between(0.01, 1.0);
     b.bindDegrees("ray_step_deg", c.uncertainty.azimuth_step, "grid of the field-of-view rays for U, degrees")
         .between(0.5, 30.0);
@@ -92,7 +93,7 @@ class MpcComponent : public Component {
     b.bind("panorama_height", c.depth_map.height, "panorama rows over pi").between(8, 2048);
     b.bind("range_weight_voxel", c.range_weight_voxel,
            "U weighs each ray by what an LO downsampling to voxels of this size keeps of it (the lo's "
-           "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; README, \"U checked against the LO\")")
+           "scan_voxel_size, m; 0: every ray weighs 1, as in the paper; docs/results/u-check.md)")
         .between(0.0, 10.0);
   }
 

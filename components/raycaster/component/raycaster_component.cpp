@@ -1,4 +1,4 @@
-// raycaster: the simulated motorized LiDAR (docs/design.md section 2, Eq. 1).
+// raycaster: the simulated motorized LiDAR (docs/dev/architecture.md section 2, Eq. 1).
 // Rebuilds the world from map_provider's chunks, buffers ground-truth poses and encoder states,
 // and renders frame k (covering [k/rate, (k+1)/rate)) as soon as both cover it: every point at
 // its own time, with the motor turning during the frame. Publishes one PointCloud2 per frame in
@@ -46,7 +46,7 @@ class RaycasterComponent : public Component {
         .between(0.0, 1.0);
     spec.param("frame_id", "lidar", "frame_id of the published scans and IMU samples");
     // livox: what a rig's driver publishes, so that a recording of a simulation can stand in for the
-    // LiDAR of config/scenes/rig_mid360.yaml (docs/hardware.md).
+    // LiDAR of config/scenes/rig_mid360.yaml (docs/user/rig.md).
     spec.param("point_layout", "uampc",
                "layout of the published scans: 'uampc' (x, y, z, intensity, t, ring) or 'livox' "
                "(livox_ros_driver2's PointCloud2: x, y, z, intensity, tag, line, timestamp in absolute ns)")
@@ -85,10 +85,10 @@ class RaycasterComponent : public Component {
   static void bindScanParameters(ParameterBinding& b, raycaster::RayCasterConfig& c) {
     // The Mid-360's angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with
     // it the LiDAR-only LO loses the MCD worlds' open stretches within 10-45 s and the rich campus
-    // at 3 m/s (README, "Sensor noise"); a scene may turn it on.
+    // at 3 m/s (docs/results/sensor-noise.md); a scene may turn it on.
     b.bindDegrees("angular_noise_deg", c.angular_noise_stddev,
                   "standard deviation of the reported direction of a return, per axis, degrees (the Mid-360 "
-                  "datasheet: 0.15; off by default, see README)")
+                  "datasheet: 0.15; off by default, see docs/results/sensor-noise.md)")
         .between(0.0, 10.0);
     b.bind("dropout", c.dropout_probability, "probability that a return is lost").between(0.0, 1.0);
   }

@@ -1,9 +1,9 @@
-// player: publishes the samples of a recording (README, "Recordings") into a scene, with their
-// recorded timing: in lockstep following sim time, in real time following the wall clock (scaled by
-// rate). Its outputs are decided by the scene: the topics given, or every topic of the recording,
-// each with the recorded type and QoS. A lockstep recording played in a lockstep scene keeps its
-// time line (sample published at step t goes out at step t), so the components that read it see
-// exactly what they saw in the recorded run.
+// player: publishes the samples of a recording (docs/user/topics-and-recordings.md) into a scene,
+// with their recorded timing: in lockstep following sim time, in real time following the wall clock
+// (scaled by rate). Its outputs are decided by the scene: the topics given, or every topic of the
+// recording, each with the recorded type and QoS. A lockstep recording played in a lockstep scene
+// keeps its time line (sample published at step t goes out at step t), so the components that read
+// it see exactly what they saw in the recorded run.
 #include <memory>
 
 #include "uampc/recording/playback.hpp"

@@ -1,8 +1,9 @@
-// recorder: writes topics of a scene to an MCAP file as rosbag2 does (README, "Recordings"), so
-// that Foxglove, `ros2 bag` and `uampc play` open it. Its inputs are decided by the scene: the
-// topics given, or every topic the scene's components write. Samples are kept as they travel
-// (CDR), stamped with the time they arrived (log time) and the time their writer published them
-// (publish time; in lockstep the step that wrote them, which is what lets a player repeat a run).
+// recorder: writes topics of a scene to an MCAP file as rosbag2 does
+// (docs/user/topics-and-recordings.md), so that Foxglove, `ros2 bag` and `uampc play` open it. Its
+// inputs are decided by the scene: the topics given, or every topic the scene's components write.
+// Samples are kept as they travel (CDR), stamped with the time they arrived (log time) and the time
+// their writer published them (publish time; in lockstep the step that wrote them, which is what
+// lets a player repeat a run).
 #include <filesystem>
 #include <memory>
 

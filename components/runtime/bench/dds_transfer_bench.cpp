@@ -1,5 +1,5 @@
 // How long a point cloud takes from one process to another over Fast DDS, as the runtime's
-// participants move it (issue 17: a 20k-point PointCloud2 in at most 0.5 ms median). A bench
+// participants move it (the speed target: a 20k-point PointCloud2 in at most 0.5 ms median). A bench
 // command that prints figures, not a Google Benchmark: it needs two processes.
 //
 //   dds_transfer_bench [--points N] [--samples K] [--profile FILE.xml] [--domain D]

@@ -1,5 +1,5 @@
-// The lockstep clock (docs/design.md section 3): publishes sim time on /clock and advances only when
-// every process of the scene has acknowledged the current step.
+// The lockstep clock (docs/dev/architecture.md section 3): publishes sim time on /clock and
+// advances only when every process of the scene has acknowledged the current step.
 #pragma once
 
 #include <atomic>

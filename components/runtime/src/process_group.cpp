@@ -397,7 +397,8 @@ class ProcessRunner {
     // process's main participant, so that the two announce themselves to each other at the same
     // time. Made on first use, in the middle of the components' constructors, it missed the main
     // participant about every second run of config/scenes/record_default.yaml on one core, and the
-    // start then waited for Fast DDS's next periodic announcement, 3 s later (README, "Recordings").
+    // start then waited for Fast DDS's next periodic announcement, 3 s later
+    // (docs/results/recording-cost.md).
     if (hasSerializedPorts()) serializedDds();
     for (const auto& instance : scene_.components) {
       if (instance.process != process_) continue;
@@ -772,7 +773,7 @@ class ProcessRunner {
   // acknowledgements are what each process waits for anyway: with several processes each one
   // starts step k once it holds every process's acknowledgement of step k - 1, so no process runs
   // more than a step ahead of another, and the clock's tick and the launcher's wake-ups leave the
-  // loop (README, "Where the loop's time goes"); a process alone in its scene knows what it wrote
+  // loop (docs/results/loop-profile.md); a process alone in its scene knows what it wrote
   // and acknowledges nothing. The launcher hears each process's progress on its own topic every
   // 0.1 s of wall time and at the last step, for progress and hang detection. The first process
   // publishes /clock for outside tools. After the last step it waits, like a process of the

@@ -203,8 +203,8 @@ class SceneValidator {
   std::vector<PortReference> pending_;
   std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
 
-  // The rig (docs/design.md section 5): parameters a component marks partOfRig() take their value
-  // from the scene's rig: block, one value for every component that declares them.
+  // The rig (docs/dev/architecture.md section 5): parameters a component marks partOfRig() take
+  // their value from the scene's rig: block, one value for every component that declares them.
   void readRigNode(const YAML::Node& root);
   void readRigParameter(const ParameterSpec& p, ComponentInstance& instance, Scene& scene);
   void checkRigKeys(const Scene& scene);

@@ -1,7 +1,7 @@
 // A scene file read with the files it extends: `extends: other.yaml` makes the scene the other
-// scene with this file's keys deep-merged over it (config/scenes/README.md). The merged tree keeps
-// the nodes of the files they were written in, so that every message can still name the file,
-// line and column where a key or value was written.
+// scene with this file's keys deep-merged over it (docs/user/scenes.md, "One scene extending
+// another"). The merged tree keeps the nodes of the files they were written in, so that every
+// message can still name the file, line and column where a key or value was written.
 #pragma once
 
 #include <yaml-cpp/yaml.h>

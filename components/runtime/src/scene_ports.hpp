@@ -1,5 +1,5 @@
 // The scene's graph checked once every component is read: port references ("component/port")
-// resolved to topics, and every topic's ports compared (config/scenes/README.md, "Topics").
+// resolved to topics, and every topic's ports compared (docs/user/scenes.md, "Topics").
 #pragma once
 
 #include <map>

@@ -1,5 +1,5 @@
 // tf_broadcaster: the rig's TF tree on /tf_static and /tf, so that a viewer (Foxglove, RViz) places
-// every topic by its header's frame_id (docs/design.md, "TF"). REP-105 names by default:
+// every topic by its header's frame_id (docs/dev/architecture.md, "TF"). REP-105 names by default:
 //
 //   map -> odom -> base_link -> motor -> rotor -> lidar        (the LO's estimate)
 //   map -> ground_truth                                          (the true base_link, simulation)

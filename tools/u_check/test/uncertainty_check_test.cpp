@@ -29,7 +29,7 @@ TEST(UncertaintyCheck, CampusPoorRowAnglesDifferAndURanksThem) {
   config.warmup = 6.0;
   config.trials = 3;
   UncertaintyCheck check(world, config);
-  const ProbeResult r = check.probe(106.0);  // the path enters the row of poor blocks (README)
+  const ProbeResult r = check.probe(106.0);  // the path enters the row of poor blocks (docs/results/u-check.md)
   ASSERT_FALSE(r.lo_lost);
   ASSERT_EQ(r.angles.size(), 72u);  // the controller's 5-degree samples over one turn
   double least = INFINITY, most = 0.0;

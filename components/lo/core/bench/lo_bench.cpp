@@ -38,8 +38,8 @@ const Recording& shortRecording() {
   return recording;
 }
 
-// Arguments: scan voxel size in mm (300 is the default: docs/design.md section 1), 1 for each
-// frame's own velocity (the default), 0 for the filter's (OdometryConfig::frame_velocity_std_*),
+// Arguments: scan voxel size in mm (300 is the default: docs/dev/architecture.md section 1), 1 for
+// each frame's own velocity (the default), 0 for the filter's (OdometryConfig::frame_velocity_std_*),
 // the registration budget (OdometryConfig::max_registration_points; 0: none) and the weakest
 // direction's points it keeps (OdometryConfig::registration_weakest_points; 0: the budget alone).
 void BM_RegisterScan20k(benchmark::State& state) {

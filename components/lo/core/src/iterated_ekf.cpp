@@ -234,13 +234,13 @@ Eigen::MatrixXd gramian(const Jacobian& H) {
 // noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = sigma^2 C_i (C_i:
 // spreadInverse), so each row adds sigma^2 A_i C_i A_i^T on average: information along
 // directions no surface constrains. In a plain corridor with 2 cm of range noise that is 20-30
-// effective points along the axis, which hid its degeneracy in 91 % of the frames (README, "The LO
-// in degenerate geometry"). sigma^2 is the median of the planes' own estimates: one plane's
-// scatter also holds whatever bend of the surface it spans (an edge within the 0.1 m tolerance),
-// which is not noise, and with those the sum came out up to twice what the corridor's axis had.
-// Rows the gate dropped (zero) add nothing. An expectation, so it is estimated from every
-// kStride-th row (the rows are in spatial order, so those spread over the whole scan), times
-// kStride: a quarter of the cost, about 0.5 ms a frame.
+// effective points along the axis, which hid its degeneracy in 91 % of the frames
+// (docs/results/lo-degenerate-geometry.md, "The plain corridor"). sigma^2 is the median of the
+// planes' own estimates: one plane's scatter also holds whatever bend of the surface it spans (an
+// edge within the 0.1 m tolerance), which is not noise, and with those the sum came out up to twice
+// what the corridor's axis had. Rows the gate dropped (zero) add nothing. An expectation, so it is
+// estimated from every kStride-th row (the rows are in spatial order, so those spread over the
+// whole scan), times kStride: a quarter of the cost, about 0.5 ms a frame.
 Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondences,
                                 const std::vector<PlaneSpread>& spreads, const Jacobian& H, const BaseState& x,
                                 const FrameDeviation* deviation) {

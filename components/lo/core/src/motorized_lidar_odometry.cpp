@@ -76,7 +76,8 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
   options.min_correspondences = config.min_correspondences;
   options.project_degenerate = config.degeneracy_aware;
   // degeneracy_aware leaves the velocities' weak directions to the prior itself; together with a
-  // frame's own velocity the two fight (lo_replay: KTH lost at once, the campus at 101.8 s, README),
+  // frame's own velocity the two fight (lo_replay: KTH lost at once, the campus at 101.8 s:
+  // docs/results/lo-degenerate-geometry.md, "Each frame's own velocity"),
   // so with it each frame is deskewed with the filter's velocity, as before.
   if (!config.degeneracy_aware) {
     options.frame_velocity_std_linear = config.frame_velocity_std_linear;
@@ -228,7 +229,8 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
   result.iterations = summary.iterations;
   result.associations = summary.associations;
   // Once lost, the prediction is what went wrong: judging the scan by it would reject every
-  // correction and keep the wrong velocity for good (KTH at 324.4 s: 100 deg/s held, README).
+  // correction and keep the wrong velocity for good (KTH at 324.4 s: 100 deg/s held;
+  // docs/results/lo-degenerate-geometry.md, "The mechanism").
   const bool lost_before = end_time - last_accepted_time_ > config_.lost_after;
   if (summary.applied && !lost_before && implausibleMotion(predicted, filter_->state(), dt)) {
     *filter_ = predicted;

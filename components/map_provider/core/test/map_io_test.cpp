@@ -135,7 +135,7 @@ TEST(MapIo, BrokenFilesGiveErrorsNamingTheFile) {
   expectLoadError(dir.write("cut.ply", ply.substr(0, ply.size() - 40)), "");
 }
 
-// Declared sizes beyond the memory budget are refused before anything is allocated (issue 15: a
+// Declared sizes beyond the memory budget are refused before anything is allocated (a
 // 171-byte binary_compressed PCD declaring 357,913,941 points took 8.4 GB before it failed).
 TEST(MapIo, DeclaredSizesBeyondTheBudgetAreRefusedBeforeAllocation) {
   TempDir dir;

@@ -1,4 +1,4 @@
-// The DYNAMIXEL figures of README "A physical rig" (issue 14), measured against the emulated
+// The DYNAMIXEL figures of docs/user/rig.md ("Figures"), measured against the emulated
 // XM430 on a pseudo-terminal (tools/dynamixel_emulator): a bench command that prints them, so that
 // the tests only assert behaviour.
 //

@@ -67,8 +67,8 @@ std::vector<Eigen::Vector3f> asFloat(const Cloud& cloud) {
 
 // Args: local-map points, panorama degrees per pixel (1 is what the mpc component ships, see
 // PanoramicDepthMap::Config; 2 is the cheaper setting it replaced), and U's ray grid in degrees
-// (5 is the default, UncertaintyModel::Config; 10 is a quarter of the rays: README, "Where the
-// loop's time goes").
+// (5 is the default, UncertaintyModel::Config; 10 is a quarter of the rays, which rank the motor
+// angles worse: docs/results/u-check.md).
 void BM_ControlStep(benchmark::State& state) {
   const std::vector<Eigen::Vector3f> cloud = asFloat(hall(static_cast<std::size_t>(state.range(0))));
   uampc::mpc::UaMpcController::Config config;

@@ -77,7 +77,7 @@ TEST(RaycasterComponent, RefusesAWorldChunkThatNamesAVertexItDoesNotHave) {
 }
 
 // A spinning LiDAR whose frame would not fit in memory is refused at start, naming the budget
-// (issue 15: 1e8 points/s at 1 Hz, each within its bounds, needed more than 8 GB for one frame).
+// (1e8 points/s at 1 Hz, each within its bounds, needed more than 8 GB for one frame).
 TEST(RaycasterComponent, RefusesAFrameBeyondThePointBudget) {
   try {
     testing::TestContext ctx(

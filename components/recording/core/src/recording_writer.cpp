@@ -25,7 +25,7 @@ mcap::WriterOptions writerOptions(const RecordingOptions& options) {
   w.profile = "ros2";
   w.library = "uampc";
   // Compression and the file write on their own thread: the recorder's part of a running system's
-  // step is then only copying the sample (README, "Recordings": size and cost).
+  // step is then only copying the sample (docs/results/recording-cost.md).
   w.background = true;
   return w;
 }

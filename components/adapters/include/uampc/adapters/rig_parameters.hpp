@@ -1,8 +1,8 @@
 // The motorized-LiDAR rig as component parameters, declared and read in one place. They are
 // marked partOfRig(): a scene sets them once in its rig: block and the loader gives the same value
-// to the raycaster, lo, mpc and evaluator (docs/design.md section 5). The motor axis is the base
-// frame's z axis by definition (Eq. 1's R_BM(theta)); a rig mounted otherwise is described by
-// where its base frame is, not by a parameter.
+// to the raycaster, lo, mpc and evaluator (docs/dev/architecture.md section 5). The motor axis is
+// the base frame's z axis by definition (Eq. 1's R_BM(theta)); a rig mounted otherwise is described
+// by where its base frame is, not by a parameter.
 #pragma once
 
 #include "uampc/frames/motorized_lidar.hpp"

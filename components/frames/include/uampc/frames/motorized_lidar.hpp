@@ -1,4 +1,4 @@
-// Frames of a motorized LiDAR, in one place (docs/design.md section 1, Eq. 1).
+// Frames of a motorized LiDAR, in one place (docs/dev/architecture.md section 1, Eq. 1).
 //
 //   W: world (map) frame.   B: base frame, the body whose pose the LO estimates.
 //   M: motor frame, rotated about the base z axis by the encoder angle theta.

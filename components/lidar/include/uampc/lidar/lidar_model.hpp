@@ -1,6 +1,6 @@
 // LiDAR models as plain data: which scan pattern, how many points, which ranges. One description
 // of a LiDAR for every component that needs one: the raycaster simulates it, the controller takes
-// its field of view and point density for U (docs/design.md section 5, the rig).
+// its field of view and point density for U (docs/dev/architecture.md section 5, the rig).
 //
 // LiDAR frame: x forward, y left, z up; azimuth counted from x towards y, elevation up from the
 // x-y plane. Three pattern kinds cover the sensors we simulate:

@@ -1,14 +1,14 @@
 // sensor_msgs/PointCloud2 <-> plain vectors, in one place.
 //
-// uampc's scans carry the fields of docs/design.md section 4: x, y, z, intensity, t (float32, seconds
-// since the header stamp), ring (uint16); 22 bytes per point, little-endian, unorganised (height 1).
-// The reader also accepts other drivers' layouts: the per-point time may be called t, time,
-// timestamp or offset_time, in float32 or float64 seconds or integer nanoseconds (uint32, int32,
-// uint64 as two uint32 is not a PointField type, so offset_time in uint32 ns as Livox's driver).
-// A float64 field named timestamp is absolute time on the header stamp's clock, as the drivers that
-// write it mean it: livox_ros_driver2 in nanoseconds, Hesai's and RoboSense's in seconds; seconds
-// when the cloud's last point so read lies within kMaxTimeOffset of the header stamp, else
-// nanoseconds when it does so (docs/hardware.md).
+// uampc's scans carry the fields of docs/dev/architecture.md section 4: x, y, z, intensity, t
+// (float32, seconds since the header stamp), ring (uint16); 22 bytes per point, little-endian,
+// unorganised (height 1). The reader also accepts other drivers' layouts: the per-point time may be
+// called t, time, timestamp or offset_time, in float32 or float64 seconds or integer nanoseconds
+// (uint32, int32, uint64 as two uint32 is not a PointField type, so offset_time in uint32 ns as
+// Livox's driver). A float64 field named timestamp is absolute time on the header stamp's clock, as
+// the drivers that write it mean it: livox_ros_driver2 in nanoseconds, Hesai's and RoboSense's in
+// seconds; seconds when the cloud's last point so read lies within kMaxTimeOffset of the header
+// stamp, else nanoseconds when it does so (docs/user/rig.md).
 #pragma once
 
 #include <Eigen/Core>

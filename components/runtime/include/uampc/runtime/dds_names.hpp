@@ -1,5 +1,5 @@
-// ROS 2's conventions for names on the DDS wire (docs/design.md section 4), in one place: the
-// runtime uses them to create topics, the recorder, player and topic tools to read what others
+// ROS 2's conventions for names on the DDS wire (docs/dev/architecture.md section 4), in one place:
+// the runtime uses them to create topics, the recorder, player and topic tools to read what others
 // created.
 #pragma once
 

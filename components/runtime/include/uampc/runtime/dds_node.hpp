@@ -1,6 +1,6 @@
 // One Fast DDS participant, with its topics and registered types, and the translation from our QoS
-// presets and ROS 2 topic names to DDS (docs/design.md section 4): a scene's process has one (and
-// one more for its serialized ports), `uampc play` and `uampc record` one each.
+// presets and ROS 2 topic names to DDS (docs/dev/architecture.md section 4): a scene's process has
+// one (and one more for its serialized ports), `uampc play` and `uampc record` one each.
 #pragma once
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -24,8 +24,8 @@
 
 namespace uampc {
 
-// The writer QoS a preset means (docs/design.md section 4): in lockstep every stream is reliable
-// and keeps every sample. Readers get the same reliability, durability and history.
+// The writer QoS a preset means (docs/dev/architecture.md section 4): in lockstep every stream is
+// reliable and keeps every sample. Readers get the same reliability, durability and history.
 eprosima::fastdds::dds::DataWriterQos writerQosOf(QosPreset preset, bool lockstep);
 
 // Makes a new type support; DdsNode registers it once per type.

@@ -1,9 +1,9 @@
-// DDS Security for a scene's participants (issue 15): Fast DDS's built-in plugins, PKI-DH
+// DDS Security for a scene's participants: Fast DDS's built-in plugins, PKI-DH
 // authentication, Access-Permissions and AES-GCM-GMAC encryption, turned on by the scene's
 // `security: {directory: DIR}`. DIR is what `uampc security init` writes: one CA (it signs the
 // identities and, as permissions CA, the governance and permissions documents), and an identity
 // per scene process plus one for the launcher's lockstep clock, each with its certificate, private
-// key and permissions (docs in README, "Security").
+// key and permissions (docs/user/security.md).
 #pragma once
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>

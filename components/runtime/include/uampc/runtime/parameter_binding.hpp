@@ -3,7 +3,7 @@
 // One function lists the parameters (name, field, doc, bounds). describe() runs it on a default
 // config to declare them, so each default is the core's own; the constructor runs it on a fresh
 // config to fill it from the scene's values. A parameter can no longer be declared with one
-// default in the component and have another in the core (issue 16: mpc's panorama had drifted
+// default in the component and have another in the core (it happened: mpc's panorama had drifted
 // to 180 x 90 in the component while the core said 360 x 180).
 //
 //   static void bindParameters(ParameterBinding& b, lo::OdometryConfig& c) {

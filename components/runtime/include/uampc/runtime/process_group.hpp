@@ -9,7 +9,7 @@
 
 namespace uampc {
 
-// Topics of the lockstep protocol (docs/design.md section 3).
+// Topics of the lockstep protocol (docs/dev/architecture.md section 3).
 constexpr const char* kClockTopic = "/clock";
 constexpr const char* kStepAckTopic = "/uampc/lockstep/ack";
 // Processes that step themselves tell the launcher how far they are here, every 0.1 s of wall

@@ -1,6 +1,6 @@
-// QoS presets (docs/design.md section 4). A port names a preset; the runtime turns it into DDS QoS.
-// In lockstep mode every preset becomes reliable keep-all, so that no sample the loop depends on
-// is lost; transient-local stays transient-local.
+// QoS presets (docs/dev/architecture.md section 4). A port names a preset; the runtime turns it
+// into DDS QoS. In lockstep mode every preset becomes reliable keep-all, so that no sample the loop
+// depends on is lost; transient-local stays transient-local.
 #pragma once
 
 namespace uampc {

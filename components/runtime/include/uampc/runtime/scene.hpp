@@ -1,7 +1,7 @@
 // A scene: one YAML file that says which components run, with which parameters, wired to which
-// topics, under which clock, in which processes (docs/design.md section 5). See config/scenes/README.md
-// for the format. loadScene() validates everything before anything starts and reports every
-// problem with file:line:column.
+// topics, under which clock, in which processes (docs/dev/architecture.md section 5). See
+// docs/user/scenes.md for the format. loadScene() validates everything before anything starts and
+// reports every problem with file:line:column.
 #pragma once
 
 #include <cstdint>
@@ -46,7 +46,7 @@ struct ClockSettings {
   double startupTimeout() const { return ack_timeout_s > 30.0 ? ack_timeout_s : 30.0; }
   double real_time_factor = 0.0;  // lockstep pacing: 0 = as fast as possible, 1 = real time
   // Lockstep: each process group steps itself, from the others' acknowledgements, and the launcher
-  // only watches (README, "Time and lockstep"); false: the launcher's clock ticks every step.
+  // only watches (docs/dev/time-and-lockstep.md); false: the launcher's clock ticks every step.
   bool in_process = true;
 };
 

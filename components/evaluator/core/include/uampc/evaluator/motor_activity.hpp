@@ -1,6 +1,6 @@
 // What the motor did, beyond its mean speed: how much the command and the speed change from one
-// control period to the next (issue 12: UA-MPC's command chatters), taken on a fixed grid of
-// `period` seconds so that the encoder rate does not enter the figures.
+// control period to the next (UA-MPC's command chatters: docs/results/controller-options.md), taken
+// on a fixed grid of `period` seconds so that the encoder rate does not enter the figures.
 #pragma once
 
 #include <cstddef>

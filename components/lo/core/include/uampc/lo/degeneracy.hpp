@@ -6,15 +6,15 @@
 // span the degenerate directions; the measurements are not allowed to move the estimate along
 // them ("solution remapping"). In our iterated EKF the remapping is done on the linearised
 // measurements themselves, H' = H Pi, so that the motion prior alone decides those directions and
-// their covariance keeps growing as the prior's does (README, "LO in degenerate geometry").
+// their covariance keeps growing as the prior's does (docs/results/lo-degenerate-geometry.md).
 //
 // Why the velocities are analysed with the pose. The measurement model deskews each point with
 // the velocity (tau v, tau w), so a scan observes velocity too, through the spread of its points'
 // times. A surface seen at one instant of the frame (the LiDAR sweeps its azimuth over the frame)
 // constrains only yaw + tau w_z: the pose alone looks constrained, but the split between yaw and
 // yaw rate is not, and noise then drives the yaw rate (campus poor row: 0 to 0.9 rad/s in 0.6 s
-// while the yaw error was still under a degree, README). The joint 12-dimensional information
-// has that direction as a small eigenvalue.
+// while the yaw error was still under a degree; docs/results/lo-degenerate-geometry.md, "The
+// mechanism"). The joint 12-dimensional information has that direction as a small eigenvalue.
 //
 // Units. The information mixes rotation (rows s x n, in m), translation (rows n, unitless) and
 // velocities (the same rows times tau). Its eigen-decomposition is only meaningful in common

@@ -1,4 +1,4 @@
-// De-rotation: take the spinning motor out of a scan (docs/design.md section 1, Eq. 1).
+// De-rotation: take the spinning motor out of a scan (docs/dev/architecture.md section 1, Eq. 1).
 //
 //   p_B(t_i) = R_BM(theta(t_i)) * ( R_ML * p_L + r_ML )
 //

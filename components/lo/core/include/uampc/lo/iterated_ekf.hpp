@@ -28,10 +28,10 @@
 // makes each frame's deskew velocity the filter's velocity, so what a frame says of its velocity
 // from its points' times goes into the state at full weight. That view is the weakest part of a
 // scan, and its errors are not independent per point: a wall seen at one instant of the frame
-// carries its 2 cm of map error into every point on it, which reads as 0.4 m/s (README, "The LO
-// in degenerate geometry"). With the option, the frame's deskew velocity is the state's plus a
-// deviation e = (dv_W, dw_B), about the frame's middle tau_mid (FrameDeviation), with a prior
-// e ~ N(0, diag(std^2)):
+// carries its 2 cm of map error into every point on it, which reads as 0.4 m/s
+// (docs/results/lo-degenerate-geometry.md, "Each frame's own velocity"). With the option, the
+// frame's deskew velocity is the state's plus a deviation e = (dv_W, dw_B), about the frame's
+// middle tau_mid (FrameDeviation), with a prior e ~ N(0, diag(std^2)):
 //   z_i = n^T ( R Exp(w tau_mid) Exp((w + dw)(tau_i - tau_mid)) p_i + r + v tau_i
 //              + dv (tau_i - tau_mid) ) + d
 // The iterated update then solves for the 18 unknowns (dx, e) and keeps the 12 of the state, with
@@ -111,7 +111,7 @@ struct UpdateSummary {
   int associations = 0;  // how many times the planes were found anew (the costliest part)
   std::size_t correspondences = 0;
   // Information of the pose from the last linearisation, unit weight, [rotation, translation]:
-  // Lambda = sum_i J_i J_i^T (as in docs/design.md section 1, UA-MPC step 3).
+  // Lambda = sum_i J_i J_i^T (as in docs/dev/architecture.md section 1, UA-MPC step 3).
   Matrix6d pose_information = Matrix6d::Zero();
   // Eigen-analyses at the last linearisation: of the pose alone (what is reported) and of the
   // whole state (the directions the measurements were kept out of). Both judge the information

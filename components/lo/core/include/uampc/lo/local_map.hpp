@@ -3,9 +3,9 @@
 // Voxel downsampling of the map (0.3 m by default) is the voxel grid itself: a voxel holds one
 // point, the mean of the first mean_points points seen in it (1: the first point stays); later
 // ones only refresh the voxel's observation time. Averaging takes the sensor's noise out of the
-// map that every later scan is matched against (README, "The map's points"). The map is bounded:
-// voxels farther than max_radius from the sensor are dropped, so its size does not grow with the
-// length of the run.
+// map that every later scan is matched against (docs/results/lo-degenerate-geometry.md, "The map's
+// points"). The map is bounded: voxels farther than max_radius from the sensor are dropped, so its
+// size does not grow with the length of the run.
 //
 // Neighbour search is the hottest loop of the odometry. Voxels are stored by 2x2x2 blocks in an
 // open-addressing hash table (linear probing, tombstones on erase), so the 3x3x3 voxels around

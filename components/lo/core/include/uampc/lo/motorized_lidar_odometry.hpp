@@ -27,7 +27,7 @@
 
 namespace uampc::lo {
 
-// Defaults are the LO settings of docs/design.md section 1 where it names them.
+// Defaults are the LO settings of docs/dev/architecture.md section 1 where it names them.
 struct OdometryConfig {
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
   Eigen::Isometry3d initial_pose = Eigen::Isometry3d::Identity();  // T_WB of the first scan
@@ -42,7 +42,7 @@ struct OdometryConfig {
   // Registration budget: a downsampled scan with more points than this registers this many,
   // spread evenly over space (spatialSubset); the map still takes every point. 0: no budget, every
   // downsampled point registers (the LO before this option). Off until measured on every world
-  // (README, "A registration budget").
+  // (docs/results/lo-degenerate-geometry.md, "A registration budget").
   int max_registration_points = 0;
   // With a budget, enough points register that the weakest pose direction keeps this many effective
   // points (the last frame's smallest pose information eigenvalue, degeneracy.hpp, scaled by the
@@ -52,10 +52,11 @@ struct OdometryConfig {
   double map_voxel_size = 0.3;   // m
   // How many observations a map voxel's point averages (LocalMap); 1: the first point stays (the
   // LO before this option). 20 was chosen with tools/lo_replay at constant motor speeds only,
-  // against 1 and 5 (README, "The map's points"): with the scenes' 2 cm range noise the worlds of
-  // the density profiles lost 7 of 12 runs with the first point, 1 with the mean of 20, while
-  // whole MCD trajectories and the indoor worlds held with either (worst positions up to 0.9 m
-  // worse with the mean: an averaged voxel rounds the edges that hold a corridor's axis).
+  // against 1 and 5 (docs/results/lo-degenerate-geometry.md, "The map's points"): with the scenes'
+  // 2 cm range noise the worlds of the density profiles lost 7 of 12 runs with the first point, 1
+  // with the mean of 20, while whole MCD trajectories and the indoor worlds held with either (worst
+  // positions up to 0.9 m worse with the mean: an averaged voxel rounds the edges that hold a
+  // corridor's axis).
   int map_mean_points = 20;
   double map_radius = 60.0;      // m, voxels farther than this from the base are dropped
 
@@ -64,8 +65,8 @@ struct OdometryConfig {
   // A plane is rejected if its points spread along their narrower in-plane direction less than
   // this fraction of along the wider (lambda_1 / lambda_2 of the scatter); 0: never. Thin patches
   // (points nearly on a line) leave the normal free to turn about the line: in the plain corridor
-  // they were the x-facing planes near the sensor (README, "The LO in degenerate geometry").
-  // Off until measured on every world.
+  // they were the x-facing planes near the sensor (docs/results/lo-degenerate-geometry.md, "The
+  // plain corridor"). Off until measured on every world.
   double plane_min_spread_ratio = 0.0;
   double max_neighbour_distance = 1.0;    // m
   double measurement_variance = 0.001;    // m^2
@@ -73,7 +74,7 @@ struct OdometryConfig {
   // be set apart). 0.1 for both: hand-held rigs (MCD KTH and TUHH) change their yaw rate by
   // ~70 deg/s within 0.2 s. Measured with tools/lo_replay over the whole KTH trajectory, constant
   // 3.6 rad/s: 0.1 / 0.1 holds (worst 0.63 m), 0.01 / 0.1 and 0.01 / 0.01 lose track at 328 s in
-  // a degenerate stretch (README, Results).
+  // a degenerate stretch (docs/results/lo-degenerate-geometry.md, "What is still missed").
   double linear_process_noise = 0.1;   // (m/s)^2/s
   double angular_process_noise = 0.1;  // (rad/s)^2/s
   int max_iterations = 10;
@@ -86,8 +87,8 @@ struct OdometryConfig {
   // directions of the whole state (pose and velocities), and the motion prior decides them.
   // Off by default: on a hand-held rig (MCD KTH) it also takes away the weak within-frame view
   // of the angular rate that fast turns need, and KTH, held without it, is lost at 219 s; on a
-  // wheeled platform in poor geometry (the campus) it stops the yaw-rate runaway (README, "LO in
-  // degenerate geometry").
+  // wheeled platform in poor geometry (the campus) it stops the yaw-rate runaway
+  // (docs/results/lo-degenerate-geometry.md, "Why degeneracy_aware is off by default").
   double degeneracy_threshold = 20.0;
   DegeneracyScales degeneracy_scales;
   bool degeneracy_aware = false;
@@ -97,13 +98,14 @@ struct OdometryConfig {
   // one std per frame, and otherwise from how the pose moves from frame to frame. 0 and 0: the
   // filter's velocity deskews every frame, so what a frame says of its velocity goes into the
   // state at full weight (the paper's LO and ours until this option); where the walls are weak
-  // that view is map error, and the yaw rate ran away (README, "The LO in degenerate geometry").
-  // 0.3 m/s and 0.5 rad/s were chosen with tools/lo_replay at constant motor speeds only (README,
-  // "Each frame's own velocity"): the fewest losses of track over whole runs of every world,
-  // noise-free and with the scenes' 2 cm range noise, and the stretch of MCD KTH at 1.8 rad/s
-  // (280-340 s) that 0 and 0 lose and 0.1 and 0.2 lose with noise; then the worst position.
-  // Not applied to a frame the IMU predicted (use_imu): its readings measured the frame's motion;
-  // nor with degeneracy_aware, which leaves weak velocity directions to the prior its own way.
+  // that view is map error, and the yaw rate ran away (docs/results/lo-degenerate-geometry.md, "The
+  // mechanism"). 0.3 m/s and 0.5 rad/s were chosen with tools/lo_replay at constant motor speeds
+  // only (docs/results/lo-degenerate-geometry.md, "Each frame's own velocity"): the fewest losses
+  // of track over whole runs of every world, noise-free and with the scenes' 2 cm range noise, and
+  // the stretch of MCD KTH at 1.8 rad/s (280-340 s) that 0 and 0 lose and 0.1 and 0.2 lose with
+  // noise; then the worst position. Not applied to a frame the IMU predicted (use_imu): its
+  // readings measured the frame's motion; nor with degeneracy_aware, which leaves weak velocity
+  // directions to the prior its own way.
   double frame_velocity_std_linear = 0.3;   // m/s
   double frame_velocity_std_angular = 0.5;  // rad/s
   // Warning: position standard deviation above this.
@@ -152,9 +154,10 @@ struct OdometryResult {
   // Every usable point in the world frame, placed with the base pose at its own time (deskewed).
   std::vector<Eigen::Vector3f> registered_points_W;
 
-  // Smallest eigenvalue of the scaled unit-weight pose information sum_i J_i J_i^T (docs/design.md
-  // section 1, UA-MPC step 3; scaled as in degeneracy.hpp); near zero means some direction is unobservable. 0 when
-  // there was no update. degeneracy has every eigenvalue and the degenerate directions.
+  // Smallest eigenvalue of the scaled unit-weight pose information sum_i J_i J_i^T
+  // (docs/dev/architecture.md section 1, UA-MPC step 3; scaled as in degeneracy.hpp); near zero
+  // means some direction is unobservable. 0 when there was no update. degeneracy has every
+  // eigenvalue and the degenerate directions.
   double min_information_eigenvalue = 0.0;
   PoseDegeneracy degeneracy;
   int degenerate_state_directions = 0;  // of the 12-dimensional state, velocities included

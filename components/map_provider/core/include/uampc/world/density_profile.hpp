@@ -1,5 +1,5 @@
-// How built-up the world around a path is, stretch by stretch (README, "Scenes where the motor
-// matters"). A uniformly rich world lets every controller hold and a uniformly poor one loses every
+// How built-up the world around a path is, stretch by stretch
+// (docs/results/scenes-where-the-motor-matters.md). A uniformly rich world lets every controller hold and a uniformly poor one loses every
 // LiDAR-only run; real campuses alternate. So the path is cut, by arc length, into stretches of
 // seeded lengths, each either built-up (the around-trajectory world's buildings, trees and walls)
 // or open: a lawn (nothing but ground), a car park (a few low boxes), a single long plain wall on
@@ -9,7 +9,7 @@
 // LiDAR-only, the first 180 s of the three MCD trajectories, seeds 1-2), before UA-MPC ran on
 // them: at 0.4 constant 3.6 rad/s held 5 of 6 runs (worst 0.07-0.76 m), so mixed = 0.4 (drifts,
 // mostly holds); at 0.7 it held 1 of 6 and 7.2 rad/s 3 of 6, so poor = 0.7 (harder, not
-// hopeless: the motor's speed decides). Every run is in README, "Scenes where the motor matters".
+// hopeless: the motor's speed decides). Every run is in docs/results/scenes-where-the-motor-matters.md.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// ROBOTIS DYNAMIXEL Protocol 2.0: packets, CRC-16 and byte stuffing (docs/hardware.md).
+// ROBOTIS DYNAMIXEL Protocol 2.0: packets, CRC-16 and byte stuffing (docs/user/rig.md).
 //
 // A packet on the wire: FF FF FD 00 | ID | LEN_L LEN_H | INSTRUCTION | PARAMETERS... | CRC_L CRC_H.
 // LEN counts the instruction, the (stuffed) parameters and the CRC. Whenever FF FF FD appears

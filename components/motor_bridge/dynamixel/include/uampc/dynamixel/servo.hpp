@@ -1,4 +1,4 @@
-// One X-series servo in velocity control mode on a DYNAMIXEL bus (docs/hardware.md): identified and
+// One X-series servo in velocity control mode on a DYNAMIXEL bus (docs/user/rig.md): identified and
 // set up at start, commanded in rad/s, read as a multi-turn angle and a speed stamped on the
 // host's clock. Every operation is bounded: a few tries of one reply timeout each.
 #pragma once

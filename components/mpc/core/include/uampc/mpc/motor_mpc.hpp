@@ -1,4 +1,5 @@
-// The motor-speed MPC of UA-MPC (docs/design.md section 1), solved with Ceres on the surrogate U'.
+// The motor-speed MPC of UA-MPC (docs/dev/architecture.md section 1), solved with Ceres on the
+// surrogate U'.
 //
 // The paper optimises Omega_j = {omega_i, i = j-M .. j+M} under theta_{i+1} = theta_i + omega_i dt,
 //

@@ -42,8 +42,8 @@ class PanoramicDepthMap {
   struct Config {
     // 1 degree per pixel. tools/u_check ranks the motor angles by U closer to what the LO
     // achieves with it than with 2-degree pixels (Spearman with the posterior covariance, campus
-    // poor row 0.74 against 0.67, corridor with doors 0.35 against 0.23; README, "U checked
-    // against the LO"), for about 4.6 instead of 2.5 ms per control step (mpc_bench).
+    // poor row 0.74 against 0.67, corridor with doors 0.35 against 0.23; docs/results/u-check.md),
+    // for about 4.6 instead of 2.5 ms per control step (mpc_bench).
     int width = 360;              // columns over 2 pi of azimuth
     int height = 180;             // rows over pi of elevation
     double min_range = 0.5;       // m, closer points are ignored (robot body, degenerate directions)

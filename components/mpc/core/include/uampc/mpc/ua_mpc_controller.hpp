@@ -1,4 +1,4 @@
-// UA-MPC behind one Config and one verb (docs/design.md section 1).
+// UA-MPC behind one Config and one verb (docs/dev/architecture.md section 1).
 //
 // One control step: render the panoramic depth map of the local map around the base (Eq. 5),
 // sample U over one turn from the current motor angle (U_s = U(theta_now + s * delta_theta)),

@@ -1,4 +1,5 @@
-// U samples averaged over control steps, per absolute motor angle (issue 12, item 2 (c)).
+// U samples averaged over control steps, per absolute motor angle: a controller option meant to
+// calm UA-MPC's command (docs/results/controller-options.md).
 //
 // Every control step samples U over one turn from the current motor angle. The filter keeps one
 // exponential average per angle bin of the turn (bin k holds the angle k * step mod 2 pi; a
@@ -7,7 +8,7 @@
 //   F_k <- (1 - w) F_k + w U_s   (F_k = U_s the first time),   w = weight.
 //
 // A departure from the paper, which uses each step's samples as they are; it is off (weight 1)
-// unless a scene asks for it. Measured open loop and closed loop in README ("Results").
+// unless a scene asks for it. Measured open loop and closed loop, and not adopted.
 #pragma once
 
 #include <vector>

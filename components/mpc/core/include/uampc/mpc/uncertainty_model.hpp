@@ -1,5 +1,5 @@
 // U(theta): the predicted uncertainty of the LO if the LiDAR looks with motor angle theta
-// (docs/design.md section 1, UA-MPC steps 2-3).
+// (docs/dev/architecture.md section 1, UA-MPC steps 2-3).
 //
 // 1. The LiDAR field of view is sampled on a uniform grid of directions d_L (LiDAR frame).
 // 2. Each ray is rotated into the base frame, d_B = R_BM(theta) R_ML d_L (uampc_frames), and looked

@@ -34,7 +34,7 @@ struct RayCasterConfig {
   bool use_packets = true;            // cast in packets (RayCastScene::kPacketSize rays; same result, faster)
 };
 
-// One return, in the LiDAR frame at its own time (docs/design.md section 4 scan fields).
+// One return, in the LiDAR frame at its own time (docs/dev/architecture.md section 4, scan fields).
 struct ScanPoint {
   Eigen::Vector3f position;  // m, LiDAR frame
   float intensity = 0.0f;    // 255 * |cos(incidence angle)|

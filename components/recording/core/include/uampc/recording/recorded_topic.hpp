@@ -1,5 +1,5 @@
 // What a recording says about each of its topics besides the samples, and how it says it in an
-// MCAP channel's metadata (README, "Recordings (MCAP)").
+// MCAP channel's metadata (docs/user/topics-and-recordings.md, "Recordings (MCAP)").
 #pragma once
 
 #include <map>

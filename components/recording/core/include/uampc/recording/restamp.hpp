@@ -1,6 +1,6 @@
 // Moves recorded samples in time: `uampc play --restamp` plays a recording as if it were happening
 // now, for a real-time system that pairs the played samples with live ones by their stamps (the LO
-// pairs each scan with the encoder states of its motor, docs/hardware.md).
+// pairs each scan with the encoder states of its motor, docs/user/rig.md).
 #pragma once
 
 #include <map>
