@@ -5,7 +5,9 @@
 
 namespace uampc::app {
 
-int componentsCommand(bool json);
+enum class ComponentListFormat { kText, kJson, kMarkdown };
+
+int componentsCommand(ComponentListFormat format);
 int validateCommand(const LaunchOptions& options);
 
 }  // namespace uampc::app

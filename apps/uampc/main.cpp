@@ -82,6 +82,7 @@ struct CommandLine {
   bool own_clock = false;                    // run-process
   std::string graph_format = "mermaid";      // graph
   bool json = false;                         // components
+  bool markdown = false;                     // components
   uampc::app::ExperimentOptions experiment;  // experiment
   uampc::app::TopicOptions topic;            // topic
   uampc::app::PlayOptions play;              // play
@@ -286,10 +287,18 @@ class UampcCli {
   }
 
   void addComponents() {
-    CLI::App* sub = addCommand("components", "uampc components [--json]",
+    CLI::App* sub = addCommand("components", "uampc components [--json | --markdown]",
                                "List installed component types with their ports and parameters.");
-    sub->add_flag("--json", options_.json, "Print them as JSON (for tools) instead of text.");
-    commands_.push_back({sub, [this] { return uampc::app::componentsCommand(options_.json); }});
+    CLI::Option* json = sub->add_flag("--json", options_.json, "Print them as JSON (for tools) instead of text.");
+    sub->add_flag("--markdown", options_.markdown,
+                  "Print them as the Markdown page docs/user/components.md (without the libraries' paths).")
+        ->excludes(json);
+    commands_.push_back({sub, [this] {
+                           using uampc::app::ComponentListFormat;
+                           return uampc::app::componentsCommand(options_.json       ? ComponentListFormat::kJson
+                                                                : options_.markdown ? ComponentListFormat::kMarkdown
+                                                                                    : ComponentListFormat::kText);
+                         }});
   }
 
   void addRunProcess() {
