@@ -135,10 +135,23 @@ class MapProvider : public Component {
     return s;
   }
 
+  // Triangles per chunk (points: three times as many): chunk_triangles, or more where the world
+  // would otherwise need more chunks than a latched topic keeps for late joiners (a 0.2 m point map
+  // of an MCD world has 7.5 million points: 253 chunks of 30,000, of which readers got 100).
+  static std::size_t chunkSize(std::size_t triangles, std::size_t points, std::int64_t chunk_triangles) {
+    auto chunks = [&](std::size_t per) { return (triangles + per - 1) / per + (points + 3 * per - 1) / (3 * per); };
+    const auto requested = static_cast<std::size_t>(chunk_triangles);
+    constexpr auto kMaxChunks = static_cast<std::size_t>(kLatchedHistoryDepth);
+    if (chunks(requested) <= kMaxChunks) return requested;
+    // Each kind rounds up by less than one chunk: two chunks spare keep the total within the depth.
+    const std::size_t triangle_equivalents = triangles + (points + 2) / 3;
+    return (triangle_equivalents + kMaxChunks - 3) / (kMaxChunks - 2);
+  }
+
   // Latched samples may be written during construction: late joiners get them too.
   void publishWorld(std::int64_t chunk_triangles, double map_spacing) {
     const auto& mesh = world_.mesh;
-    const std::size_t per_chunk = static_cast<std::size_t>(chunk_triangles);
+    const std::size_t per_chunk = chunkSize(mesh.triangles.size(), world_.points.size(), chunk_triangles);
     const std::size_t mesh_chunks = (mesh.triangles.size() + per_chunk - 1) / per_chunk;
     const std::size_t point_chunks = (world_.points.size() + 3 * per_chunk - 1) / (3 * per_chunk);
     const auto count = static_cast<std::uint32_t>(std::max<std::size_t>(1, mesh_chunks + point_chunks));

@@ -33,9 +33,9 @@ void applyPreset(Qos& qos, QosPreset preset, bool lockstep) {
     case QosPreset::kLatched:
       qos.reliability().kind = RELIABLE_RELIABILITY_QOS;
       qos.durability().kind = TRANSIENT_LOCAL_DURABILITY_QOS;
-      // Late joiners get the last 100 samples: enough for a world sent in chunks.
+      // Late joiners get the last kLatchedHistoryDepth samples: a world is sent in no more chunks.
       qos.history().kind = KEEP_LAST_HISTORY_QOS;
-      qos.history().depth = 100;
+      qos.history().depth = kLatchedHistoryDepth;
       break;
   }
 }

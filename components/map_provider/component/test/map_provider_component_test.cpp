@@ -2,6 +2,8 @@
 // its place), and the ground-truth pose follows the trajectory at the pose rate.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/msgs/geometry_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
@@ -31,6 +33,30 @@ TEST(MapProviderComponent, PublishesTheWorldInNumberedChunksAndPosesAtThePoseRat
   const Eigen::Vector3d step =
       adapters::toIsometry(poses[26].pose()).translation() - adapters::toIsometry(poses[25].pose()).translation();
   EXPECT_NEAR(step.norm(), 0.04, 1e-3);
+}
+
+// A world that would need more chunks than a latched topic keeps for late joiners goes out in
+// larger ones, never more than kLatchedHistoryDepth, every point still in them.
+TEST(MapProviderComponent, ALargeWorldFitsTheLatchedHistory) {
+  auto points_in = [](const std::vector<msg::WorldMesh>& chunks) {
+    std::size_t n = 0;
+    for (const auto& c : chunks) n += c.points().size() / 3;
+    return n;
+  };
+  testing::TestContext small_chunks(
+      "map_provider", {{"world", "corridor"}, {"point_map_resolution", "0.2"}, {"chunk_triangles", "100"}});
+  const auto chunks = small_chunks.published<msg::WorldMesh>("world");
+  ASSERT_FALSE(chunks.empty());
+  EXPECT_LE(chunks.size(), static_cast<std::size_t>(kLatchedHistoryDepth));
+  EXPECT_EQ(chunks.front().chunk_count(), chunks.size());
+  testing::TestContext one_chunk(
+      "map_provider", {{"world", "corridor"}, {"point_map_resolution", "0.2"}, {"chunk_triangles", "1000000"}});
+  const auto whole = one_chunk.published<msg::WorldMesh>("world");
+  ASSERT_EQ(whole.size(), 1u);
+  // 300 points a chunk would take more than the history's 100 chunks.
+  ASSERT_GT(points_in(whole), 300u * static_cast<std::size_t>(kLatchedHistoryDepth));
+  EXPECT_EQ(points_in(chunks), points_in(whole));
+  EXPECT_NEAR(whole.front().point_radius(), 0.55 * std::sqrt(3.0) * 0.2, 1e-6);
 }
 
 }  // namespace

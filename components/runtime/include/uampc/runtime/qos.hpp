@@ -11,6 +11,10 @@ enum class QosPreset {
   kLatched,  // maps, configuration: reliable transient-local, the last 100 samples kept for late joiners
 };
 
+// Samples of a latched topic kept for late joiners: a latched message sent in more chunks than this
+// loses its first ones.
+inline constexpr int kLatchedHistoryDepth = 100;
+
 const char* toString(QosPreset preset);
 
 }  // namespace uampc
