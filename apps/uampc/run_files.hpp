@@ -1,5 +1,5 @@
 // Readers for the trajectories and the voxel map a run leaves behind (written by the evaluator
-// component; its CSV files are read through components/run_files), in the shapes the report's
+// component; its CSV files are read through libs/run_files), in the shapes the report's
 // figures need. Missing or empty files give empty results: a figure without
 // data is left out of the report with a note, not an error.
 #pragma once

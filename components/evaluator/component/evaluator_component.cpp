@@ -4,7 +4,7 @@
 //   CMPLT: distinct 0.5 m voxels hit by the LO's registered scans per 5 s window, and the same from
 //        the raw scans placed with ground truth (Eq. 1), so completeness is not confounded with drift.
 // Publishes running figures; writes the run directory's files (--out; names and contents in
-// components/run_files): during the run motor.csv, timings.csv, uncertainty.csv and snapshots of the
+// libs/run_files): during the run motor.csv, timings.csv, uncertainty.csv and snapshots of the
 // controller's panorama; at the end the trajectories, ate.csv, the CMPLT windows, scanned_voxels.bt
 // (OctoMap, opens in octovis) and metrics.json last, with what the run was (run_info.json, written
 // by `uampc launch` when the run started) as its "run" object.

@@ -13,7 +13,7 @@
 //                        ground-truth pose, so its odometry frame is the map frame; lo/start_poses.hpp)
 //   map -> ground_truth  every /ground_truth/pose
 //
-// What components/frames calls M (the frame turned by theta) is "rotor" here; "motor" is the
+// What libs/frames calls M (the frame turned by theta) is "rotor" here; "motor" is the
 // motor's fixed part. No core library: every transform is one frames or a message already holds;
 // this adapter only names and stamps them.
 #include <set>

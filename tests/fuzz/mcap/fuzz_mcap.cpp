@@ -1,4 +1,4 @@
-// MCAP files as `uampc play`, the player component and replay read them (components/mcap): the
+// MCAP files as `uampc play`, the player component and replay read them (libs/mcap): the
 // Reader (footer, summary, chunk indexes, or a scan of the data section when those are bad),
 // every message in log-time order with forEachMessage, and a MessageStream restricted to one
 // topic from a start time, as Playback uses it. Bad input must end in McapError naming the file.

@@ -1,5 +1,5 @@
 // Tests of the files the evaluator writes: TUM trajectories, metrics JSON, CSV series (their format:
-// components/run_files).
+// libs/run_files).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// The evaluator's reports in the run files' shapes (components/run_files): metrics.json's
+// The evaluator's reports in the run files' shapes (libs/run_files): metrics.json's
 // summaries and the rows of ate.csv and the CMPLT window files.
 #pragma once
 

@@ -16,7 +16,7 @@
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/edit_distance.hpp"
 #include "uampc/runtime/file_checks.hpp"
-#include "uampc/runtime/process_group.hpp"
+#include "uampc/runtime/lockstep_topics.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 
 namespace fs = std::filesystem;

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <memory>
 
+#include "uampc/runtime/cdr_decoder.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/message_type.hpp"
 
@@ -11,9 +12,6 @@ namespace uampc {
 using eprosima::fastrtps::rtps::InstanceHandle_t;
 using eprosima::fastrtps::rtps::SerializedPayload_t;
 
-namespace {
-constexpr std::size_t kEncapsulationSize = 4;  // representation id (2 bytes) and options (2 bytes)
-}
 
 SerializedTypeSupport::SerializedTypeSupport(const std::string& dds_type_name, std::uint32_t max_serialized_size) {
   setName(dds_type_name.c_str());
@@ -34,7 +32,7 @@ SerializedTypeSupport* SerializedTypeSupport::forDdsType(const std::string& dds_
 
 bool SerializedTypeSupport::serialize(void* data, SerializedPayload_t* payload) {
   const auto& bytes = static_cast<SerializedMessage*>(data)->data;
-  if (bytes.size() < kEncapsulationSize) return false;  // not CDR: refuse rather than send garbage
+  if (bytes.size() < kCdrEncapsulationSize) return false;  // not CDR: refuse rather than send garbage
   payload->reserve(static_cast<std::uint32_t>(bytes.size()));
   std::memcpy(payload->data, bytes.data(), bytes.size());
   payload->length = static_cast<std::uint32_t>(bytes.size());
@@ -46,7 +44,7 @@ bool SerializedTypeSupport::serialize(void* data, SerializedPayload_t* payload) 
 bool SerializedTypeSupport::deserialize(SerializedPayload_t* payload, void* data) {
   auto& bytes = static_cast<SerializedMessage*>(data)->data;
   bytes.assign(payload->data, payload->data + payload->length);
-  return payload->length >= kEncapsulationSize;
+  return payload->length >= kCdrEncapsulationSize;
 }
 
 std::function<std::uint32_t()> SerializedTypeSupport::getSerializedSizeProvider(void* data) {

@@ -17,6 +17,9 @@
 
 namespace uampc {
 
+// A CDR sample starts with its encapsulation header: representation id (2 bytes) and options (2 bytes).
+inline constexpr std::size_t kCdrEncapsulationSize = 4;
+
 // What is wrong with the bytes: "truncated sample: header.frame_id needs 10 bytes at offset 16, 4 left".
 class CdrDecodeError : public std::runtime_error {
  public:

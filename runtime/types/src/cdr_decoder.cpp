@@ -5,7 +5,6 @@
 namespace uampc {
 namespace {
 
-constexpr std::size_t kEncapsulationSize = 4;
 // A payload travels padded to a multiple of 4 bytes (Fast DDS pads a 21-byte sample to 24).
 constexpr std::size_t kMostTrailingPadding = 3;
 
@@ -18,7 +17,7 @@ std::string hex(unsigned value) {
 
 // Whether the body is little endian, from the encapsulation header's representation identifier.
 bool littleEndianBody(const std::uint8_t* data, std::size_t size) {
-  if (size < kEncapsulationSize) {
+  if (size < kCdrEncapsulationSize) {
     throw CdrDecodeError("truncated sample: " + std::to_string(size) + " bytes, less than the 4-byte CDR header");
   }
   const unsigned representation = (unsigned{data[0]} << 8) | data[1];
@@ -51,21 +50,21 @@ class CdrReader {
   CdrReader(const MessageStructure& structure, const std::uint8_t* data, std::size_t size)
       : structure_(structure),
         little_endian_(littleEndianBody(data, size)),
-        body_(data + kEncapsulationSize),
-        size_(size - kEncapsulationSize) {}
+        body_(data + kCdrEncapsulationSize),
+        size_(size - kCdrEncapsulationSize) {}
 
   DecodedValue sample() {
     DecodedValue value = structValue(structure_.rootStruct(), "");
     if (size_ - pos_ > kMostTrailingPadding) {
       throw CdrDecodeError(std::to_string(size_ - pos_) + " bytes left after the last field (offset " +
-                           std::to_string(offset()) + " of " + std::to_string(size_ + kEncapsulationSize) +
+                           std::to_string(offset()) + " of " + std::to_string(size_ + kCdrEncapsulationSize) +
                            "): the sample is not a " + structure_.root);
     }
     return value;
   }
 
  private:
-  std::size_t offset() const { return pos_ + kEncapsulationSize; }  // in the whole sample, for errors
+  std::size_t offset() const { return pos_ + kCdrEncapsulationSize; }  // in the whole sample, for errors
 
   void need(std::size_t bytes, const std::string& path) const {
     if (bytes <= size_ - pos_) return;

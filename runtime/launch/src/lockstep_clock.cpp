@@ -16,7 +16,7 @@
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/run_progress.hpp"
 #include "uampc/runtime/dds_node.hpp"
-#include "uampc/runtime/process_group.hpp"
+#include "uampc/runtime/lockstep_topics.hpp"
 #include "wakeup.hpp"
 
 namespace uampc {

@@ -5,18 +5,10 @@
 #include <atomic>
 #include <string>
 
+#include "uampc/runtime/lockstep_topics.hpp"
 #include "uampc/runtime/scene.hpp"
 
 namespace uampc {
-
-// Topics of the lockstep protocol (docs/dev/architecture.md section 3).
-constexpr const char* kClockTopic = "/clock";
-constexpr const char* kStepAckTopic = "/uampc/lockstep/ack";
-// Processes that step themselves tell the launcher how far they are here, every 0.1 s of wall
-// time (not every step: the launcher is not in the loop).
-constexpr const char* kStepProgressTopic = "/uampc/lockstep/progress";
-// Every topic of the protocol starts with this; no component port may use one.
-constexpr const char* kLockstepTopicPrefix = "/uampc/lockstep/";
 
 // Returns the process exit code: 0 after a clean stop, 1 when a component failed.
 // Stops when `stop` becomes true (a signal handler sets it). own_clock: the process steps itself

@@ -26,7 +26,7 @@ std::string panoramaSnapshotName(double sim_time_s);
 // The time part of such a name ("00004.5"), or nullopt for another file.
 std::optional<std::string> panoramaSnapshotTime(const std::string& file_name);
 
-// Written by `uampc launch` (components/runtime launcher.cpp) when the run starts: the resolved
+// Written by `uampc launch` (runtime launcher.cpp) when the run starts: the resolved
 // scene, a scene file that `uampc launch` runs again to reproduce the run, and what the run was
 // (run_info.hpp), which the evaluator copies into metrics.json as its "run" object.
 inline constexpr char kSceneCopyFile[] = "scene.yaml";
