@@ -11,6 +11,8 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # algorithms
   libeigen3-dev libpcl-dev libceres-dev liboctomap-dev libembree-dev
+  # CRC-32 and deflate (MCAP checksums, PNG snapshots)
+  zlib1g-dev
   # configuration, JSON files, the command line
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   # DDS Security: `uampc security init` runs openssl; the runtime checks certificates with libcrypto

@@ -10,16 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "components_command.hpp"
-#include "experiment_command.hpp"
-#include "graph_command.hpp"
-#include "play_command.hpp"
-#include "record_command.hpp"
-#include "security_command.hpp"
-#include "topic_command.hpp"
+#include "commands/components_command.hpp"
+#include "experiment/experiment_command.hpp"
+#include "commands/graph_command.hpp"
+#include "bag/play_command.hpp"
+#include "bag/record_command.hpp"
+#include "security/security_command.hpp"
+#include "topic/topic_command.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/launcher.hpp"
-#include "version.hpp"
+#include "commands/version.hpp"
 
 namespace {
 

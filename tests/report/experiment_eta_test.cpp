@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "experiment_eta.hpp"
+#include "experiment/experiment_eta.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/run_progress.hpp"
 

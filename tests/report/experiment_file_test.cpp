@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "../e2e/command_runner.hpp"
-#include "experiment_file.hpp"
+#include "experiment/experiment_file.hpp"
 #include "fake_runs.hpp"
 
 namespace uampc::app {

@@ -1,6 +1,6 @@
 // The experiment's statistics from hand-made run directories (fake_runs.cpp lists their figures):
 // per scene and controller, and ua_mpc paired by scene and seed with every other controller.
-#include "experiment_statistics.hpp"
+#include "report/experiment_statistics.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
@@ -9,7 +9,7 @@
 
 #include "../e2e/command_runner.hpp"
 #include "fake_runs.hpp"
-#include "results_table.hpp"
+#include "report/results_table.hpp"
 
 namespace uampc::app {
 namespace {

@@ -7,7 +7,7 @@
 #include <map>
 #include <tuple>
 
-#include "experiment_runner.hpp"
+#include "experiment/backends/experiment_runner.hpp"
 #include "uampc/evaluator/depth_colouring.hpp"
 #include "uampc/evaluator/voxel_octree.hpp"
 #include "uampc/run_files/metrics_file.hpp"

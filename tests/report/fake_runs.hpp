@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "experiment_file.hpp"
-#include "run_results.hpp"
+#include "experiment/experiment_file.hpp"
+#include "experiment/run_results.hpp"
 
 namespace uampc::test {
 

@@ -1,6 +1,6 @@
 // Quantiles, the Wilcoxon signed-rank test and the paired comparison against values worked out by
 // hand (each test says how), a textbook example, and the edge between exact and approximate p.
-#include "paired_statistics.hpp"
+#include "uampc/plots/paired_statistics.hpp"
 
 #include <gtest/gtest.h>
 

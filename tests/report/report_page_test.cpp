@@ -7,7 +7,7 @@
 
 #include "../e2e/command_runner.hpp"
 #include "fake_runs.hpp"
-#include "report_page.hpp"
+#include "report/report_page.hpp"
 
 namespace uampc::app {
 namespace {

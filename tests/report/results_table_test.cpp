@@ -6,7 +6,7 @@
 
 #include "../e2e/command_runner.hpp"
 #include "fake_runs.hpp"
-#include "results_table.hpp"
+#include "report/results_table.hpp"
 
 namespace uampc::app {
 namespace {

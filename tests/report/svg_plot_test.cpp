@@ -8,7 +8,7 @@
 
 #include "../e2e/command_runner.hpp"
 #include "fake_runs.hpp"
-#include "svg_plot.hpp"
+#include "uampc/plots/svg_plot.hpp"
 
 namespace uampc::app::svg {
 namespace {

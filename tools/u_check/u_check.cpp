@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "simulated_lidar.hpp"
-#include "svg_plot.hpp"
+#include "uampc/plots/svg_plot.hpp"
 #include "tool_main.hpp"
 #include "uncertainty_check.hpp"
 

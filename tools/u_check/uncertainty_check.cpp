@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "paired_statistics.hpp"
+#include "uampc/plots/paired_statistics.hpp"
 #include "simulated_lidar.hpp"
 #include "uampc/lo/derotation.hpp"
 #include "uampc/lo/so3.hpp"

@@ -1,4 +1,4 @@
-#include "raw_subscription.hpp"
+#include "topic/raw_subscription.hpp"
 
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "topic_discovery.hpp"
+#include "topic/topic_discovery.hpp"
 #include "uampc/runtime/serialized_message.hpp"
 #include "uampc/runtime/time.hpp"
 

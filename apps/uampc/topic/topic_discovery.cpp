@@ -1,4 +1,4 @@
-#include "topic_discovery.hpp"
+#include "topic/topic_discovery.hpp"
 
 #include <fastdds/rtps/builtin/data/ParticipantProxyData.h>
 #include <fastdds/rtps/builtin/data/ReaderProxyData.h>

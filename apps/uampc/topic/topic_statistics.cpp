@@ -1,4 +1,4 @@
-#include "topic_statistics.hpp"
+#include "topic/topic_statistics.hpp"
 
 #include <algorithm>
 #include <cmath>

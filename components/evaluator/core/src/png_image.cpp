@@ -1,7 +1,7 @@
 #include "uampc/evaluator/png_image.hpp"
 
-#include <algorithm>
-#include <array>
+#include <zlib.h>
+
 #include <fstream>
 #include <stdexcept>
 
@@ -19,55 +19,23 @@ void putChunk(std::vector<std::uint8_t>& out, const char type[4], const std::vec
   const std::size_t type_at = out.size();
   out.insert(out.end(), type, type + 4);
   out.insert(out.end(), data.begin(), data.end());
-  putU32(out, crc32(out.data() + type_at, 4 + data.size()));
+  putU32(out, static_cast<std::uint32_t>(::crc32(0L, out.data() + type_at, static_cast<uInt>(4 + data.size()))));
 }
 
-// A zlib stream of stored (uncompressed) deflate blocks, RFC 1950/1951.
-std::vector<std::uint8_t> zlibStored(const std::vector<std::uint8_t>& raw) {
-  std::vector<std::uint8_t> out = {0x78, 0x01};  // deflate, 32 kB window; header checksum holds
-  constexpr std::size_t kMaxBlock = 65535;
-  std::size_t at = 0;
-  do {
-    const std::size_t n = std::min(kMaxBlock, raw.size() - at);
-    const bool last = at + n == raw.size();
-    out.push_back(last ? 1 : 0);  // BFINAL, BTYPE = 00 (stored)
-    out.push_back(static_cast<std::uint8_t>(n & 0xFF));
-    out.push_back(static_cast<std::uint8_t>(n >> 8));
-    out.push_back(static_cast<std::uint8_t>(~n & 0xFF));
-    out.push_back(static_cast<std::uint8_t>((~n >> 8) & 0xFF));
-    out.insert(out.end(), raw.begin() + static_cast<std::ptrdiff_t>(at),
-               raw.begin() + static_cast<std::ptrdiff_t>(at + n));
-    at += n;
-  } while (at < raw.size());
-  putU32(out, adler32(raw.data(), raw.size()));
+// The scanlines as a zlib stream (RFC 1950) by zlib itself. Level 0 (stored blocks) keeps the files
+// byte for byte what our own encoder wrote before zlib did it; a higher level would make them
+// smaller (docs/decisions/zlib-for-checksums-and-png.md).
+std::vector<std::uint8_t> zlibStream(const std::vector<std::uint8_t>& raw) {
+  uLongf size = compressBound(static_cast<uLong>(raw.size()));
+  std::vector<std::uint8_t> out(size);
+  if (compress2(out.data(), &size, raw.data(), static_cast<uLong>(raw.size()), Z_NO_COMPRESSION) != Z_OK) {
+    throw std::runtime_error("encodePng: zlib could not compress " + std::to_string(raw.size()) + " bytes");
+  }
+  out.resize(size);
   return out;
 }
 
 }  // namespace
-
-std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc) {
-  static const std::array<std::uint32_t, 256> table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  crc = ~crc;
-  for (std::size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xFF] ^ (crc >> 8);
-  return ~crc;
-}
-
-std::uint32_t adler32(const std::uint8_t* data, std::size_t size) {
-  std::uint32_t a = 1, b = 0;
-  for (std::size_t i = 0; i < size; ++i) {
-    a = (a + data[i]) % 65521;
-    b = (b + a) % 65521;
-  }
-  return b << 16 | a;
-}
 
 std::vector<std::uint8_t> encodePng(const RgbImage& image) {
   if (image.width <= 0 || image.height <= 0 ||
@@ -90,7 +58,7 @@ std::vector<std::uint8_t> encodePng(const RgbImage& image) {
     const auto row = image.rgb.begin() + static_cast<std::ptrdiff_t>(y * row_bytes);
     raw.insert(raw.end(), row, row + static_cast<std::ptrdiff_t>(row_bytes));
   }
-  putChunk(out, "IDAT", zlibStored(raw));
+  putChunk(out, "IDAT", zlibStream(raw));
   putChunk(out, "IEND", {});
   return out;
 }

@@ -1,5 +1,5 @@
-// A minimal PNG writer (8-bit RGB, no compression) for the report's panorama snapshots: browsers
-// open PNG, not PGM, and a stored-deflate PNG needs no zlib. 180 x 90 pixels take 49 kB.
+// A minimal PNG writer (8-bit RGB, stored deflate blocks, chunk CRCs and the zlib stream by zlib)
+// for the report's panorama snapshots: browsers open PNG, not PGM. 180 x 90 pixels take 49 kB.
 #pragma once
 
 #include <cstdint>
@@ -19,9 +19,5 @@ std::vector<std::uint8_t> encodePng(const RgbImage& image);
 
 // Writes encodePng(image) to path; throws std::runtime_error naming the path if it cannot.
 void writePng(const std::string& path, const RgbImage& image);
-
-// CRC-32 (ISO 3309, as PNG chunks use) and Adler-32 (as zlib streams use), exposed for the tests.
-std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t crc = 0);
-std::uint32_t adler32(const std::uint8_t* data, std::size_t size);
 
 }  // namespace uampc::evaluator

@@ -1,0 +1,186 @@
+#include "bag/record_command.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "topic/raw_subscription.hpp"
+#include "topic/topic_discovery.hpp"
+#include "uampc/recording/recording_writer.hpp"
+#include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/message_type.hpp"
+#include "uampc/runtime/stop_signals.hpp"
+
+namespace uampc::app {
+
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+constexpr auto kPollPeriod = std::chrono::milliseconds(20);
+constexpr auto kProgressPeriod = std::chrono::seconds(5);
+
+// The preset that describes a discovered writer's QoS best, for the recording's metadata and for a
+// player that offers it again.
+QosPreset presetOf(const DiscoveredEndpoint& writer) {
+  if (writer.transient_local) return QosPreset::kLatched;
+  return writer.reliable ? QosPreset::kControl : QosPreset::kSensor;
+}
+
+// Samples arrive on Fast DDS's threads; the file is written from the main thread only.
+struct Arrival {
+  std::size_t topic;
+  SampleTimes times;
+  SerializedMessage sample;
+};
+
+class Recorder {
+ public:
+  Recorder(const RecordOptions& options, int domain)
+      : options_(options),
+        discovery_(domain, checkedSecurityIdentity(options.security_dir, kObserverIdentity)),
+        writer_(options.output, recordingOptions(options)) {}
+
+  // Subscribes to the topics discovered since the last call that are to be recorded.
+  void subscribeNewTopics() {
+    for (const auto& [dds_name, topic] : discovery_.topics()) {
+      if (topic.writers.empty() || subscribed_.count(dds_name)) continue;
+      const std::string name = rosTopicName(dds_name);
+      if (name.empty()) continue;  // not a ROS topic (DDS's own or a vendor's internals)
+      if (!options_.topics.empty() && !wanted(name)) continue;
+      subscribed_.insert(dds_name);
+      const DiscoveredEndpoint& writer = topic.writers.front();
+      const std::string type = rosTypeName(writer.type);
+      if (type.empty()) {
+        std::cerr << "uampc record: skipping " << name << ": its type " << writer.type
+                  << " does not follow ROS 2's naming, so no ros2msg schema can name it\n";
+        continue;
+      }
+      bool unknown_type = false;
+      const std::size_t index = writer_.addTopic({name, type, presetOf(writer)}, &unknown_type);
+      names_.push_back(name);
+      counts_.push_back(0);
+      if (unknown_type) {
+        std::cerr << "uampc record: " << name << ": type " << type << " is not known to uampc: recorded without "
+                  << "its definition (tools that decode will not know how)\n";
+      }
+      subscriptions_.push_back(std::make_unique<RawSubscription>(
+          discovery_.participant(), topic, [this, index](SerializedMessage&& sample, const SampleTimes& t) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            arrivals_.push_back({index, t, std::move(sample)});
+          }));
+      std::cerr << "uampc record: recording " << name << " (" << type << ")\n";
+    }
+  }
+
+  void writeArrived() {
+    std::deque<Arrival> arrived;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      arrived.swap(arrivals_);
+    }
+    for (const Arrival& a : arrived) {
+      writer_.write(a.topic, a.times.received, a.times.published, a.sample);
+      ++counts_[a.topic];
+      bytes_ += a.sample.data.size();
+    }
+  }
+
+  void close() {
+    subscriptions_.clear();  // no more arrivals
+    writeArrived();
+    writer_.close();
+  }
+
+  void printProgress(double elapsed_s) const {
+    std::fprintf(stderr, "uampc record: %.0f s, %llu samples (%.1f MB) on %zu topics\n", elapsed_s,
+                 static_cast<unsigned long long>(writer_.messages()), bytes_ / 1e6, names_.size());
+  }
+
+  void printSummary(double elapsed_s) const {
+    const double file_mb = std::filesystem::file_size(options_.output) / 1e6;
+    std::cout << "topic, samples\n";
+    for (std::size_t i = 0; i < names_.size(); ++i) std::cout << names_[i] << ", " << counts_[i] << "\n";
+    std::printf("%s: %llu samples, %.1f MB of samples in %.1f MB of file, %.1f s (%.0f MB per minute)\n",
+                options_.output.c_str(), static_cast<unsigned long long>(writer_.messages()), bytes_ / 1e6, file_mb,
+                elapsed_s, elapsed_s > 0 ? file_mb * 60.0 / elapsed_s : 0.0);
+  }
+
+  std::vector<std::string> missingTopics() const {
+    std::vector<std::string> missing;
+    for (const std::string& t : options_.topics) {
+      if (!subscribed_.count(ddsTopicName(t))) missing.push_back(t);
+    }
+    return missing;
+  }
+
+ private:
+  static recording::RecordingOptions recordingOptions(const RecordOptions& o) {
+    recording::RecordingOptions r;
+    r.compression = recording::compressionByName(o.compression);
+    r.chunk_size = o.chunk_size;
+    r.clock = recording::RecordingClock::kRealtime;
+    return r;
+  }
+  bool wanted(const std::string& name) const {
+    for (const std::string& t : options_.topics) {
+      if (t == name) return true;
+    }
+    return false;
+  }
+
+  const RecordOptions& options_;
+  TopicDiscovery discovery_;
+  recording::RecordingWriter writer_;
+  std::set<std::string> subscribed_;  // DDS topic names
+  std::vector<std::unique_ptr<RawSubscription>> subscriptions_;
+  std::vector<std::string> names_;  // by topic index
+  std::vector<std::uint64_t> counts_;
+  std::uint64_t bytes_ = 0;
+  std::mutex mutex_;
+  std::deque<Arrival> arrivals_;
+};
+
+}  // namespace
+
+int recordCommand(const RecordOptions& options) {
+  try {
+    for (const std::string& t : options.topics) {
+      if (t.empty() || t.front() != '/') throw std::runtime_error("'" + t + "' is not a ROS topic name (/name/space)");
+    }
+    const int domain = options.domain_id >= 0 ? options.domain_id : rosDomainIdFromEnvironment().value_or(0);
+    catchStopSignals();
+    Recorder recorder(options, domain);
+    std::cerr << "uampc record: writing " << options.output << " from domain " << domain << " (Ctrl-C stops)\n";
+    const auto started = SteadyClock::now();
+    auto next_progress = started + kProgressPeriod;
+    auto elapsed = [&] { return std::chrono::duration<double>(SteadyClock::now() - started).count(); };
+    while (!stopRequested() && (options.duration_s <= 0 || elapsed() < options.duration_s)) {
+      recorder.subscribeNewTopics();
+      recorder.writeArrived();
+      if (SteadyClock::now() >= next_progress) {
+        recorder.printProgress(elapsed());
+        for (const std::string& t : recorder.missingTopics()) {
+          std::cerr << "uampc record: still waiting for a writer of " << t << " on domain " << domain << "\n";
+        }
+        next_progress += kProgressPeriod;
+      }
+      std::this_thread::sleep_for(kPollPeriod);
+    }
+    recorder.close();
+    recorder.printSummary(elapsed());
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "uampc record: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace uampc::app

@@ -1,0 +1,181 @@
+#include "experiment/experiment_command.hpp"
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "experiment/experiment_collect.hpp"
+#include "experiment/experiment_file.hpp"
+#include "experiment/backends/experiment_runner.hpp"
+#include "experiment/experiment_snapshot.hpp"
+#include "experiment/experiment_task.hpp"
+#include "experiment/run_results.hpp"
+#include "experiment/backends/slurm_backend.hpp"
+#include "uampc/runtime/scene.hpp"
+#include "uampc/runtime/stop_signals.hpp"
+
+namespace fs = std::filesystem;
+
+namespace uampc::app {
+
+namespace {
+
+// Every scene with every controller's overrides, validated as `uampc launch` will, before the
+// first run starts: a typo in a controller's override should cost seconds, not an hour of runs.
+// `scenes_with_profile` gets the scenes that name a dds_profile of their own.
+bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>& plan, int domain_base,
+                    std::set<std::size_t>& scenes_with_profile) {
+  ComponentCatalog catalog;
+  bool ok = true;
+  for (const PlannedRun& run : plan) {
+    if (run.seed != experiment.seeds.front()) continue;  // seeds do not change what is valid
+    std::vector<Override> overrides;
+    for (std::size_t i = 2; i + 1 < run.args.size(); i += 2) overrides.push_back(parseOverride(run.args[i + 1]));
+    overrides.push_back(parseOverride("domain_id=" + std::to_string(domain_base)));
+    try {
+      if (!loadScene(run.args[1], overrides, catalog).dds_profile.empty()) scenes_with_profile.insert(run.scene);
+    } catch (const SceneError& e) {
+      ok = false;
+      std::cerr << "uampc experiment: scene '" << experiment.scenes[run.scene].name << "' with controller '"
+                << experiment.controllers[run.controller].name << "' (" << experiment.scenes[run.scene].location << ", "
+                << experiment.controllers[run.controller].location << "):\n";
+      for (const auto& m : e.messages()) std::cerr << "  " << m << "\n";
+    }
+  }
+  return ok;
+}
+
+}  // namespace
+
+std::string experimentOptionsError(const ExperimentOptions& options) {
+  const bool collecting = !options.collect_directory.empty(), task = options.run_task >= 0;
+  if (collecting && task) return "--collect and --run-task: give one of them";
+  if ((collecting || task) && !options.experiment_file.empty()) {
+    return std::string(collecting ? "--collect" : "--run-task") + " reads the experiment from " +
+           kExperimentSnapshotFile + " in its directory: give no EXPERIMENT.yaml";
+  }
+  if (!collecting && !task && options.experiment_file.empty()) return "EXPERIMENT.yaml is required";
+  if (!collecting && options.output_directory.empty()) return "--out is required";
+  if (options.plan_only && (options.dry_run || options.backend == "slurm")) {
+    return "--plan-only runs nothing and submits nothing: not with --dry-run or --backend slurm";
+  }
+  if (options.backend != "slurm" &&
+      (!options.partition.empty() || !options.time_limit.empty() || !options.sbatch_options.empty() || options.no_wait)) {
+    return "--partition, --time, --sbatch-option and --no-wait need --backend slurm";
+  }
+  for (const std::string& text : options.overrides) {
+    try {
+      const Override parsed = parseOverride(text);
+      if (parsed.path.size() == 1 && (parsed.path[0] == "seed" || parsed.path[0] == "domain_id")) {
+        return "--set " + text + ": " + parsed.path[0] + " is set by the experiment";
+      }
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+  }
+  if (options.backend == "local" && options.domain_base + options.jobs - 1 > kHighestDomainId) {
+    return "--domain-base " + std::to_string(options.domain_base) + " with --jobs " + std::to_string(options.jobs) +
+           " needs DDS domains above " + std::to_string(kHighestDomainId);
+  }
+  return "";
+}
+
+namespace {
+
+// For schedulers (Slurm, a Kubernetes Indexed Job): every run of a scene without a dds_profile of
+// its own gets the host-only one (slurm_backend.hpp), whose file is written beside the plan.
+ExperimentSnapshot withHostOnlyDds(ExperimentSnapshot snapshot, const std::set<std::size_t>& scenes_with_profile,
+                                   const std::string& out) {
+  for (PlannedRun& run : snapshot.plan) {
+    if (scenes_with_profile.count(run.scene)) continue;
+    run.args.push_back("--set");
+    run.args.push_back(hostOnlyDdsOverride(out));
+  }
+  for (std::size_t scene : scenes_with_profile) {
+    std::cerr << "uampc experiment: warning: scene '" << snapshot.experiment.scenes[scene].name
+              << "' has a dds_profile of its own: its runs keep it, so it must keep their DDS traffic on their host "
+                 "(runs on other nodes may share their domain)\n";
+  }
+  writeHostOnlyDdsProfile(out);
+  return snapshot;
+}
+
+int submitToSlurm(const ExperimentSnapshot& snapshot, const std::string& out, const ExperimentOptions& options) {
+  SlurmOptions slurm;
+  slurm.partition = options.partition;
+  slurm.time_limit = options.time_limit;
+  slurm.sbatch_options = options.sbatch_options;
+  slurm.wait = !options.no_wait;
+  slurm.domain_base = options.domain_base;
+  return runOnSlurm(snapshot, out, slurm);
+}
+
+// --plan-only: the plan for a scheduler uampc does not submit to itself.
+int writePlanOnly(const ExperimentSnapshot& snapshot, const std::string& out) {
+  writeExperimentSnapshot(out, snapshot);
+  std::cerr << "uampc experiment: " << snapshot.plan.size() << " runs planned in " << out << "/"
+            << kExperimentSnapshotFile << "; run K with `uampc experiment --run-task K --out " << out
+            << "` (K = 0.." << snapshot.plan.size() - 1 << ", e.g. a Kubernetes Indexed Job with completions: "
+            << snapshot.plan.size() << ", docker/k8s/), then `uampc experiment --collect " << out << "`\n";
+  return 0;
+}
+
+int runLocally(const ExperimentSnapshot& snapshot, const ExperimentOptions& options) {
+  const Experiment& experiment = snapshot.experiment;
+  writeExperimentSnapshot(options.output_directory, snapshot);
+  catchStopSignals();
+  std::cerr << "uampc experiment " << experiment.name << ": " << snapshot.plan.size() << " runs ("
+            << experiment.scenes.size() << " scenes x " << experiment.controllers.size() << " controllers x "
+            << experiment.seeds.size() << " seeds), " << options.jobs << " at a time on DDS domains "
+            << options.domain_base << ".." << options.domain_base + options.jobs - 1 << ", into "
+            << options.output_directory << "\n";
+  RunnerOptions runner;
+  runner.output_directory = options.output_directory;
+  runner.jobs = options.jobs;
+  runner.domain_base = options.domain_base;
+  runner.interrupted = &stopFlag();
+  const std::vector<RunResult> results = runAll(experiment, snapshot.plan, runner);
+  const int code = writeExperimentOutputs(experiment, results, options.output_directory);
+  return stopRequested() ? 130 : code;
+}
+
+}  // namespace
+
+int experimentCommand(const ExperimentOptions& options) {
+  if (!options.collect_directory.empty()) return collectCommand(options.collect_directory);
+  if (options.run_task >= 0) return experimentTaskCommand(options.output_directory, options.run_task, options.domain_base);
+  std::map<std::string, std::string> variables;
+  if (!options.data_directory.empty()) {
+    variables["data_dir"] = fs::absolute(options.data_directory).lexically_normal().string();
+  }
+  ExperimentSnapshot snapshot;
+  try {
+    snapshot.experiment = loadExperiment(options.experiment_file, variables);
+  } catch (const ExperimentError& e) {
+    for (const auto& m : e.messages()) std::cerr << m << "\n";
+    return 2;
+  }
+  snapshot.plan = planRuns(snapshot.experiment, options.overrides);
+  std::set<std::size_t> scenes_with_profile;
+  if (!validateScenes(snapshot.experiment, snapshot.plan, options.domain_base, scenes_with_profile)) return 2;
+  if (options.dry_run) {
+    for (const PlannedRun& run : snapshot.plan) {
+      std::cout << run.directory << ":";
+      for (const auto& a : run.args) std::cout << " " << a;
+      std::cout << "\n";
+    }
+    std::cerr << "uampc experiment: " << snapshot.plan.size() << " runs valid; nothing run (--dry-run)\n";
+    return 0;
+  }
+  fs::create_directories(options.output_directory);
+  if (options.backend == "local" && !options.plan_only) return runLocally(snapshot, options);
+  // Scheduled elsewhere: absolute paths, for tasks that start in another directory.
+  const std::string out = fs::absolute(options.output_directory).lexically_normal().string();
+  snapshot = withHostOnlyDds(std::move(snapshot), scenes_with_profile, out);
+  return options.plan_only ? writePlanOnly(snapshot, out) : submitToSlurm(snapshot, out, options);
+}
+
+}  // namespace uampc::app

@@ -1,0 +1,113 @@
+#include "experiment/experiment_snapshot.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "uampc/runtime/file_checks.hpp"
+#include "uampc/run_files/text_file.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace uampc::app {
+
+namespace {
+
+constexpr int kSnapshotVersion = 1;
+
+json toJson(const Experiment& e) {
+  json scenes = json::array(), controllers = json::array();
+  for (const auto& s : e.scenes) {
+    scenes.push_back({{"name", s.name}, {"scene", s.scene_file}, {"overrides", s.overrides}, {"location", s.location}});
+  }
+  for (const auto& c : e.controllers) {
+    controllers.push_back({{"name", c.name}, {"overrides", c.overrides}, {"location", c.location}});
+  }
+  json j = {{"file", e.file},       {"name", e.name},         {"seeds", e.seeds},
+            {"scenes", scenes},     {"controllers", controllers}, {"subject", e.subject},
+            {"baseline", e.baseline}, {"duration", nullptr}};
+  if (e.duration_s) j["duration"] = *e.duration_s;
+  return j;
+}
+
+json toJson(const PlannedRun& r) {
+  return {{"scene", r.scene}, {"controller", r.controller}, {"seed", r.seed}, {"directory", r.directory},
+          {"args", r.args}};
+}
+
+Experiment experimentFrom(const json& j) {
+  Experiment e;
+  e.file = j.at("file").get<std::string>();
+  e.name = j.at("name").get<std::string>();
+  e.seeds = j.at("seeds").get<std::vector<std::uint64_t>>();
+  for (const auto& s : j.at("scenes")) {
+    e.scenes.push_back({s.at("name").get<std::string>(), s.at("scene").get<std::string>(),
+                        s.at("overrides").get<std::vector<std::string>>(), s.at("location").get<std::string>()});
+  }
+  for (const auto& c : j.at("controllers")) {
+    e.controllers.push_back({c.at("name").get<std::string>(), c.at("overrides").get<std::vector<std::string>>(),
+                             c.at("location").get<std::string>()});
+  }
+  e.subject = j.at("subject").get<std::string>();
+  e.baseline = j.at("baseline").get<std::string>();
+  if (!j.at("duration").is_null()) e.duration_s = j.at("duration").get<double>();
+  return e;
+}
+
+PlannedRun runFrom(const json& j, const Experiment& e) {
+  PlannedRun r;
+  r.scene = j.at("scene").get<std::size_t>();
+  r.controller = j.at("controller").get<std::size_t>();
+  r.seed = j.at("seed").get<std::uint64_t>();
+  r.directory = j.at("directory").get<std::string>();
+  r.args = j.at("args").get<std::vector<std::string>>();
+  if (r.scene >= e.scenes.size() || r.controller >= e.controllers.size()) {
+    throw std::out_of_range("run " + r.directory + " names a scene or controller the experiment does not have");
+  }
+  return r;
+}
+
+}  // namespace
+
+void writeExperimentSnapshot(const std::string& output_directory, const ExperimentSnapshot& snapshot) {
+  json plan = json::array();
+  for (const auto& run : snapshot.plan) plan.push_back(toJson(run));
+  const json j = {{"version", kSnapshotVersion}, {"experiment", toJson(snapshot.experiment)}, {"plan", plan}};
+  const fs::path path = fs::path(output_directory) / kExperimentSnapshotFile;
+  const fs::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << j.dump(2) << "\n";
+    if (!out.flush()) throw std::runtime_error(partial.string() + ": cannot write");
+  }
+  std::error_code error;
+  fs::rename(partial, path, error);
+  if (error) throw std::runtime_error(path.string() + ": cannot write: " + error.message());
+}
+
+ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory) {
+  const std::string path = (fs::path(output_directory) / kExperimentSnapshotFile).string();
+  if (!isRegularFile(path)) {
+    throw ExperimentError({path + ": error: no such file (is " + output_directory +
+                           " the --out directory of a `uampc experiment`?)"});
+  }
+  try {
+    const json j = json::parse(run_files::readTextFile(path));
+    if (j.at("version").get<int>() != kSnapshotVersion) {
+      throw ExperimentError({path + ": error: version " + j.at("version").dump() + ", this uampc reads version " +
+                             std::to_string(kSnapshotVersion)});
+    }
+    ExperimentSnapshot snapshot;
+    snapshot.experiment = experimentFrom(j.at("experiment"));
+    for (const auto& run : j.at("plan")) snapshot.plan.push_back(runFrom(run, snapshot.experiment));
+    return snapshot;
+  } catch (const json::exception& e) {
+    throw ExperimentError({path + ": error: " + e.what()});
+  } catch (const std::out_of_range& e) {
+    throw ExperimentError({path + ": error: " + e.what()});
+  }
+}
+
+}  // namespace uampc::app

@@ -1,0 +1,122 @@
+#include "experiment/experiment_task.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include "experiment/experiment_command.hpp"
+#include "experiment/backends/experiment_runner.hpp"
+#include "experiment/experiment_snapshot.hpp"
+#include "uampc/runtime/stop_signals.hpp"
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace uampc::app {
+
+namespace {
+
+// A DDS domain of this node held by an exclusive lock on a file in /tmp; released on destruction
+// (or by the kernel when the process dies).
+class DomainClaim {
+ public:
+  // The first domain from `first` to kHighestDomainId nobody on this node holds; nullopt if none.
+  static std::optional<DomainClaim> takeFirstFree(int first) {
+    for (int domain = first; domain <= kHighestDomainId; ++domain) {
+      const std::string path = "/tmp/uampc-dds-domain-" + std::to_string(domain) + ".lock";
+      const int fd = open(path.c_str(), O_RDONLY | O_CREAT | O_CLOEXEC, 0666);
+      if (fd < 0) continue;
+      fchmod(fd, 0666);  // tasks of other users on the node lock the same file (fails harmlessly if not ours)
+      if (flock(fd, LOCK_EX | LOCK_NB) == 0) return DomainClaim(domain, fd);
+      close(fd);
+    }
+    return std::nullopt;
+  }
+  DomainClaim(DomainClaim&& other) noexcept : domain_(other.domain_), fd_(other.fd_) { other.fd_ = -1; }
+  DomainClaim(const DomainClaim&) = delete;
+  DomainClaim& operator=(const DomainClaim&) = delete;
+  DomainClaim& operator=(DomainClaim&&) = delete;
+  ~DomainClaim() {
+    if (fd_ >= 0) close(fd_);
+  }
+  int domain() const { return domain_; }
+
+ private:
+  DomainClaim(int domain, int fd) : domain_(domain), fd_(fd) {}
+  int domain_;
+  int fd_;
+};
+
+std::string hostName() {
+  char name[256] = {};
+  gethostname(name, sizeof(name) - 1);
+  return name;
+}
+
+// Waits for the run, passing a stop request on to it once (the launcher then stops cleanly).
+int waitForRun(ChildProcesses& children) {
+  bool passed_on = false;
+  while (true) {
+    if (stopRequested() && !passed_on) {
+      children.signalAll(SIGINT);
+      passed_on = true;
+    }
+    if (const auto exit = children.waitForExit(Clock::now() + std::chrono::milliseconds(200))) return exit->status;
+  }
+}
+
+}  // namespace
+
+int experimentTaskCommand(const std::string& output_directory, long task_index, int domain_base) {
+  const std::string prefix = "uampc experiment --run-task " + std::to_string(task_index) + ": ";
+  ExperimentSnapshot snapshot;
+  try {
+    snapshot = readExperimentSnapshot(output_directory);
+  } catch (const ExperimentError& e) {
+    for (const auto& m : e.messages()) std::cerr << prefix << m << "\n";
+    return 2;
+  }
+  if (task_index < 0 || static_cast<std::size_t>(task_index) >= snapshot.plan.size()) {
+    std::cerr << prefix << "no such run: " << output_directory << "/" << kExperimentSnapshotFile << " plans runs 0 to "
+              << snapshot.plan.size() - 1 << "\n";
+    return 2;
+  }
+  const PlannedRun& run = snapshot.plan[static_cast<std::size_t>(task_index)];
+  const std::string directory = (fs::path(output_directory) / run.directory).string();
+  if (isRunComplete(directory)) {
+    std::cerr << prefix << run.directory << " finished before; nothing to do\n";
+    return 0;
+  }
+  std::optional<DomainClaim> claim = DomainClaim::takeFirstFree(domain_base);
+  if (!claim) {
+    std::cerr << prefix << "every DDS domain from " << domain_base << " to " << kHighestDomainId
+              << " is held by another task on " << hostName() << "\n";
+    return 3;
+  }
+  catchStopSignals();
+  std::cerr << prefix << run.directory << " on " << hostName() << ", DDS domain " << claim->domain() << "\n";
+  ChildProcesses children;
+  const auto start = Clock::now();
+  try {
+    startRun(children, "/proc/self/exe", run, directory, claim->domain());
+  } catch (const std::exception& e) {
+    std::cerr << prefix << "cannot start the run: " << e.what() << "\n";
+    return 1;
+  }
+  const int status = waitForRun(children);
+  RunResult result;
+  recordRunEnd(directory, status, std::chrono::duration<double>(Clock::now() - start).count(), stopRequested(), result);
+  std::cerr << prefix << run.directory << " " << statusName(result.status)
+            << (result.failure.empty() ? "" : " (" + result.failure + ")") << "\n";
+  if (result.status == RunStatus::kNotRun) return 130;
+  return result.status == RunStatus::kOk ? 0 : 1;
+}
+
+}  // namespace uampc::app
