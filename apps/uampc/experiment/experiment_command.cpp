@@ -7,13 +7,14 @@
 #include <map>
 #include <set>
 
+#include "experiment/backends/backend_outcome.hpp"
+#include "experiment/backends/experiment_runner.hpp"
+#include "experiment/backends/slurm_backend.hpp"
 #include "experiment/experiment_collect.hpp"
 #include "experiment/experiment_file.hpp"
-#include "experiment/backends/experiment_runner.hpp"
 #include "experiment/experiment_snapshot.hpp"
 #include "experiment/experiment_task.hpp"
 #include "experiment/run_results.hpp"
-#include "experiment/backends/slurm_backend.hpp"
 #include "uampc/runtime/scene.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
@@ -103,7 +104,8 @@ ExperimentSnapshot withHostOnlyDds(ExperimentSnapshot snapshot, const std::set<s
   return snapshot;
 }
 
-int submitToSlurm(const ExperimentSnapshot& snapshot, const std::string& out, const ExperimentOptions& options) {
+BackendOutcome submitToSlurm(const ExperimentSnapshot& snapshot, const std::string& out,
+                             const ExperimentOptions& options) {
   SlurmOptions slurm;
   slurm.partition = options.partition;
   slurm.time_limit = options.time_limit;
@@ -123,7 +125,7 @@ int writePlanOnly(const ExperimentSnapshot& snapshot, const std::string& out) {
   return 0;
 }
 
-int runLocally(const ExperimentSnapshot& snapshot, const ExperimentOptions& options) {
+BackendOutcome runLocally(const ExperimentSnapshot& snapshot, const ExperimentOptions& options) {
   const Experiment& experiment = snapshot.experiment;
   writeExperimentSnapshot(options.output_directory, snapshot);
   catchStopSignals();
@@ -137,9 +139,16 @@ int runLocally(const ExperimentSnapshot& snapshot, const ExperimentOptions& opti
   runner.jobs = options.jobs;
   runner.domain_base = options.domain_base;
   runner.interrupted = &stopFlag();
-  const std::vector<RunResult> results = runAll(experiment, snapshot.plan, runner);
-  const int code = writeExperimentOutputs(experiment, results, options.output_directory);
-  return stopRequested() ? 130 : code;
+  BackendOutcome outcome{runAll(experiment, snapshot.plan, runner)};
+  outcome.interrupted = stopRequested();
+  return outcome;
+}
+
+// The one place results.md, results.json and the report are written, whichever backend ran.
+int writeOutcome(const Experiment& experiment, const BackendOutcome& outcome, const std::string& out) {
+  if (!outcome.results) return outcome.exit_code;
+  const int code = writeExperimentOutputs(experiment, *outcome.results, out);
+  return outcome.interrupted ? 130 : code;
 }
 
 }  // namespace
@@ -171,11 +180,14 @@ int experimentCommand(const ExperimentOptions& options) {
     return 0;
   }
   fs::create_directories(options.output_directory);
-  if (options.backend == "local" && !options.plan_only) return runLocally(snapshot, options);
+  if (options.backend == "local" && !options.plan_only) {
+    return writeOutcome(snapshot.experiment, runLocally(snapshot, options), options.output_directory);
+  }
   // Scheduled elsewhere: absolute paths, for tasks that start in another directory.
   const std::string out = fs::absolute(options.output_directory).lexically_normal().string();
   snapshot = withHostOnlyDds(std::move(snapshot), scenes_with_profile, out);
-  return options.plan_only ? writePlanOnly(snapshot, out) : submitToSlurm(snapshot, out, options);
+  if (options.plan_only) return writePlanOnly(snapshot, out);
+  return writeOutcome(snapshot.experiment, submitToSlurm(snapshot, out, options), out);
 }
 
 }  // namespace uampc::app

@@ -162,190 +162,235 @@ std::int64_t lastStep(const ClockSettings& clock) {
   return Time::fromSeconds(clock.duration_s).ns / clock.step.ns;
 }
 
-static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
-                                     const std::function<std::string()>& check_processes, ClockHost host) {
-  ClockResult result;
-  // Declared before the participant, so that it outlives the reader it listens to: Fast DDS may
-  // call it until the reader is deleted, and the early returns below leave that to ~DdsNode
-  // (ThreadSanitizer saw a notify on a destroyed Wakeup).
-  Wakeup listener;
-  DdsNode dds(scene.domain_id, scene.dds_profile, true, "uampc/clock",
-              securityIdentity(scene.security_directory, kLauncherIdentity));
-  // With the clock in the process, /clock is that process's to write.
-  DataWriter* clock_writer =
-      host == ClockHost::kHere
-          ? dds.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                             &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl)
-          : nullptr;
-  // Processes that step themselves report their progress apart from the acknowledgements they
-  // exchange every step, which this side does not need.
-  const char* ack_topic = host == ClockHost::kHere ? kStepAckTopic : kStepProgressTopic;
-  DataReader* ack_reader =
-      dds.createReader(ack_topic, MessageType<uampc::msg::StepAck>::kRosName,
-                       &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &listener);
-  // Following, this side writes nothing another run would hear (the ticking clock's /clock writer
-  // is how its processes notice a second run): a writer on the progress topic, never written,
-  // makes a second launcher one writer too many for the first, at once, whether or not its
-  // processes got far enough to write anything.
-  DataWriter* presence =
-      host == ClockHost::kInTheProcess
-          ? dds.createWriter(kStepProgressTopic, MessageType<uampc::msg::StepAck>::kRosName,
-                             &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl)
-          : nullptr;
-  AckFollower acks(scene, ack_reader, ack_topic, scene.processes().size() + (presence ? 1 : 0));
-  const std::vector<std::string>& processes = acks.processes();
-  const auto clock_start = SteadyClock::now();
-  const auto ack_timeout =
-      std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(scene.clock.ack_timeout_s));
-  // Every wait below ends on a failure: an error, a process gone, the deadline passed. `late`
-  // names the processes waited for, asked only when the deadline has passed.
-  auto waitProblem = [&](SteadyClock::time_point deadline, const std::function<std::string()>& late,
-                         const char* what, SteadyClock::duration timeout) -> std::string {
-    if (std::string problem = check_processes(); !problem.empty()) {
+namespace {
+
+// One run of the clock, in named steps: wait for every process's ready message, then either tick
+// /clock step by step (the clock here) or follow processes that step themselves.
+class ClockRun {
+ public:
+  ClockRun(const Scene& scene, const std::atomic<bool>& stop, const std::function<std::string()>& check_processes,
+           ClockHost host)
+      : scene_(scene),
+        stop_(stop),
+        check_processes_(check_processes),
+        dds_(scene.domain_id, scene.dds_profile, true, "uampc/clock",
+             securityIdentity(scene.security_directory, kLauncherIdentity)),
+        // With the clock in the process, /clock is that process's to write.
+        clock_writer_(host == ClockHost::kHere
+                          ? dds_.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                              &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl)
+                          : nullptr),
+        // Processes that step themselves report their progress apart from the acknowledgements
+        // they exchange every step, which this side does not need.
+        ack_topic_(host == ClockHost::kHere ? kStepAckTopic : kStepProgressTopic),
+        ack_reader_(dds_.createReader(ack_topic_, MessageType<uampc::msg::StepAck>::kRosName,
+                                      &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl, &listener_)),
+        // Following, this side writes nothing another run would hear (the ticking clock's /clock
+        // writer is how its processes notice a second run): a writer on the progress topic, never
+        // written, makes a second launcher one writer too many for the first, at once, whether or
+        // not its processes got far enough to write anything.
+        presence_(host == ClockHost::kInTheProcess
+                      ? dds_.createWriter(kStepProgressTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl)
+                      : nullptr),
+        acks_(scene, ack_reader_, ack_topic_, scene.processes().size() + (presence_ ? 1 : 0)),
+        processes_(acks_.processes()),
+        ack_timeout_(std::chrono::duration_cast<SteadyClock::duration>(
+            std::chrono::duration<double>(scene.clock.ack_timeout_s))),
+        clock_start_(SteadyClock::now()) {
+    // The latest step each process acknowledged: a process that steps itself may have run far, even
+    // to its end, before its ready message is read here.
+    for (const auto& p : scene.processes()) process_step_[p] = -1;
+  }
+
+  ~ClockRun() {
+    if (clock_writer_) dds_.deleteWriter(clock_writer_);
+    if (presence_) dds_.deleteWriter(presence_);
+    dds_.deleteReader(ack_reader_);
+  }
+
+  ClockResult run() {
+    if (!waitFor(-1, "ready message")) {
+      result_.ok = false;
+      return result_;
+    }
+    waitUntilTheClockReadersMatch();
+    // The loop's wall time starts here: the start (processes building worlds, DDS discovery) is
+    // reported on its own, so that the real-time factor says how fast the loop runs, and pacing
+    // (real_time_factor) does not rush the first steps to make up for a slow start.
+    wall_start_ = SteadyClock::now();
+    result_.startup_seconds = std::chrono::duration<double>(wall_start_ - clock_start_).count();
+    if (clock_writer_)
+      tickEveryStep();
+    else
+      followSelfSteppingProcesses();
+    if (result_.error == "stopped") result_.error.clear();
+    result_.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start_).count();
+    progress_.update(result_.sim_seconds, result_.wall_seconds, true);
+    progress_.finish();
+    return result_;
+  }
+
+ private:
+  // Every wait ends on a failure: an error, a process gone, the deadline passed. `late` names the
+  // processes waited for, asked only when the deadline has passed.
+  std::string waitProblem(SteadyClock::time_point deadline, const std::function<std::string()>& late, const char* what,
+                          SteadyClock::duration timeout) {
+    if (std::string problem = check_processes_(); !problem.empty()) {
       // A process that failed said why in an acknowledgement it delivered before exiting, which
       // may have arrived since the last take: its reason, not just its exit status.
-      if (std::string reported = acks.take([](const uampc::msg::StepAck&) {}); !reported.empty()) return reported;
+      if (std::string reported = acks_.take([](const uampc::msg::StepAck&) {}); !reported.empty()) return reported;
       return problem;
     }
     if (SteadyClock::now() > deadline) return noAcknowledgement(what, late(), timeout);
-    listener.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
+    listener_.waitUntil(std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
     return {};
-  };
+  }
 
-  // The latest step each process acknowledged: a process that steps itself may have run far, even
-  // to its end, before its ready message is read here.
-  std::map<std::string, std::int64_t> process_step;
-  for (const auto& p : scene.processes()) process_step[p] = -1;
-  auto note = [&](const uampc::msg::StepAck& ack) {
-    std::int64_t& step = process_step[ack.process()];
+  // Records a process's step; false if it is not news.
+  bool note(const uampc::msg::StepAck& ack) {
+    std::int64_t& step = process_step_[ack.process()];
     if (ack.step() <= step) return false;
     step = ack.step();
     return true;
-  };
-  // Waits until every process acknowledged `step`; false (with result.error) on failure.
-  std::set<std::string> acked;
-  auto waitFor = [&](std::int64_t step, const char* what) -> bool {
-    acked.clear();
+  }
+
+  // Waits until every process acknowledged `step`; false (with result_.error) on failure.
+  bool waitFor(std::int64_t step, const char* what) {
+    std::set<std::string> acked;
     const auto timeout = step < 0 ? std::chrono::duration_cast<SteadyClock::duration>(
-                                        std::chrono::duration<double>(scene.clock.startupTimeout()))
-                                  : ack_timeout;
+                                        std::chrono::duration<double>(scene_.clock.startupTimeout()))
+                                  : ack_timeout_;
     const auto deadline = SteadyClock::now() + timeout;
+    auto late = [&] {
+      std::string names;
+      for (const auto& p : processes_) {
+        if (!acked.count(p)) names += (names.empty() ? "" : ", ") + p;
+      }
+      return names;
+    };
     for (;;) {
-      result.error = acks.take([&](const uampc::msg::StepAck& ack) {
+      result_.error = acks_.take([&](const uampc::msg::StepAck& ack) {
         if (ack.step() >= step) acked.insert(ack.process());  // later: a process with the clock inside
         note(ack);
       });
-      if (!result.error.empty()) return false;
-      if (acked.size() == processes.size()) return true;
-      if (stop) {
-        result.error = "stopped";
+      if (!result_.error.empty()) return false;
+      if (acked.size() == processes_.size()) return true;
+      if (stop_) {
+        result_.error = "stopped";
         return false;
       }
-      result.error = waitProblem(
-          deadline,
-          [&] {
-            std::string late;
-            for (const auto& p : processes) {
-              if (!acked.count(p)) late += (late.empty() ? "" : ", ") + p;
-            }
-            return late;
-          },
-          what, timeout);
-      if (!result.error.empty()) return false;
+      result_.error = waitProblem(deadline, late, what, timeout);
+      if (!result_.error.empty()) return false;
     }
-  };
-
-  if (!waitFor(-1, "ready message")) {
-    result.ok = false;
-    return result;
   }
+
   // The processes' clock readers are matched (they said ready); make sure this side sees them too.
-  while (clock_writer) {
-    PublicationMatchedStatus s;
-    clock_writer->get_publication_matched_status(s);
-    if (s.current_count >= static_cast<int>(processes.size())) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  void waitUntilTheClockReadersMatch() {
+    while (clock_writer_) {
+      PublicationMatchedStatus s;
+      clock_writer_->get_publication_matched_status(s);
+      if (s.current_count >= static_cast<int>(processes_.size())) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
   }
 
-  // The loop's wall time starts here: the start (processes building worlds, DDS discovery) is
-  // reported on its own, so that the real-time factor says how fast the loop runs, and pacing
-  // (real_time_factor) does not rush the first steps to make up for a slow start.
-  const auto wall_start = SteadyClock::now();
-  result.startup_seconds = std::chrono::duration<double>(wall_start - clock_start).count();
-  Progress progress(scene.clock.duration_s);
-  auto reached = [&](Time t) {
-    result.sim_seconds = t.seconds();
-    result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
-    progress.update(result.sim_seconds, result.wall_seconds);
-  };
-  const std::int64_t last = lastStep(scene.clock);
-  if (host == ClockHost::kInTheProcess) {
-    // The processes step themselves and report their progress every 0.1 s of wall time and at
-    // their last step. Each report that moves a process on resets the deadline, so that a hung
-    // component is named after clock.ack_timeout as with this clock. The run has reached the step
-    // of the slowest process; it ends when every process has reported the last step.
-    auto slowest = [&] {
-      std::int64_t step = std::numeric_limits<std::int64_t>::max();
-      for (const auto& [p, s] : process_step) step = std::min(step, s);
-      return step;
-    };
+  void reached(Time t) {
+    result_.sim_seconds = t.seconds();
+    result_.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start_).count();
+    progress_.update(result_.sim_seconds, result_.wall_seconds);
+  }
+
+  // The clock here: /clock ticks each step once every process acknowledged the one before.
+  void tickEveryStep() {
+    const std::int64_t last = lastStep(scene_.clock);
+    for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
+      const Time t{step * scene_.clock.step.ns};
+      if (!paceTo(wall_start_, t, scene_.clock.real_time_factor, stop_)) break;
+      rosgraph_msgs::msg::Clock tick;
+      tick.clock(toMsg(t));
+      clock_writer_->write(&tick);
+      if (!waitFor(step, "acknowledgement of the step")) {
+        result_.ok = result_.error == "stopped";
+        break;
+      }
+      reached(t);
+    }
+  }
+
+  std::int64_t slowestStep() const {
+    std::int64_t step = std::numeric_limits<std::int64_t>::max();
+    for (const auto& [p, s] : process_step_) step = std::min(step, s);
+    return step;
+  }
+
+  // The processes step themselves and report their progress every 0.1 s of wall time and at their
+  // last step. Each report that moves a process on resets the deadline, so that a hung component
+  // is named after clock.ack_timeout as with the clock here. The run has reached the step of the
+  // slowest process; it ends when every process has reported the last step.
+  void followSelfSteppingProcesses() {
+    const std::int64_t last = lastStep(scene_.clock);
     // With several processes, one that waits in vain for another's acknowledgement gives up at
     // 0.9 x ack_timeout and names it; this side waits longer, so that such a report comes first,
     // and names the slowest only when none came (every process stuck).
-    const auto follow_timeout = processes.size() > 1 ? ack_timeout + ack_timeout / 2 : ack_timeout;
-    auto deadline = wall_start + follow_timeout;
+    const auto follow_timeout = processes_.size() > 1 ? ack_timeout_ + ack_timeout_ / 2 : ack_timeout_;
+    auto deadline = wall_start_ + follow_timeout;
     std::int64_t reached_step = -1;
     auto progress_made = [&] {
-      if (slowest() <= reached_step) return;
-      reached_step = slowest();
-      reached(Time{reached_step * scene.clock.step.ns});
+      if (slowestStep() <= reached_step) return;
+      reached_step = slowestStep();
+      reached(Time{reached_step * scene_.clock.step.ns});
     };
     auto follow = [&](const uampc::msg::StepAck& ack) {
       if (!note(ack)) return;
       deadline = SteadyClock::now() + follow_timeout;
       progress_made();
     };
+    auto slowest_processes = [&] {
+      std::string late;
+      for (const auto& [p, step] : process_step_) {
+        if (step == slowestStep()) late += (late.empty() ? "" : ", ") + p;
+      }
+      return late;
+    };
     progress_made();  // a process may have run on while the others were read ready
-    while (!stop && (last < 0 || slowest() < last)) {
-      result.error = acks.take(follow);
-      if (result.error.empty() && (last < 0 || slowest() < last))
-        result.error = waitProblem(
-            deadline,
-            [&] {
-              std::string late;
-              for (const auto& [p, step] : process_step) {
-                if (step == slowest()) late += (late.empty() ? "" : ", ") + p;
-              }
-              return late;
-            },
-            "acknowledgement of a step", follow_timeout);
-      if (!result.error.empty()) {
-        result.ok = false;
+    while (!stop_ && (last < 0 || slowestStep() < last)) {
+      result_.error = acks_.take(follow);
+      if (result_.error.empty() && (last < 0 || slowestStep() < last))
+        result_.error = waitProblem(deadline, slowest_processes, "acknowledgement of a step", follow_timeout);
+      if (!result_.error.empty()) {
+        result_.ok = false;
         break;
       }
-    }
-  } else {
-    for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
-      const Time t{step * scene.clock.step.ns};
-      if (!paceTo(wall_start, t, scene.clock.real_time_factor, stop)) break;
-      rosgraph_msgs::msg::Clock tick;
-      tick.clock(toMsg(t));
-      clock_writer->write(&tick);
-      if (!waitFor(step, "acknowledgement of the step")) {
-        result.ok = result.error == "stopped";
-        break;
-      }
-      reached(t);
     }
   }
-  if (result.error == "stopped") result.error.clear();
-  result.wall_seconds = std::chrono::duration<double>(SteadyClock::now() - wall_start).count();
-  progress.update(result.sim_seconds, result.wall_seconds, true);
-  progress.finish();
-  if (clock_writer) dds.deleteWriter(clock_writer);
-  if (presence) dds.deleteWriter(presence);
-  dds.deleteReader(ack_reader);
-  return result;
+
+  const Scene& scene_;
+  const std::atomic<bool>& stop_;
+  const std::function<std::string()>& check_processes_;
+  ClockResult result_;
+  // Declared before the participant, so that it outlives the reader it listens to: Fast DDS may
+  // call it until the reader is deleted (ThreadSanitizer saw a notify on a destroyed Wakeup).
+  Wakeup listener_;
+  DdsNode dds_;
+  DataWriter* clock_writer_;
+  const char* ack_topic_;
+  DataReader* ack_reader_;
+  DataWriter* presence_;
+  AckFollower acks_;
+  const std::vector<std::string>& processes_;
+  std::map<std::string, std::int64_t> process_step_;
+  const SteadyClock::duration ack_timeout_;
+  const SteadyClock::time_point clock_start_;
+  SteadyClock::time_point wall_start_;
+  Progress progress_{scene_.clock.duration_s};
+};
+
+}  // namespace
+
+static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
+                                     const std::function<std::string()>& check_processes, ClockHost host) {
+  return ClockRun(scene, stop, check_processes, host).run();
 }
 
 std::string anotherRunOnTheDomain(int domain_id, const std::string& evidence) {

@@ -253,7 +253,8 @@ std::string slurmArraySpec(const std::vector<std::size_t>& indices) {
   return spec;
 }
 
-int runOnSlurm(const ExperimentSnapshot& snapshot, const std::string& output_directory, const SlurmOptions& options) {
+BackendOutcome runOnSlurm(const ExperimentSnapshot& snapshot, const std::string& output_directory,
+                          const SlurmOptions& options) {
   fs::create_directories(slurmDirectory(output_directory));
   for (const std::string& job : submittedJobs(output_directory)) {
     const auto states = activeTaskStates(job, output_directory, nullptr);
@@ -261,29 +262,29 @@ int runOnSlurm(const ExperimentSnapshot& snapshot, const std::string& output_dir
       std::cerr << "uampc experiment: slurm job " << job << " of " << output_directory
                 << " is still queued or running; wait for it to end (or `scancel " << job
                 << "`), then run this again to resubmit what did not finish\n";
-      return 2;
+      return {std::nullopt, 2};
     }
   }
   writeExperimentSnapshot(output_directory, snapshot);
   const std::vector<std::size_t> runs = unfinishedRuns(snapshot, output_directory);
   if (runs.empty()) {
     std::cerr << "uampc experiment: all " << snapshot.plan.size() << " runs finished before; nothing to submit\n";
-    return writeExperimentOutputs(snapshot.experiment, collectRuns(snapshot, output_directory), output_directory);
+    return {collectRuns(snapshot, output_directory)};
   }
   const std::string job = submit(runs, output_directory, options, snapshot.experiment.name);
-  if (job.empty()) return 2;
+  if (job.empty()) return {std::nullopt, 2};
   std::cerr << "uampc experiment: submitted slurm job " << job << ", " << runs.size() << " array task(s) of "
             << snapshot.plan.size() << " runs" << (runs.size() < snapshot.plan.size() ? " (the rest finished before)" : "")
             << "; task output in " << (slurmDirectory(output_directory) / ("task-" + job + "_<K>.out")).string() << "\n";
   if (!options.wait) {
     std::cerr << "uampc experiment: not watching (--no-wait); results once it ends: uampc experiment --collect "
               << output_directory << "\n";
-    return 0;
+    return {std::nullopt, 0};
   }
-  if (!watch(snapshot, runs, job, output_directory, options)) return 130;
+  if (!watch(snapshot, runs, job, output_directory, options)) return {std::nullopt, 130};
   const std::string states = finalStates(job, output_directory);
   if (!states.empty()) std::cerr << "uampc experiment: slurm job " << job << " ended (" << states << ")\n";
-  return writeExperimentOutputs(snapshot.experiment, collectRuns(snapshot, output_directory), output_directory);
+  return {collectRuns(snapshot, output_directory)};
 }
 
 }  // namespace uampc::app

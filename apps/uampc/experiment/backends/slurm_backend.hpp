@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment/backends/backend_outcome.hpp"
 #include "experiment/experiment_snapshot.hpp"
 
 namespace uampc::app {
@@ -36,11 +37,12 @@ struct SlurmOptions {
 
 inline constexpr char kHostOnlyDdsProfile[] = "slurm/host_only_dds.xml";
 
-// Submits what is unfinished and, unless options.wait is false, watches the job and writes the
+// Submits what is unfinished and, unless options.wait is false, watches the job and returns the
 // results. snapshot.plan must already carry the host-only dds_profile where it applies
-// (hostOnlyDdsOverride, writeHostOnlyDdsProfile). Exit codes as `uampc experiment`'s; 2 also when sbatch is missing or
+// (hostOnlyDdsOverride, writeHostOnlyDdsProfile). Without results, an exit code as `uampc experiment`'s; 2 also when sbatch is missing or
 // refuses the job, or a job of this directory is still active.
-int runOnSlurm(const ExperimentSnapshot& snapshot, const std::string& output_directory, const SlurmOptions& options);
+BackendOutcome runOnSlurm(const ExperimentSnapshot& snapshot, const std::string& output_directory,
+                          const SlurmOptions& options);
 
 // "dds_profile=<DIR>/slurm/host_only_dds.xml", the --set a run gets when its scene has no profile.
 std::string hostOnlyDdsOverride(const std::string& output_directory);

@@ -298,6 +298,69 @@ Vector18d stepWithDeviation(const Matrix12d& A_xx, const Eigen::Matrix<double, 1
   return A.ldlt().solve(b);
 }
 
+// The frame's own velocity, when asked for (see the header): its deviation from the state's, and
+// that deviation's prior information, diag(1 / std^2); a std of 0 ties that part.
+std::optional<FrameDeviation> frameDeviationOf(const std::vector<TimedPoint>& points, const UpdateOptions& options,
+                                               Vector6d& deviation_prior) {
+  deviation_prior = Vector6d::Zero();
+  if (!(options.frame_velocity_std_linear > 0.0 || options.frame_velocity_std_angular > 0.0)) return std::nullopt;
+  auto information = [](double std) { return std > 0.0 ? 1.0 / (std * std) : 1e12; };
+  deviation_prior << Eigen::Vector3d::Constant(information(options.frame_velocity_std_linear)),
+      Eigen::Vector3d::Constant(information(options.frame_velocity_std_angular));
+  return FrameDeviation{middleTime(points), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+}
+
+// The unit-weight normal equations of one linearisation: H^T H and H^T z of the state's 12
+// unknowns, and with a frame deviation the cross terms and its own 6 (in gram and Hz).
+struct NormalEquations {
+  Eigen::MatrixXd gram;
+  Eigen::VectorXd Hz;
+  Matrix12d HtH;
+  Vector12d Htz;
+  Eigen::Matrix<double, 12, 6> HtHe;  // with a frame deviation: the state's and e's cross terms
+};
+
+NormalEquations normalEquations(const Jacobian& H, const Eigen::VectorXd& z, bool with_frame) {
+  NormalEquations n;
+  n.gram = gramian(H);
+  n.Hz = H.transpose() * z;
+  n.HtH = n.gram.topLeftCorner<12, 12>();
+  n.Htz = n.Hz.head<12>();
+  if (with_frame) n.HtHe = n.gram.topRightCorner<12, 6>();
+  return n;
+}
+
+// Directions the scan cannot see get none of its information (Zhang et al. 2016): projected out of
+// the state's normal equations with the degeneracy analysis's projector.
+void projectOutDegenerateDirections(const Matrix12d& pi, bool with_frame, NormalEquations& n) {
+  n.HtH = (pi.transpose() * n.HtH * pi).eval();
+  n.Htz = (pi.transpose() * n.Htz).eval();
+  if (with_frame) n.HtHe = (pi.transpose() * n.HtHe).eval();
+}
+
+// The Gauss-Newton step of the IEKF in information form (see the header): dx for the state, and
+// the frame's deviation moved by its own part of the step when there is one. posterior_information
+// becomes the state's information at this linearisation.
+Vector12d gaussNewtonStep(const NormalEquations& n, const Matrix12d& prior_information, const Vector12d& from_prior,
+                          double inverse_variance, const Vector6d& deviation_prior, FrameDeviation* deviation,
+                          Matrix12d& posterior_information) {
+  const Matrix12d A = prior_information + inverse_variance * n.HtH;
+  const Vector12d b = -inverse_variance * n.Htz - prior_information * from_prior;
+  if (!deviation) {
+    posterior_information = A;
+    return A.ldlt().solve(b);
+  }
+  // With the frame's deviation as 6 more unknowns.
+  Vector6d e;
+  e << deviation->dv_W, deviation->dw_B;
+  const Matrix6d A_ee = Matrix6d(deviation_prior.asDiagonal()) + inverse_variance * n.gram.bottomRightCorner<6, 6>();
+  const Vector6d b_e = -inverse_variance * n.Hz.tail<6>() - deviation_prior.cwiseProduct(e);
+  const Vector18d step = stepWithDeviation(A, inverse_variance * n.HtHe, A_ee, b, b_e, posterior_information);
+  deviation->dv_W += step.segment<3>(12);
+  deviation->dw_B += step.segment<3>(15);
+  return step.head<12>();
+}
+
 }  // namespace
 
 UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const LocalMap& map,
@@ -316,16 +379,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   // Query the map in spatial (Morton) order: successive queries then share most of their map
   // blocks, which stay in cache. Same result as scan order, fewer cache misses.
   const std::vector<TimedPoint> ordered = spatialOrder(points, map.voxelSize());
-  // The frame's own velocity, when asked for (see the header): its deviation from the state's
-  // and that deviation's prior information, diag(1 / std^2); a std of 0 ties that part.
-  std::optional<FrameDeviation> deviation;
-  Vector6d deviation_prior = Vector6d::Zero();
-  if (options.frame_velocity_std_linear > 0.0 || options.frame_velocity_std_angular > 0.0) {
-    deviation = FrameDeviation{middleTime(points), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-    auto information = [](double std) { return std > 0.0 ? 1.0 / (std * std) : 1e12; };
-    deviation_prior << Eigen::Vector3d::Constant(information(options.frame_velocity_std_linear)),
-        Eigen::Vector3d::Constant(information(options.frame_velocity_std_angular));
-  }
+  Vector6d deviation_prior;
+  std::optional<FrameDeviation> deviation = frameDeviationOf(points, options, deviation_prior);
   const FrameDeviation* frame = deviation ? &*deviation : nullptr;
   bool reassociate = true;
   bool gated = false;  // the residual gate is applied once the ungated iterations converged
@@ -354,50 +409,23 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     const std::size_t used = std::isfinite(gate) ? applyGate(gate, H, z) : correspondences.size();
     summary.correspondences = used;
     if (used < options.min_correspondences) break;
-    const Eigen::MatrixXd gram = gramian(H);
-    const Eigen::VectorXd Hz = H.transpose() * z;
-    Matrix12d HtH = gram.topLeftCorner<12, 12>();
-    Vector12d Htz = Hz.head<12>();
-    Eigen::Matrix<double, 12, 6> HtHe;  // with a frame deviation: the state's and e's cross terms
-    if (frame) HtHe = gram.topRightCorner<12, 6>();
-    information = HtH;
+    NormalEquations normal = normalEquations(H, z, frame != nullptr);
+    information = normal.HtH;
     linearised_at = x;
     information_noise.reset();
-    // Directions the scan cannot see get none of its information (Zhang et al. 2016): in them,
-    // noise and the few wrong matches every scan has would otherwise move the pose freely. The
-    // analysis is redone at every linearisation only when it decides the step; for the report
-    // it is made once, after the loop.
+    // The analysis of what the scan cannot see is redone at every linearisation only when it
+    // decides the step; for the report it is made once, after the loop.
     if (options.project_degenerate) {
       information_noise = planeNoiseInformation(correspondences, spreads, H, x, frame);
       summary.state_degeneracy =
-          analyseStateDegeneracy(options.degeneracy_information_scale * (HtH - *information_noise),
+          analyseStateDegeneracy(options.degeneracy_information_scale * (normal.HtH - *information_noise),
                                  options.degeneracy_scales, options.degeneracy_threshold);
       if (summary.state_degeneracy.degenerate_directions > 0) {
-        const Matrix12d& pi = summary.state_degeneracy.projector;
-        HtH = (pi.transpose() * HtH * pi).eval();
-        Htz = (pi.transpose() * Htz).eval();
-        if (frame) HtHe = (pi.transpose() * HtHe).eval();
+        projectOutDegenerateDirections(summary.state_degeneracy.projector, frame != nullptr, normal);
       }
     }
-
-    // Gauss-Newton step of the IEKF (information form, see header).
-    const Matrix12d A = prior_information + inverse_variance * HtH;
-    const Vector12d b = -inverse_variance * Htz - prior_information * boxMinus(x, prior);
-    Vector12d dx;
-    if (frame) {  // with the frame's deviation as 6 more unknowns
-      Vector6d e;
-      e << deviation->dv_W, deviation->dw_B;
-      const Matrix6d A_ee = Matrix6d(deviation_prior.asDiagonal()) + inverse_variance * gram.bottomRightCorner<6, 6>();
-      const Vector6d b_e = -inverse_variance * Hz.tail<6>() - deviation_prior.cwiseProduct(e);
-      const Vector18d step =
-          stepWithDeviation(A, inverse_variance * HtHe, A_ee, b, b_e, posterior_information);
-      dx = step.head<12>();
-      deviation->dv_W += step.segment<3>(12);
-      deviation->dw_B += step.segment<3>(15);
-    } else {
-      dx = A.ldlt().solve(b);
-      posterior_information = A;
-    }
+    const Vector12d dx = gaussNewtonStep(normal, prior_information, boxMinus(x, prior), inverse_variance,
+                                         deviation_prior, deviation ? &*deviation : nullptr, posterior_information);
     if (!dx.allFinite() || (frame && !(deviation->dv_W.allFinite() && deviation->dw_B.allFinite()))) {
       summary.applied = false;
       state_ = prior;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -113,12 +114,17 @@ std::string headerLineInData(const std::string& bytes, std::size_t pos) {
   return {};
 }
 
-PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
-  auto bad = [&](const std::string& what) { return std::runtime_error(path + ": not a valid PCD file: " + what); };
-  PcdLayout layout;
+// The header's lines up to DATA, as written: what checkPcd checks next.
+struct PcdHeader {
   std::vector<std::string> sizes, types, counts;
   std::size_t fields = 0, width = 0, height = 0;
   bool have_width = false, have_height = false, have_points = false;
+};
+
+using BadPcd = std::function<std::runtime_error(const std::string&)>;
+
+// Reads the header's lines into header and layout (points, data, header_bytes).
+void readPcdHeader(const std::string& bytes, const BadPcd& bad, PcdHeader& header, PcdLayout& layout) {
   std::size_t pos = 0, line_number = 0;
   while (layout.data.empty()) {
     const std::size_t eol = bytes.find('\n', pos);
@@ -145,19 +151,19 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
     if (key[0] == '#') continue;
     if (key == "VERSION") continue;
     if (key == "FIELDS")
-      fields = w.size();
+      header.fields = w.size();
     else if (key == "SIZE")
-      sizes = w;
+      header.sizes = w;
     else if (key == "TYPE")
-      types = w;
+      header.types = w;
     else if (key == "COUNT")
-      counts = w;
+      header.counts = w;
     else if (key == "WIDTH")
-      have_width = w.size() == 1 && parseCount(w[0], width);
+      header.have_width = w.size() == 1 && parseCount(w[0], header.width);
     else if (key == "HEIGHT")
-      have_height = w.size() == 1 && parseCount(w[0], height);
+      header.have_height = w.size() == 1 && parseCount(w[0], header.height);
     else if (key == "POINTS")
-      have_points = w.size() == 1 && parseCount(w[0], layout.points);
+      header.have_points = w.size() == 1 && parseCount(w[0], layout.points);
     else if (key == "VIEWPOINT") {
       if (w.size() != 7) throw bad("VIEWPOINT needs 7 numbers");
     } else if (key == "DATA") {
@@ -170,27 +176,35 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
     }
   }
   layout.header_bytes = pos;
-  if (const std::string keyword = headerLineInData(bytes, pos); !keyword.empty()) {
-    throw bad("the data after DATA starts with a line PCL reads as the header line '" + keyword + " ...'");
-  }
-  if (fields == 0 || sizes.size() != fields || types.size() != fields || (!counts.empty() && counts.size() != fields)) {
+}
+
+// FIELDS, SIZE, TYPE, COUNT and the point count agree; fills the layout's point_step and values.
+void checkPcdFields(const PcdHeader& header, const BadPcd& bad, PcdLayout& layout) {
+  const std::size_t fields = header.fields;
+  if (fields == 0 || header.sizes.size() != fields || header.types.size() != fields ||
+      (!header.counts.empty() && header.counts.size() != fields)) {
     throw bad("FIELDS, SIZE, TYPE and COUNT disagree");
   }
-  if (!have_width || !have_height || !have_points || height == 0 || width * height != layout.points) {
+  if (!header.have_width || !header.have_height || !header.have_points || header.height == 0 ||
+      header.width * header.height != layout.points) {
     throw bad("WIDTH, HEIGHT and POINTS missing or inconsistent");
   }
   for (std::size_t i = 0; i < fields; ++i) {
     std::size_t size = 0, count = 1;
-    if (!parseCount(sizes[i], size) || (size != 1 && size != 2 && size != 4 && size != 8)) {
+    if (!parseCount(header.sizes[i], size) || (size != 1 && size != 2 && size != 4 && size != 8)) {
       throw bad("bad SIZE");
     }
-    if (types[i] != "I" && types[i] != "U" && (types[i] != "F" || size < 4)) throw bad("bad TYPE");
-    if (!counts.empty() && (!parseCount(counts[i], count) || count == 0 || count > 4096)) {
+    if (header.types[i] != "I" && header.types[i] != "U" && (header.types[i] != "F" || size < 4)) throw bad("bad TYPE");
+    if (!header.counts.empty() && (!parseCount(header.counts[i], count) || count == 0 || count > 4096)) {
       throw bad("bad COUNT");
     }
     layout.point_step += size * count;
     layout.values += count;
   }
+}
+
+// The data after the header holds what the header declares, within the memory budget.
+void checkPcdPayload(const std::string& bytes, const BadPcd& bad, const PcdLayout& layout) {
   // A memory budget checked before anything is allocated: PCL holds a map two or three times over
   // while it converts it.
   if (layout.points > kMaxMapPoints) {
@@ -214,29 +228,44 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
                 " compressed bytes, more than LZF can expand to");
     }
   }
-  if (layout.data == "ascii") {
-    std::istringstream in(bytes.substr(layout.header_bytes));
-    std::string line;
-    std::size_t rows = 0;
-    while (rows < layout.points && std::getline(in, line)) {
-      std::istringstream row(line);
-      std::size_t n = 0;
-      for (std::string token; row >> token; ++n) {
-        char* end = nullptr;
-        std::strtod(token.c_str(), &end);
-        if (end != token.c_str() + token.size()) {
-          throw bad("data row " + std::to_string(rows + 1) + ": '" + token + "' is not a number");
-        }
+}
+
+// ASCII data: every row of numbers, as many as a point has values, and as many rows as POINTS.
+void checkPcdAsciiRows(const std::string& bytes, const BadPcd& bad, const PcdLayout& layout) {
+  std::istringstream in(bytes.substr(layout.header_bytes));
+  std::string line;
+  std::size_t rows = 0;
+  while (rows < layout.points && std::getline(in, line)) {
+    std::istringstream row(line);
+    std::size_t n = 0;
+    for (std::string token; row >> token; ++n) {
+      char* end = nullptr;
+      std::strtod(token.c_str(), &end);
+      if (end != token.c_str() + token.size()) {
+        throw bad("data row " + std::to_string(rows + 1) + ": '" + token + "' is not a number");
       }
-      if (n == 0) continue;
-      if (n != layout.values) {
-        throw bad("data row " + std::to_string(rows + 1) + " has " + std::to_string(n) + " values, expected " +
-                  std::to_string(layout.values));
-      }
-      ++rows;
     }
-    if (rows < layout.points) throw bad("fewer data rows than POINTS");
+    if (n == 0) continue;
+    if (n != layout.values) {
+      throw bad("data row " + std::to_string(rows + 1) + " has " + std::to_string(n) + " values, expected " +
+                std::to_string(layout.values));
+    }
+    ++rows;
   }
+  if (rows < layout.points) throw bad("fewer data rows than POINTS");
+}
+
+PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
+  const BadPcd bad = [&](const std::string& what) { return std::runtime_error(path + ": not a valid PCD file: " + what); };
+  PcdHeader header;
+  PcdLayout layout;
+  readPcdHeader(bytes, bad, header, layout);
+  if (const std::string keyword = headerLineInData(bytes, layout.header_bytes); !keyword.empty()) {
+    throw bad("the data after DATA starts with a line PCL reads as the header line '" + keyword + " ...'");
+  }
+  checkPcdFields(header, bad, layout);
+  checkPcdPayload(bytes, bad, layout);
+  if (layout.data == "ascii") checkPcdAsciiRows(bytes, bad, layout);
   return layout;
 }
 

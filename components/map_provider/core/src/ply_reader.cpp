@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -141,21 +142,39 @@ class DataReader {
   std::size_t position_ = 0;
 };
 
-}  // namespace
+struct PlyHeader {
+  Format format = Format::kAscii;
+  std::vector<Element> elements;
+};
 
-PlyContents readPly(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open");
-  auto bad = [&](const std::string& what) {
-    return std::runtime_error(path + ": not a valid PLY file: " + what);
-  };
+using BadPly = std::function<std::runtime_error(const std::string&)>;
 
-  // Header.
+// A property line: "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME".
+Property readProperty(std::istringstream& words, const std::string& line, const BadPly& bad) {
+  Property p;
+  std::string type;
+  words >> type;
+  if (type == "list") {
+    std::string count_type, item_type;
+    words >> count_type >> item_type >> p.name;
+    p.is_list = true;
+    if (!typeOf(count_type, p.count_size, p.count_kind) || p.count_kind == 'f' || !typeOf(item_type, p.size, p.kind)) {
+      throw bad("bad list property '" + line + "'");
+    }
+  } else {
+    words >> p.name;
+    if (!typeOf(type, p.size, p.kind)) throw bad("unknown property type '" + type + "'");
+  }
+  if (p.name.empty()) throw bad("property without a name");
+  return p;
+}
+
+// The header, from "ply" to end_header (at most 10,000 lines); `in` is left at the data.
+PlyHeader readPlyHeader(std::istream& in, const BadPly& bad) {
   std::string line;
   if (!std::getline(in, line) || (line != "ply" && line != "ply\r")) throw bad("no 'ply' magic");
-  Format format = Format::kAscii;
+  PlyHeader header;
   bool have_format = false, ended = false;
-  std::vector<Element> elements;
   for (int n = 0; n < 10000 && std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
@@ -170,11 +189,11 @@ PlyContents readPly(const std::string& path) {
       std::string f;
       words >> f;
       if (f == "ascii")
-        format = Format::kAscii;
+        header.format = Format::kAscii;
       else if (f == "binary_little_endian")
-        format = Format::kBinaryLittle;
+        header.format = Format::kBinaryLittle;
       else if (f == "binary_big_endian")
-        format = Format::kBinaryBig;
+        header.format = Format::kBinaryBig;
       else
         throw bad("unknown format '" + f + "'");
       have_format = true;
@@ -184,84 +203,96 @@ PlyContents readPly(const std::string& path) {
       words >> e.name >> count;
       if (!words || count < 0) throw bad("bad element line '" + line + "'");
       e.count = static_cast<std::size_t>(count);
-      elements.push_back(e);
+      header.elements.push_back(e);
     } else if (key == "property") {
-      if (elements.empty()) throw bad("property before any element");
-      Property p;
-      std::string type;
-      words >> type;
-      if (type == "list") {
-        std::string count_type, item_type;
-        words >> count_type >> item_type >> p.name;
-        p.is_list = true;
-        if (!typeOf(count_type, p.count_size, p.count_kind) || p.count_kind == 'f' ||
-            !typeOf(item_type, p.size, p.kind)) {
-          throw bad("bad list property '" + line + "'");
-        }
-      } else {
-        words >> p.name;
-        if (!typeOf(type, p.size, p.kind)) throw bad("unknown property type '" + type + "'");
-      }
-      if (p.name.empty()) throw bad("property without a name");
-      elements.back().properties.push_back(p);
+      if (header.elements.empty()) throw bad("property before any element");
+      header.elements.back().properties.push_back(readProperty(words, line, bad));
     } else {
       throw bad("unknown header line '" + line + "'");
     }
   }
   if (!have_format || !ended) throw bad("header without format or end_header");
+  return header;
+}
 
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  DataReader reader(std::move(data), format, path);
+// Where an element's coordinates and face indices are among its properties (-1: none).
+struct ElementColumns {
+  int x = -1, y = -1, z = -1, face = -1;
+};
 
-  PlyContents contents;
-  for (const Element& e : elements) {
-    if (e.count > reader.remainingValues()) reader.fail("element '" + e.name + "' count too large");
-    const bool is_vertex = e.name == "vertex";
-    const bool is_face = e.name == "face";
-    int ix = -1, iy = -1, iz = -1, iface = -1;
-    for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-      const Property& p = e.properties[static_cast<std::size_t>(k)];
-      if (p.name == "x" && !p.is_list) ix = k;
-      if (p.name == "y" && !p.is_list) iy = k;
-      if (p.name == "z" && !p.is_list) iz = k;
-      if ((p.name == "vertex_indices" || p.name == "vertex_index") && p.is_list) iface = k;
-    }
-    if (is_vertex && (ix < 0 || iy < 0 || iz < 0)) {
-      throw std::runtime_error(path + ": PLY vertices have no x, y, z properties");
-    }
-    if (is_vertex) contents.vertices.reserve(e.count);
-    if (is_face && iface >= 0) contents.faces.reserve(e.count);
-    for (std::size_t i = 0; i < e.count; ++i) {
-      Eigen::Vector3d v = Eigen::Vector3d::Zero();
-      for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
-        const Property& p = e.properties[static_cast<std::size_t>(k)];
-        if (!p.is_list) {
-          const double value = reader.read(p.size, p.kind);
-          if (k == ix) v.x() = value;
-          if (k == iy) v.y() = value;
-          if (k == iz) v.z() = value;
-          continue;
-        }
-        const double n = reader.read(p.count_size, p.count_kind);
-        if (!(n >= 0.0) || n > 1e6 || n != static_cast<double>(static_cast<std::int64_t>(n)) ||
-            static_cast<std::size_t>(n) > reader.remainingValues()) {
-          reader.fail("bad list length in element '" + e.name + "'");
-        }
-        std::vector<std::uint32_t> items;
-        if (is_face && k == iface) items.reserve(static_cast<std::size_t>(n));
-        for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
-          const double value = reader.read(p.size, p.kind);
-          if (is_face && k == iface) {
-            const bool index = value >= 0.0 && value <= std::numeric_limits<std::uint32_t>::max();
-            items.push_back(index ? static_cast<std::uint32_t>(value)
-                                  : std::numeric_limits<std::uint32_t>::max());
-          }
-        }
-        if (is_face && k == iface) contents.faces.push_back(std::move(items));
-      }
-      if (is_vertex) contents.vertices.push_back(v.cast<float>());
+ElementColumns columnsOf(const Element& e) {
+  ElementColumns c;
+  for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+    const Property& p = e.properties[static_cast<std::size_t>(k)];
+    if (p.name == "x" && !p.is_list) c.x = k;
+    if (p.name == "y" && !p.is_list) c.y = k;
+    if (p.name == "z" && !p.is_list) c.z = k;
+    if ((p.name == "vertex_indices" || p.name == "vertex_index") && p.is_list) c.face = k;
+  }
+  return c;
+}
+
+// A list property's items; kept (as vertex indices, out-of-range ones as the largest index) when
+// `keep`, else read past.
+std::vector<std::uint32_t> readList(DataReader& reader, const Element& e, const Property& p, bool keep) {
+  const double n = reader.read(p.count_size, p.count_kind);
+  if (!(n >= 0.0) || n > 1e6 || n != static_cast<double>(static_cast<std::int64_t>(n)) ||
+      static_cast<std::size_t>(n) > reader.remainingValues()) {
+    reader.fail("bad list length in element '" + e.name + "'");
+  }
+  std::vector<std::uint32_t> items;
+  if (keep) items.reserve(static_cast<std::size_t>(n));
+  for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
+    const double value = reader.read(p.size, p.kind);
+    if (keep) {
+      const bool index = value >= 0.0 && value <= std::numeric_limits<std::uint32_t>::max();
+      items.push_back(index ? static_cast<std::uint32_t>(value) : std::numeric_limits<std::uint32_t>::max());
     }
   }
+  return items;
+}
+
+// One element's rows: vertices and faces go into contents, anything else is read past.
+void readElement(DataReader& reader, const Element& e, const std::string& path, PlyContents& contents) {
+  if (e.count > reader.remainingValues()) reader.fail("element '" + e.name + "' count too large");
+  const bool is_vertex = e.name == "vertex";
+  const bool is_face = e.name == "face";
+  const ElementColumns c = columnsOf(e);
+  if (is_vertex && (c.x < 0 || c.y < 0 || c.z < 0)) {
+    throw std::runtime_error(path + ": PLY vertices have no x, y, z properties");
+  }
+  if (is_vertex) contents.vertices.reserve(e.count);
+  if (is_face && c.face >= 0) contents.faces.reserve(e.count);
+  for (std::size_t i = 0; i < e.count; ++i) {
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (int k = 0; k < static_cast<int>(e.properties.size()); ++k) {
+      const Property& p = e.properties[static_cast<std::size_t>(k)];
+      if (!p.is_list) {
+        const double value = reader.read(p.size, p.kind);
+        if (k == c.x) v.x() = value;
+        if (k == c.y) v.y() = value;
+        if (k == c.z) v.z() = value;
+        continue;
+      }
+      const bool keep = is_face && k == c.face;
+      std::vector<std::uint32_t> items = readList(reader, e, p, keep);
+      if (keep) contents.faces.push_back(std::move(items));
+    }
+    if (is_vertex) contents.vertices.push_back(v.cast<float>());
+  }
+}
+
+}  // namespace
+
+PlyContents readPly(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  const BadPly bad = [&](const std::string& what) { return std::runtime_error(path + ": not a valid PLY file: " + what); };
+  const PlyHeader header = readPlyHeader(in, bad);
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  DataReader reader(std::move(data), header.format, path);
+  PlyContents contents;
+  for (const Element& e : header.elements) readElement(reader, e, path, contents);
   return contents;
 }
 
