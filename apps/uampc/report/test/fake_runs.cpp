@@ -1,4 +1,4 @@
-#include "fake_runs.hpp"
+#include "report/test/fake_runs.hpp"
 
 #include <Eigen/Core>
 #include <cmath>

@@ -5,9 +5,9 @@
 
 #include <filesystem>
 
-#include "../e2e/command_runner.hpp"
+#include "command_runner.hpp"
 #include "experiment/experiment_file.hpp"
-#include "fake_runs.hpp"
+#include "report/test/fake_runs.hpp"
 
 namespace uampc::app {
 namespace {

@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <regex>
 
-#include "../e2e/command_runner.hpp"
-#include "fake_runs.hpp"
+#include "command_runner.hpp"
 #include "uampc/plots/svg_plot.hpp"
+#include "uampc/run_files/text_file.hpp"
 
 namespace uampc::app::svg {
 namespace {
@@ -89,7 +89,7 @@ void expectWellFormed(const std::string& svg_text, const std::string& name) {
   EXPECT_TRUE(std::regex_search(svg_text, std::regex("<svg [^>]*width=\"[0-9]+\" height=\"[0-9]+\""))) << name;
   if (std::filesystem::exists("/usr/bin/xmllint")) {
     const std::string path = test::freshDirectory("svg_plot_test_" + name) + "/figure.svg";
-    test::writeText(path, svg_text);
+    run_files::writeTextFile(path, svg_text);
     const auto r = test::runShell("/usr/bin/xmllint --noout " + path);
     EXPECT_EQ(r.exit_code, 0) << r.output;
   }

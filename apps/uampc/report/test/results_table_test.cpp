@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "../e2e/command_runner.hpp"
-#include "fake_runs.hpp"
+#include "command_runner.hpp"
+#include "report/test/fake_runs.hpp"
 #include "report/results_table.hpp"
 
 namespace uampc::app {

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <regex>
 
-#include "../e2e/command_runner.hpp"
-#include "fake_runs.hpp"
+#include "command_runner.hpp"
+#include "report/test/fake_runs.hpp"
 #include "report/report_page.hpp"
 
 namespace uampc::app {
