@@ -16,8 +16,8 @@ namespace {
 
 TEST(LoReplay, ReportsTheNoisyPlainCorridorsAxisDegenerate) {
   const CommandResult result = runShell(binaryPath("bench/lo_replay") +
-                                        " corridor --start 25 --duration 8 --scan-voxel 0.15 --map-voxel 0.15"
-                                        " --lidar-range-noise 0.02 --imu 1");
+                                        " corridor --start 25 --duration 8 --set lo.scan_voxel_size=0.15 --set lo.map_voxel_size=0.15"
+                                        " --set lidar.range_noise=0.02 --set lo.use_imu=true");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const std::size_t at = result.output.find("degenerate frames ");
   ASSERT_NE(at, std::string::npos) << result.output;

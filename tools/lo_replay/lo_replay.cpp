@@ -2,27 +2,23 @@
 // LO on a trajectory quickly (a development tool: the scenes run the real components over DDS).
 //
 //   lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S]
-//             [--motor RAD_PER_S] [--seed N] [--attitude from_file|yaw_only|identity] [--every N]
-//             [--linear-noise Q] [--angular-noise Q] [--iterations N] [--scan-voxel M]
-//             [--map-voxel M] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1]
-//             [--frame-velocity-std-linear V] [--frame-velocity-std-angular W]
-//             [--degeneracy-threshold N] [--degeneracy-length M] [--degeneracy-period S]
-//             [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] [--open-fraction F]
-//             [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M]
-//             [--plane-min-spread-ratio R]
-//             [--path-speed M_PER_S] [--poor-rows N]
+//             [--motor RAD_PER_S] [--seed N] [--every N] [--set GROUP.NAME=VALUE ...]
 //
-// Builds the world as map_provider does (world::buildWorld): for an MCD trajectory the world
-// generated around it (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD
-// scenes, with --profile or --open-fraction as map_provider's density_profile and open_fraction);
-// for a procedural world its generated path at 1.5 m/s. Spins the motor at a constant
-// speed, casts Mid-360 frames at 10 Hz, registers them, and prints per frame the rotation and
+// --set takes the components' own parameters, with their defaults and bounds (uampc components
+// lists them): lo.* the LO's (lo_parameters.hpp), world.* map_provider's world and trajectory
+// (world_parameters.hpp), lidar.* the raycaster's noise (scan_parameters.hpp). Builds the world as
+// map_provider does (world::buildWorld): for an MCD trajectory the world generated around it
+// (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD scenes); for a
+// procedural world its generated path at 1.5 m/s; any of them as a point map with
+// world.point_map_resolution. Spins the motor at a constant speed, casts Mid-360 frames at 10 Hz
+// (exact ranges unless --set lidar.range_noise=M; the scenes have 2 cm), registers them, and prints per frame the rotation and
 // position error against ground truth, the estimated and true yaw rate, and the LO's figures
 // (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
 // degenerate directions of the 12-dimensional state; the weakest pose direction, rotation scaled
-// at 10 m); then a summary line. --imu 1 simulates the Mid-360's IMU (the raycaster's simulator)
-// and runs the LO LiDAR-inertial. LO_REPLAY_DEBUG=T prints every eigenvalue, the velocities and
-// their standard deviations from T s on.
+// at 10 m); then a summary line. --set lo.use_imu=true simulates the Mid-360's IMU (the
+// raycaster's simulator) and runs the LO LiDAR-inertial. LO_REPLAY_DEBUG=T prints every
+// eigenvalue, the velocities and their standard deviations from T s on.
+#include <CLI/CLI.hpp>
 #include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
@@ -31,13 +27,19 @@
 #include <cstring>
 #include <exception>
 #include <string>
+#include <vector>
 
+#include "cli_checks.hpp"
+#include "lo_parameters.hpp"
+#include "parameter_overrides.hpp"
+#include "scan_parameters.hpp"
 #include "simulated_lidar.hpp"
 #include "tool_main.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/world/world_source.hpp"
+#include "world_parameters.hpp"
 
 using namespace uampc;
 
@@ -47,127 +49,65 @@ double degrees(double rad) { return rad * 180.0 / M_PI; }
 
 }  // namespace
 
-void printUsage(std::FILE* out);
 int replay(int argc, char** argv);
 
 int main(int argc, char** argv) { return tools::runTool("lo_replay", replay, argc, argv); }
 
-void printUsage(std::FILE* out) {
-  std::fprintf(
-      out,
-      "usage: lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S (30)] "
-      "[--motor RAD_PER_S (3.6)] [--seed N] [--attitude MODE] [--every N] [--linear-noise Q] [--angular-noise Q] "
-      "[--iterations N] [--scan-voxel M] [--map-voxel M] [--max-registration-points N] [--registration-weakest-points N] [--door-spacing M] [--imu 0|1] [--degeneracy-aware 0|1] "
-      "[--frame-velocity-std-linear V] [--frame-velocity-std-angular W] [--degeneracy-threshold N] "
-      "[--degeneracy-length M] [--degeneracy-period S] [--measurement-variance M2] [--map-mean-points N] [--profile rich|mixed|poor] "
-      "[--open-fraction F] [--lidar-range-noise M] [--lidar-angular-noise-deg DEG] [--plane-distance M] [--plane-min-spread-ratio R] "
-      "[--path-speed M_PER_S] [--poor-rows N]\n"
-      "Replays the simulated motorized LiDAR at a constant motor speed into the LO, without DDS, and prints per\n"
-      "frame the errors against ground truth, then a summary line (docs/dev/testing.md, \"Development tools\"). Unset LO options take\n"
-      "the LO's defaults.\n");
-}
-
 int replay(int argc, char** argv) {
-  if (argc == 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h")) {
-    printUsage(stdout);
-    return 0;
+  CLI::App app{
+      "Replays the simulated motorized LiDAR at a constant motor speed into the LO, without DDS, and prints per\n"
+      "frame the errors against ground truth, then a summary line (docs/dev/testing.md, \"Development tools\").",
+      "lo_replay"};
+  std::string source;
+  double start = 0.0, duration = 30.0, motor_speed = 3.6;
+  std::uint64_t seed = 1;
+  int every = 1;
+  std::vector<std::string> assignments;
+  app.add_option("SOURCE", source, "an MCD trajectory (.csv), or corridor, multilevel or campus")->required();
+  app.add_option("--start", start, "s of the trajectory skipped")->check(tools::kFiniteNonNegative)->capture_default_str();
+  app.add_option("--duration", duration, "s replayed")->check(tools::kFiniteNonNegative)->capture_default_str();
+  app.add_option("--motor", motor_speed, "constant motor speed, rad/s")->check(tools::kFinite)->capture_default_str();
+  app.add_option("--seed", seed, "the world's and the noise's seed")->capture_default_str();
+  app.add_option("--every", every, "print every N-th frame (and every frame more than 1 degree off)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--set", assignments,
+                 "a component's parameter, as in a scene: lo.NAME, world.NAME or lidar.NAME (uampc components "
+                 "lists them)")
+      ->type_name(tools::ParameterOverrides::kSyntax);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
   }
-  if (argc < 2 || argc % 2 != 0) {
-    printUsage(stderr);
+  world::WorldSettings settings = tools::worldSettingsFor(source);
+  settings.seed = seed;
+  lo::OdometryConfig config;
+  raycaster::RayCasterConfig caster_config;  // exact casts unless --set lidar.range_noise=M (scenes: 0.02)
+  try {
+    tools::ParameterOverrides set(assignments);
+    set.apply("lo", bindLoParameters, config);
+    set.apply("world", bindWorldParameters, settings);
+    set.apply("lidar", bindScanParameters, caster_config);
+    set.checkAllUsed();
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "lo_replay: %s\n", e.what());
     return 2;
   }
-  const std::string source = argv[1];
-  world::WorldSettings settings = tools::worldSettingsFor(source);
-  double start = 0.0, duration = 30.0, motor_speed = 3.6;
-  int every = 1;
-  bool use_imu = false;
-  lo::OdometryConfig config;
-  raycaster::RayCasterConfig caster_config;  // noise-free unless asked
-  for (int i = 2; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    const char* value = argv[i + 1];
-    if (flag == "--start")
-      start = tools::nonNegative(flag, value);
-    else if (flag == "--duration")
-      duration = tools::nonNegative(flag, value);
-    else if (flag == "--motor")
-      motor_speed = tools::number(flag, value);
-    else if (flag == "--seed")
-      settings.seed = static_cast<std::uint64_t>(tools::nonNegative(flag, value));
-    else if (flag == "--attitude")
-      settings.attitude = value;
-    else if (flag == "--door-spacing")
-      settings.corridor_door_spacing = tools::nonNegative(flag, value);
-    else if (flag == "--lidar-range-noise")
-      caster_config.range_noise_stddev = tools::nonNegative(flag, value);
-    else if (flag == "--lidar-angular-noise-deg")
-      caster_config.angular_noise_stddev = tools::nonNegative(flag, value) * M_PI / 180.0;
-    else if (flag == "--path-speed")
-      settings.path_speed = tools::nonNegative(flag, value);
-    else if (flag == "--poor-rows")
-      settings.campus_poor_rows = tools::count(flag, value);
-    else if (flag == "--plane-distance")
-      config.plane_max_point_distance = tools::nonNegative(flag, value);
-    else if (flag == "--plane-min-spread-ratio") {
-      // A ratio of the narrower spread to the wider: above 1 would refuse every plane.
-      config.plane_min_spread_ratio = tools::nonNegative(flag, value);
-      if (config.plane_min_spread_ratio > 1.0) throw std::invalid_argument(flag + ": '" + value + "' must be at most 1");
-    }
-    else if (flag == "--profile")
-      settings.density_profile = value;
-    else if (flag == "--open-fraction")
-      settings.open_fraction = tools::nonNegative(flag, value);
-    else if (flag == "--every")
-      every = tools::count(flag, value);
-    else if (flag == "--linear-noise")
-      config.linear_process_noise = tools::nonNegative(flag, value);
-    else if (flag == "--angular-noise")
-      config.angular_process_noise = tools::nonNegative(flag, value);
-    else if (flag == "--iterations")
-      config.max_iterations = tools::count(flag, value);
-    else if (flag == "--scan-voxel")
-      config.scan_voxel_size = tools::nonNegative(flag, value);
-    else if (flag == "--map-voxel")
-      config.map_voxel_size = tools::nonNegative(flag, value);
-    else if (flag == "--max-registration-points")
-      config.max_registration_points = tools::count(flag, value);
-    else if (flag == "--registration-weakest-points")
-      config.registration_weakest_points = tools::nonNegative(flag, value);
-    else if (flag == "--imu")
-      use_imu = tools::count(flag, value) != 0;
-    else if (flag == "--degeneracy-threshold")
-      config.degeneracy_threshold = tools::nonNegative(flag, value);
-    else if (flag == "--degeneracy-length")
-      config.degeneracy_scales.length = tools::nonNegative(flag, value);
-    else if (flag == "--map-mean-points")
-      config.map_mean_points = tools::count(flag, value);
-    else if (flag == "--measurement-variance")
-      config.measurement_variance = tools::nonNegative(flag, value);
-    else if (flag == "--degeneracy-period")
-      config.degeneracy_scales.period = tools::nonNegative(flag, value);
-    else if (flag == "--degeneracy-aware")
-      config.degeneracy_aware = tools::count(flag, value) != 0;
-    else if (flag == "--frame-velocity-std-linear")
-      config.frame_velocity_std_linear = tools::nonNegative(flag, value);
-    else if (flag == "--frame-velocity-std-angular")
-      config.frame_velocity_std_angular = tools::nonNegative(flag, value);
-    else {
-      std::fprintf(stderr, "lo_replay: unknown option %s\n", flag.c_str());
-      return 2;
-    }
-  }
+  const bool use_imu = config.use_imu;
 
   const world::World world = world::buildWorld(settings);
   const world::Trajectory& truth = world.trajectory;
-  std::printf("# world: %s, %zu triangles\n", world.description.c_str(), world.mesh.size());
+  std::printf("# world: %s, %zu triangles, %zu points\n", world.description.c_str(), world.mesh.size(),
+              world.points.size());
   caster_config.seed = settings.seed;
-  raycaster::RayCaster caster(world.mesh, caster_config);
+  caster_config.point_radius = world.point_radius;
+  raycaster::RayCaster caster(world.mesh, world.points, caster_config);
 
   const double frame = caster.frameDuration();
   const double end = std::min(truth.endTime() - 0.2, start + duration);
   const frames::MotorAngleTrack motor = tools::constantSpeedMotor(motor_speed, 0.0, end + 1.0);
 
-  config.use_imu = use_imu;
   raycaster::ImuSimulatorConfig imu_config;
   imu_config.seed = settings.seed;
   raycaster::ImuSimulator imu(imu_config);

@@ -5,7 +5,7 @@
 # trajectories, the indoor worlds, the density worlds, the LiDAR-inertial campus loop;
 # docs/results/lo-degenerate-geometry.md, "A registration budget"), every run at a constant motor speed
 # and with the scenes' 2 cm range noise, and prints one line per run: its name, then lo_replay's summary.
-# LO_REPLAY_FLAGS are added to every run (e.g. --max-registration-points 2000). --only keeps the runs
+# LO_REPLAY_FLAGS are added to every run (e.g. --set lo.max_registration_points=2000). --only keeps the runs
 # whose name matches REGEX (grep -E). N runs at a time (default: the number of cores); the lines come in
 # the order of the list below whatever order the runs finish in, and stderr says each as it ends.
 set -euo pipefail
@@ -27,8 +27,8 @@ while [ $# -gt 0 ]; do
 done
 export EXTRA_FLAGS="$*"
 
-noise="--lidar-range-noise 0.02"
-indoor="--scan-voxel 0.15 --map-voxel 0.15"
+noise="--set lidar.range_noise=0.02"
+indoor="--set lo.scan_voxel_size=0.15 --set lo.map_voxel_size=0.15"
 # name|arguments
 runs=(
   "kth-1.8-s1|data/mcd/kth_day06.csv --duration 1e6 --motor 1.8 --seed 1 $noise"
@@ -36,21 +36,21 @@ runs=(
   "kth-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 $noise"
   "ntu-3.6|data/mcd/ntu_day01.csv --duration 1e6 --motor 3.6 $noise"
   "tuhh-3.6|data/mcd/tuhh_day03.csv --duration 1e6 --motor 3.6 $noise"
-  "corridor-doors|corridor --door-spacing 8 --duration 1e6 $indoor $noise"
+  "corridor-doors|corridor --set world.corridor_door_spacing=8 --duration 1e6 $indoor $noise"
   "corridor-plain|corridor --duration 1e6 $indoor $noise"
   "multilevel|multilevel --duration 1e6 $indoor $noise"
 )
 for site in kth:kth_day06 ntu:ntu_day01 tuhh:tuhh_day03; do
   for profile in mixed poor; do
     for seed in 1 2; do
-      runs+=("${site%%:*}-$profile-s$seed|data/mcd/${site#*:}.csv --duration 180 --profile $profile --seed $seed $noise")
+      runs+=("${site%%:*}-$profile-s$seed|data/mcd/${site#*:}.csv --duration 180 --set world.density_profile=$profile --seed $seed $noise")
     done
   done
 done
 for seed in 1 2 3; do
-  runs+=("campus-imu-3.6-s$seed|campus --duration 1e6 --seed $seed --imu 1 $noise")
+  runs+=("campus-imu-3.6-s$seed|campus --duration 1e6 --seed $seed --set lo.use_imu=true $noise")
 done
-runs+=("kth-imu-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 --imu 1 $noise")
+runs+=("kth-imu-3.6|data/mcd/kth_day06.csv --duration 1e6 --motor 3.6 --set lo.use_imu=true $noise")
 
 # Each run's line goes to its own file, and the lines are printed in the order above once all
 # have run (parallel runs finish in any order); stderr says each run as it finishes.

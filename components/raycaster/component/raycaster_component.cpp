@@ -21,6 +21,7 @@
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/runtime/component.hpp"
+#include "scan_parameters.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
@@ -39,11 +40,6 @@ class RaycasterComponent : public Component {
                                        "IMU in the LiDAR frame, turning with the motor (with imu: true)");
     adapters::declareLidarModelParameters(spec);
     adapters::declareRigParameters(spec);
-    // Not bound: the core's range_noise_stddev stays 0 (exact casts, which its range tests and
-    // tools/lo_replay rely on); a scene gets the default model's datasheet precision (1 sigma).
-    spec.param("range_noise", lidar::livoxMid360().range_precision,
-               "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
-        .between(0.0, 1.0);
     spec.param("frame_id", "lidar", "frame_id of the published scans and IMU samples");
     // livox: what a rig's driver publishes, so that a recording of a simulation can stand in for the
     // LiDAR of config/scenes/rig_mid360.yaml (docs/user/rig.md).
@@ -52,7 +48,7 @@ class RaycasterComponent : public Component {
                "(livox_ros_driver2's PointCloud2: x, y, z, intensity, tag, line, timestamp in absolute ns)")
         .oneOf({"uampc", "livox"});
     spec.param("imu", false, "publish the LiDAR's IMU (angular velocity and specific force in the LiDAR frame)");
-    raycaster::RayCasterConfig scan_defaults;
+    raycaster::RayCasterConfig scan_defaults = sceneScanDefaults();
     raycaster::ImuSimulatorConfig imu_defaults;  // the Mid-360's IMU, an ICM-40609
     ParameterBinding binding(spec);
     bindScanParameters(binding, scan_defaults);
@@ -82,17 +78,6 @@ class RaycasterComponent : public Component {
 
  private:
   // The parameters that set the core's configs: declared from their defaults, read into them.
-  static void bindScanParameters(ParameterBinding& b, raycaster::RayCasterConfig& c) {
-    // The Mid-360's angular precision (0.15 degrees, 1 sigma) is modelled but off by default: with
-    // it the LiDAR-only LO loses the MCD worlds' open stretches within 10-45 s and the rich campus
-    // at 3 m/s (docs/results/sensor-noise.md); a scene may turn it on.
-    b.bindDegrees("angular_noise_deg", c.angular_noise_stddev,
-                  "standard deviation of the reported direction of a return, per axis, degrees (the Mid-360 "
-                  "datasheet: 0.15; off by default, see docs/results/sensor-noise.md)")
-        .between(0.0, 10.0);
-    b.bind("dropout", c.dropout_probability, "probability that a return is lost").between(0.0, 1.0);
-  }
-
   static void bindImuParameters(ParameterBinding& b, raycaster::ImuSimulatorConfig& c) {
     b.bind("imu_rate", c.rate_hz, "imu: sample rate, Hz").between(1.0, 1000.0);
     b.bind("gyro_noise_density", c.noise.gyro_noise_density,
@@ -113,7 +98,6 @@ class RaycasterComponent : public Component {
     raycaster::RayCasterConfig c;
     c.model = adapters::lidarModel(ctx);
     c.calibration = adapters::rigCalibration(ctx);
-    c.range_noise_stddev = ctx.paramDouble("range_noise");
     c.seed = ctx.seed();
     ParameterBinding binding(ctx);
     bindScanParameters(binding, c);

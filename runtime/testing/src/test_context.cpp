@@ -7,6 +7,7 @@
 
 #include "fastdds/rtps/common/SerializedPayload.h"
 #include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/parameter_text.hpp"
 
 namespace uampc::testing {
 
@@ -65,60 +66,6 @@ std::string parameterError(const std::string& type, const std::string& name, con
   return type + ": parameter '" + name + "': " + problem;
 }
 
-// The value of text (YAML) as the parameter's declared type, checked as a scene's would be.
-ParameterValue readParameter(const std::string& type, const ParameterSpec& spec, const std::string& text) {
-  auto fail = [&](const std::string& problem) {
-    return std::invalid_argument(parameterError(type, spec.name, problem));
-  };
-  ParameterValue value;
-  try {
-    const YAML::Node node = YAML::Load(text);
-    switch (spec.type) {
-      case ParameterType::kBool:
-        value = node.as<bool>();
-        break;
-      case ParameterType::kInt:
-        value = node.as<std::int64_t>();
-        break;
-      case ParameterType::kDouble:
-        value = node.as<double>();
-        break;
-      case ParameterType::kString:
-        value = node.as<std::string>();
-        break;
-      case ParameterType::kPath: {
-        const std::string path = node.as<std::string>();
-        value = path.empty() ? path : std::filesystem::absolute(path).lexically_normal().string();
-        if (!path.empty() && !std::filesystem::is_regular_file(std::get<std::string>(value))) {
-          throw fail("no file " + std::get<std::string>(value));
-        }
-        break;
-      }
-      case ParameterType::kDoubleList:
-        value = node.as<std::vector<double>>();
-        break;
-      case ParameterType::kStringList:
-        value = node.as<std::vector<std::string>>();
-        break;
-    }
-  } catch (const YAML::Exception&) {
-    throw fail("'" + text + "' is not a " + toString(spec.type));
-  }
-  double number = 0.0;
-  if (const auto* i = std::get_if<std::int64_t>(&value)) number = static_cast<double>(*i);
-  if (const auto* d = std::get_if<double>(&value)) number = *d;
-  if ((spec.min && number < *spec.min) || (spec.max && number > *spec.max)) {
-    throw fail(text + " is out of bounds [" + (spec.min ? formatNumber(*spec.min) : "-inf") + ", " +
-               (spec.max ? formatNumber(*spec.max) : "inf") + "]");
-  }
-  if (const auto* s = std::get_if<std::string>(&value)) {
-    if (!spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *s) == spec.choices.end()) {
-      throw fail("'" + *s + "' is not one of the allowed values");
-    }
-  }
-  return value;
-}
-
 }  // namespace
 
 TestContext::TestContext(const std::string& type, const std::map<std::string, std::string>& params, TestOptions options)
@@ -128,7 +75,11 @@ TestContext::TestContext(const std::string& type, const std::map<std::string, st
   for (const auto& [name, text] : params) {
     const ParameterSpec* spec = library_->spec().findParameter(name);
     if (!spec) throw std::invalid_argument(parameterError(type, name, "not declared in describe()"));
-    params_[name] = readParameter(type, *spec, text);
+    try {
+      params_[name] = parseParameterValue(*spec, text);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(type + ": " + e.what());
+    }
   }
   for (const ParameterSpec& spec : library_->spec().parameters()) {
     if (params_.count(spec.name)) continue;

@@ -13,6 +13,7 @@
 //   configFrom(): lo::OdometryConfig c;        ParameterBinding b(ctx);  bindParameters(b, c);
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +26,9 @@ class ParameterBinding {
  public:
   explicit ParameterBinding(ComponentSpec& spec) : spec_(&spec) {}           // declare, defaults from the fields
   explicit ParameterBinding(const Context& context) : context_(&context) {}  // read into the fields
+  // Read the given values (checked, e.g. by parseParameterValue) into their fields; the others keep
+  // theirs. The development tools apply `--set` this way to the cores' configs.
+  explicit ParameterBinding(const std::map<std::string, ParameterValue>& values) : values_(&values) {}
 
   bool declaring() const { return spec_ != nullptr; }
 
@@ -41,8 +45,12 @@ class ParameterBinding {
                             const std::vector<std::pair<std::string, Enum>>& names, const std::string& doc);
 
  private:
+  // The value of `name` in values_, if it is there.
+  const ParameterValue* given(const std::string& name) const;
+
   ComponentSpec* spec_ = nullptr;
   const Context* context_ = nullptr;
+  const std::map<std::string, ParameterValue>* values_ = nullptr;
   // What bounds set while reading apply to: the scene loader checked them already.
   ParameterSpec read_only_;
 };
@@ -60,7 +68,8 @@ ParameterSpec& ParameterBinding::bindChoice(const std::string& name, Enum& field
     }
     return spec_->param(name, default_name.c_str(), doc).oneOf(choices);
   }
-  const std::string text = context_->paramString(name);
+  if (values_ && !given(name)) return read_only_;
+  const std::string text = values_ ? std::get<std::string>(*given(name)) : context_->paramString(name);
   for (const auto& [choice, value] : names) {
     if (choice == text) field = value;
   }
