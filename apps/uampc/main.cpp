@@ -10,16 +10,17 @@
 #include <string>
 #include <vector>
 
-#include "commands/components_command.hpp"
-#include "experiment/experiment_command.hpp"
-#include "commands/graph_command.hpp"
 #include "bag/play_command.hpp"
 #include "bag/record_command.hpp"
+#include "commands/components_command.hpp"
+#include "commands/graph_command.hpp"
+#include "commands/version.hpp"
+#include "experiment/experiment_command.hpp"
 #include "security/security_command.hpp"
 #include "topic/topic_command.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/launcher.hpp"
-#include "commands/version.hpp"
 
 namespace {
 
@@ -365,6 +366,7 @@ class UampcCli {
         ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 30))
         ->type_name("BYTES");
     sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
+        ->check(uampc::command_line::kFinite)
         ->check(CLI::NonNegativeNumber)
         ->type_name("S");
     sub->add_option("--security", o.security_dir,
@@ -388,10 +390,11 @@ class UampcCli {
         ->check(CLI::Range(0, uampc::kMaxDomainId))
         ->type_name("N");
     sub->add_option("--rate", o.rate, "Playback speed: 2 plays twice as fast (default 1).")
+        ->check(uampc::command_line::kFinite)
         ->check(CLI::Range(0.01, 100.0))
         ->type_name("R");
     sub->add_option("--start", o.start_s, "Skip the recording's first S seconds.")
-        ->check(CLI::NonNegativeNumber)
+        ->check(uampc::command_line::kFiniteNonNegative)
         ->type_name("S");
     sub->add_option("--topics", o.topics, "Play only these topics (default: all).")->type_name("TOPIC ...");
     sub->add_flag("--loop", o.loop, "Start over at the end, until Ctrl-C.");

@@ -97,6 +97,17 @@ TEST(CommandLine, MissingRequiredArgumentsExit2AndAreNamed) {
   EXPECT_TRUE(contains(r.output, "--out is required")) << r.output;
 }
 
+// NaN and infinity pass CLI11's own range checks; each number of the command line is refused
+// unless finite (`play --rate nan` played forever).
+TEST(CommandLine, NumbersMustBeFinite) {
+  for (const std::string args : {"play x.mcap --rate nan", "play x.mcap --start nan", "record -o x.mcap --duration nan",
+                                 "topic list --wait nan", "play x.mcap --rate inf"}) {
+    const CommandResult r = runUampc(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_TRUE(contains(r.output, "is not a finite number")) << args << "\n" << r.output;
+  }
+}
+
 TEST(CommandLine, SetTakesOneValueAndMayComeBeforeTheScene) {
   // --set is repeatable but takes one value each time: the scene after it is the scene.
   const CommandResult r =

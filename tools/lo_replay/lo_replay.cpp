@@ -29,12 +29,12 @@
 #include <string>
 #include <vector>
 
-#include "cli_checks.hpp"
 #include "lo_parameters.hpp"
 #include "parameter_overrides.hpp"
 #include "scan_parameters.hpp"
 #include "simulated_lidar.hpp"
 #include "tool_main.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -64,9 +64,9 @@ int replay(int argc, char** argv) {
   int every = 1;
   std::vector<std::string> assignments;
   app.add_option("SOURCE", source, "an MCD trajectory (.csv), or corridor, multilevel or campus")->required();
-  app.add_option("--start", start, "s of the trajectory skipped")->check(tools::kFiniteNonNegative)->capture_default_str();
-  app.add_option("--duration", duration, "s replayed")->check(tools::kFiniteNonNegative)->capture_default_str();
-  app.add_option("--motor", motor_speed, "constant motor speed, rad/s")->check(tools::kFinite)->capture_default_str();
+  app.add_option("--start", start, "s of the trajectory skipped")->check(command_line::kFiniteNonNegative)->capture_default_str();
+  app.add_option("--duration", duration, "s replayed")->check(command_line::kFiniteNonNegative)->capture_default_str();
+  app.add_option("--motor", motor_speed, "constant motor speed, rad/s")->check(command_line::kFinite)->capture_default_str();
   app.add_option("--seed", seed, "the world's and the noise's seed")->capture_default_str();
   app.add_option("--every", every, "print every N-th frame (and every frame more than 1 degree off)")
       ->check(CLI::PositiveNumber)

@@ -19,6 +19,7 @@
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
 #include "topic/topic_statistics.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/runtime/cdr_decoder.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/edit_distance.hpp"
@@ -313,6 +314,7 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
                     (action == TopicAction::kList ? "How long discovery runs before the list is printed"
                                                   : "How long to wait for a writer of TOPIC") +
                         std::string(" (default ") + secondsText(kDefaultWaitS) + " s).")
+        ->check(uampc::command_line::kFinite)
         ->check(CLI::Range(0.0, 3600.0).description(""))
         ->type_name("S");
     sub->add_option("--security", options.security_dir,

@@ -1,13 +1,13 @@
-// CLI11 checks the development tools' numbers need beyond CLI11's own: NaN and infinity pass
-// CLI::NonNegativeNumber and CLI::Range (every comparison with NaN is false), so a typo such as
-// `--duration nan` would run forever.
+// CLI11 checks a number needs beyond CLI11's own, for `uampc` and the development tools: NaN and
+// infinity pass CLI::NonNegativeNumber and CLI::Range (every comparison with NaN is false), so
+// `uampc play --rate nan` played forever and `record --duration nan` never stopped.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <string>
 
-namespace uampc::tools {
+namespace uampc::command_line {
 
 inline std::string finiteNumberProblem(const std::string& text, bool non_negative) {
   double value = 0.0;
@@ -20,4 +20,4 @@ inline const CLI::Validator kFinite{[](std::string& text) { return finiteNumberP
 inline const CLI::Validator kFiniteNonNegative{[](std::string& text) { return finiteNumberProblem(text, true); },
                                                "NUMBER >= 0"};
 
-}  // namespace uampc::tools
+}  // namespace uampc::command_line
