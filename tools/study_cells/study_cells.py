@@ -67,6 +67,7 @@ def cell_figures(runs, pattern, subject, baseline):
             by_key[(r["scene"], r["seed"], r["controller"])] = r
     keys = sorted({(s, seed) for (s, seed, _) in by_key})
     lost = {subject: 0, baseline: 0}
+    lost_at = {subject: [], baseline: []}
     finished = {subject: 0, baseline: 0}
     pairs = []
     for scene, seed in keys:
@@ -76,6 +77,7 @@ def cell_figures(runs, pattern, subject, baseline):
                 finished[name] += 1
                 if run.get("lost_track_at_s") is not None:
                     lost[name] += 1
+                    lost_at[name].append(run["lost_track_at_s"])
         if a and b and a.get("ate_m") and b.get("ate_m"):
             pairs.append((a, b))
     if not pairs:
@@ -86,6 +88,7 @@ def cell_figures(runs, pattern, subject, baseline):
     return {
         "pairs": len(pairs),
         "lost": lost,
+        "median_lost_at": {k: statistics.median(v) if v else None for k, v in lost_at.items()},
         "finished": finished,
         "sum_ratio": sum(a["ate_m"] for a, _ in pairs) / sum(b["ate_m"] for _, b in pairs),
         "median_ratio": math.exp(statistics.median(logs)),
@@ -109,7 +112,7 @@ def main(argv):
         print(f"study_cells: {args.results}: {e}", file=sys.stderr)
         return 2
     s, b = args.subject, args.baseline
-    print(f"| cell | pairs | {s} lost | {b} lost | ATE ratio, sums | ATE ratio, median of pairs [95 % interval] "
+    print(f"| cell | pairs | {s} lost (median s) | {b} lost (median s) | ATE ratio, sums | ATE ratio, median of pairs [95 % interval] "
           f"| Wilcoxon p | CMPLT ratio, median | {b} median ATE m |")
     print("|---|---|---|---|---|---|---|---|---|")
     for cell in args.cell:
@@ -118,7 +121,10 @@ def main(argv):
         if f is None:
             print(f"| {name} | 0 | | | | | | | |")
             continue
-        print(f"| {name} | {f['pairs']} | {f['lost'][s]} of {f['finished'][s]} | {f['lost'][b]} of {f['finished'][b]} "
+        def lost(c):
+            at = f["median_lost_at"][c]
+            return f"{f['lost'][c]} of {f['finished'][c]}" + ("" if at is None else f" ({at:.0f})")
+        print(f"| {name} | {f['pairs']} | {lost(s)} | {lost(b)} "
               f"| {f['sum_ratio']:.2f} | {f['median_ratio']:.2f} [{f['interval'][0]:.2f}, {f['interval'][1]:.2f}] "
               f"| {f['p']:.3g} | {f['cmplt_ratio']:.3f} | {f['baseline_median_ate']:.2f} |")
     return 0

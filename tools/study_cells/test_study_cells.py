@@ -30,6 +30,7 @@ class StudyCells(unittest.TestCase):
         f = study_cells.cell_figures(runs, "_pm$", "u", "c")
         self.assertEqual(f["pairs"], 3)
         self.assertEqual(f["lost"], {"u": 0, "c": 1})
+        self.assertEqual(f["median_lost_at"], {"u": None, "c": 50.0})
         self.assertAlmostEqual(f["sum_ratio"], 0.25)
         self.assertAlmostEqual(f["median_ratio"], 0.25)
         self.assertAlmostEqual(f["cmplt_ratio"], 0.99)
