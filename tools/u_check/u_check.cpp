@@ -3,19 +3,20 @@
 //
 //   u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N]
 //           [--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG]
-//           [--position-sigma M] [--door-spacing M] [--profile P] [--open-fraction F] [--panorama WxH] [--ray-step DEG]
-//           [--range-weight-voxel M] [--csv FILE]
+//           [--position-sigma M] [--csv FILE] [--svg PREFIX] [--set GROUP.NAME=VALUE ...]
 //
 // Prints, per probe time, the LO's own error, the local map's size, the ranges of U and of the
 // measured figures, and Spearman's rank correlation of U with the posterior pose-covariance
 // trace and with the Monte Carlo mean square registration error; then the means over the
 // probes where the LO held. The oracle columns rank the angles by the same criterion computed from
 // the information the LO's update really had: how good the criterion is, apart from how well U
-// predicts the view. --panorama and --ray-step change U's depth map and ray grid (defaults: the
-// mpc component's); --range-weight-voxel is the mpc component's range_weight_voxel (0: the
-// paper's equal rays).
+// predicts the view. --set takes the components' own parameters, as a scene does:
+// controller.NAME the mpc component's (panorama_width, panorama_height, ray_step_deg,
+// range_weight_voxel: 0 for the paper's equal rays, ...), world.NAME map_provider's
+// (density_profile, corridor_door_spacing, point_map_resolution, ...).
 // --csv writes one row per probe and angle; --svg PREFIX draws log U against each measured figure
 // (PREFIX_trace.svg, PREFIX_mse.svg), one colour per probe where the LO held.
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,28 +24,18 @@
 #include <string>
 #include <vector>
 
+#include "mpc_parameters.hpp"
+#include "parameter_overrides.hpp"
 #include "simulated_lidar.hpp"
-#include "uampc/plots/svg_plot.hpp"
 #include "tool_main.hpp"
 #include "uncertainty_check.hpp"
+#include "world_parameters.hpp"
+#include "uampc/command_line/finite_number.hpp"
+#include "uampc/plots/svg_plot.hpp"
 
 using namespace uampc;
 
 namespace {
-
-constexpr const char* kUsage =
-    "usage: u_check (TRAJECTORY.csv | corridor | multilevel | campus) --at T[,T...] [--seed N] "
-    "[--motor RAD_PER_S] [--warmup S] [--trials N] [--rotation-sigma DEG] [--position-sigma M] "
-    "[--door-spacing M] [--profile P] [--open-fraction F] [--panorama WxH] [--ray-step DEG] [--range-weight-voxel M] "
-    "[--csv FILE] [--svg PREFIX]\n";
-
-std::vector<double> numberList(const std::string& flag, const std::string& text) {
-  std::vector<double> values;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) values.push_back(tools::number(flag, item));
-  if (values.empty()) throw std::invalid_argument(flag + ": no times given");
-  return values;
-}
 
 struct Range {
   double min = INFINITY, max = -INFINITY;
@@ -93,55 +84,57 @@ void writeFigure(const std::string& path, const std::string& source, const std::
 }
 
 int run(int argc, char** argv) {
-  if (argc < 2 || argc % 2 != 0 || std::string(argv[1]) == "--help") {
-    std::fprintf(stderr, "%s", kUsage);
-    return argc >= 2 && std::string(argv[1]) == "--help" ? 0 : 2;
-  }
-  world::WorldSettings settings = tools::worldSettingsFor(argv[1]);
-  tools::UncertaintyCheckConfig config;
+  CLI::App app{"U(theta) as the controller predicts it, against what the LO achieves at each motor angle.", "u_check"};
+  std::string source, csv_path, svg_prefix;
   std::vector<double> times;
-  std::string csv_path;
-  std::string svg_prefix;
-  for (int i = 2; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i], value = argv[i + 1];
-    if (flag == "--at")
-      times = numberList(flag, value);
-    else if (flag == "--seed")
-      settings.seed = config.seed = static_cast<std::uint64_t>(tools::number(flag, value));
-    else if (flag == "--motor")
-      config.motor_speed = tools::number(flag, value);
-    else if (flag == "--warmup")
-      config.warmup = tools::number(flag, value);
-    else if (flag == "--trials")
-      config.trials = tools::count(flag, value);
-    else if (flag == "--rotation-sigma")
-      config.start_rotation_sigma = tools::number(flag, value) * M_PI / 180.0;
-    else if (flag == "--position-sigma")
-      config.start_position_sigma = tools::number(flag, value);
-    else if (flag == "--door-spacing")
-      settings.corridor_door_spacing = tools::number(flag, value);
-    else if (flag == "--profile")
-      settings.density_profile = value;
-    else if (flag == "--open-fraction")
-      settings.open_fraction = tools::number(flag, value);
-    else if (flag == "--csv")
-      csv_path = value;
-    else if (flag == "--svg")
-      svg_prefix = value;
-    else if (flag == "--range-weight-voxel")
-      config.controller.range_weight_voxel = tools::number(flag, value);
-    else if (flag == "--ray-step") {
-      config.controller.uncertainty.azimuth_step = config.controller.uncertainty.elevation_step =
-          tools::number(flag, value) * M_PI / 180.0;
-    } else if (flag == "--panorama") {
-      const auto x = value.find('x');
-      if (x == std::string::npos) throw std::invalid_argument("--panorama: expected WxH, e.g. 180x90");
-      config.controller.depth_map.width = tools::count(flag, value.substr(0, x));
-      config.controller.depth_map.height = tools::count(flag, value.substr(x + 1));
-    } else
-      throw std::invalid_argument("unknown option " + flag + "\n" + kUsage);
+  std::uint64_t seed = 1;
+  double rotation_sigma_deg = 0.0;
+  std::vector<std::string> assignments;
+  tools::UncertaintyCheckConfig config;
+  rotation_sigma_deg = config.start_rotation_sigma * 180.0 / M_PI;
+  app.add_option("SOURCE", source, "an MCD trajectory (.csv), or corridor, multilevel or campus")->required();
+  app.add_option("--at", times, "probe times, s (T[,T...])")
+      ->required()
+      ->delimiter(',')
+      ->check(command_line::kFiniteNonNegative);
+  app.add_option("--seed", seed, "the world's and the trials' seed")->capture_default_str();
+  app.add_option("--motor", config.motor_speed, "motor speed before the probes, rad/s")
+      ->check(command_line::kFinite)
+      ->capture_default_str();
+  app.add_option("--warmup", config.warmup, "s the LO runs before each probe")
+      ->check(command_line::kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_option("--trials", config.trials, "Monte Carlo registrations per angle")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--rotation-sigma", rotation_sigma_deg, "start rotation error of the trials, degrees (1 sigma)")
+      ->check(command_line::kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_option("--position-sigma", config.start_position_sigma, "start position error of the trials, m (1 sigma)")
+      ->check(command_line::kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_option("--csv", csv_path, "write one row per probe and angle to FILE");
+  app.add_option("--svg", svg_prefix, "draw log U against each measured figure: PREFIX_trace.svg, PREFIX_mse.svg");
+  app.add_option("--set", assignments,
+                 "a component's parameter, as in a scene: controller.NAME (mpc) or world.NAME (map_provider)")
+      ->type_name(tools::ParameterOverrides::kSyntax);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
   }
-  if (times.empty()) throw std::invalid_argument(std::string("--at is required\n") + kUsage);
+  world::WorldSettings settings = tools::worldSettingsFor(source);
+  settings.seed = config.seed = seed;
+  config.start_rotation_sigma = rotation_sigma_deg * M_PI / 180.0;
+  try {
+    tools::ParameterOverrides set(assignments);
+    set.apply("controller", bindMpcParameters, config.controller);
+    set.apply("world", bindWorldParameters, settings);
+    set.checkAllUsed();
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "u_check: %s\n", e.what());
+    return 2;
+  }
 
   const world::World world = world::buildWorld(settings);
   tools::UncertaintyCheck check(world, config);
@@ -153,7 +146,7 @@ int run(int argc, char** argv) {
                  "time,theta_deg,predicted_u,oracle_u,posterior_trace,mean_square_error,rms_rotation_deg,rms_position_"
                  "m,correspondences\n");
   }
-  std::printf("# source %s, motor %.2f rad/s before the probes, %d trials, start sigma %.2f deg / %.3f m\n", argv[1],
+  std::printf("# source %s, motor %.2f rad/s before the probes, %d trials, start sigma %.2f deg / %.3f m\n", source.c_str(),
               config.motor_speed, config.trials, config.start_rotation_sigma * 180.0 / M_PI,
               config.start_position_sigma);
   std::printf(
@@ -185,17 +178,17 @@ int run(int argc, char** argv) {
   }
   if (csv) std::fclose(csv);
   if (!svg_prefix.empty()) {
-    writeFigure(svg_prefix + "_trace.svg", argv[1], probes, true);
-    writeFigure(svg_prefix + "_mse.svg", argv[1], probes, false);
+    writeFigure(svg_prefix + "_trace.svg", source, probes, true);
+    writeFigure(svg_prefix + "_mse.svg", source, probes, false);
   }
   if (held > 0) {
     std::printf(
         "summary: %s, %d of %zu probes held: mean Spearman(U, trace) %.3f, (U, mse) %.3f; oracle: (trace) %.3f, (mse) "
         "%.3f\n",
-        argv[1], held, times.size(), sum_trace / held, sum_error / held, sum_oracle_trace / held,
+        source.c_str(), held, times.size(), sum_trace / held, sum_error / held, sum_oracle_trace / held,
         sum_oracle_error / held);
   } else {
-    std::printf("summary: %s, no probe where the LO held\n", argv[1]);
+    std::printf("summary: %s, no probe where the LO held\n", source.c_str());
   }
   return 0;
 }
