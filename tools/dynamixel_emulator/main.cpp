@@ -1,5 +1,6 @@
 // dynamixel_emulator: an emulated X-series servo on a pseudo-terminal, served until Ctrl-C, for
 // running the motor bridge without hardware (point its port at --link).
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,88 +12,57 @@
 
 #include "servo_emulator.hpp"
 #include "tool_main.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/dynamixel/control_table.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
 namespace uampc::dynamixel {
 namespace {
 
-void printUsage(std::FILE* out) {
-  std::fprintf(out,
-               "usage: dynamixel_emulator --link PATH [--id N] [--model NAME] [--firmware N] [--velocity-limit N]\n"
-               "                          [--max-acceleration RAD_S2] [--initial-position COUNTS]\n"
-               "Serves an emulated DYNAMIXEL X-series servo (Protocol 2.0) on a pseudo-terminal, linked at PATH,\n"
-               "until SIGINT or SIGTERM.\n"
-               "  --link PATH              symlink to the pty's slave, the port the host opens (required)\n"
-               "  --id N                   servo ID, 0-252 (default 1)\n"
-               "  --model NAME             one of %s (default XM430-W350)\n"
-               "  --firmware N             firmware version that PING reports (default 46)\n"
-               "  --velocity-limit N       Velocity Limit (address 44), velocity units (default 265)\n"
-               "  --max-acceleration X     the motor's acceleration, rad/s^2 (default 50)\n"
-               "  --initial-position N     Present Position at power-on, counts (default 0)\n",
-               knownModelNames().c_str());
-}
+// The options, each checked as it is read (CLI11): a bad one exits 2 naming it.
+// id and firmware are read as int: CLI11 takes a std::uint8_t option as a character.
+struct ByteOptions {
+  int id = 1, firmware = 46;
+};
 
-// An integer flag read strictly: "12x", "1.5" or out of [low, high] is an error naming the flag.
-long long integer(const std::string& flag, const std::string& text, long long low, long long high) {
-  const double value = tools::number(flag, text);
-  if (value != std::floor(value) || value < static_cast<double>(low) || value > static_cast<double>(high)) {
-    throw std::invalid_argument(flag + ": '" + text + "' is not an integer in [" + std::to_string(low) + ", " +
-                                std::to_string(high) + "]");
-  }
-  return static_cast<long long>(value);
-}
-
-void setOption(EmulatorOptions& options, const std::string& flag, const std::string& value) {
-  constexpr long long kInt32Max = std::numeric_limits<std::int32_t>::max();
-  if (flag == "--link") {
-    options.link = value;
-  } else if (flag == "--id") {
-    options.id = static_cast<std::uint8_t>(integer(flag, value, 0, kMaxId));
-  } else if (flag == "--model") {
-    if (!modelByName(value))
-      throw std::invalid_argument("unknown model '" + value + "' (known: " + knownModelNames() + ")");
-    options.model = value;
-  } else if (flag == "--firmware") {
-    options.firmware = static_cast<std::uint8_t>(integer(flag, value, 0, 255));
-  } else if (flag == "--velocity-limit") {
-    options.velocity_limit = static_cast<std::uint32_t>(integer(flag, value, 0, kInt32Max));
-  } else if (flag == "--max-acceleration") {
-    options.max_acceleration = tools::number(flag, value);
-    if (options.max_acceleration <= 0.0) throw std::invalid_argument(flag + ": must be positive");
-  } else if (flag == "--initial-position") {
-    options.initial_position = static_cast<std::int32_t>(integer(flag, value, -kInt32Max - 1, kInt32Max));
-  } else {
-    throw std::invalid_argument("unknown option '" + flag + "'");
-  }
-}
-
-EmulatorOptions parse(int argc, char** argv) {
-  EmulatorOptions options;
-  for (int i = 1; i < argc; i += 2) {
-    const std::string flag = argv[i];
-    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
-    setOption(options, flag, argv[i + 1]);
-  }
-  if (options.link.empty()) throw std::invalid_argument("--link PATH is required");
-  return options;
+void addOptions(CLI::App& app, EmulatorOptions& o, ByteOptions& bytes) {
+  app.add_option("--link", o.link, "symlink to the pty's slave, the port the host opens")->required()->type_name("PATH");
+  bytes = {o.id, o.firmware};
+  app.add_option("--id", bytes.id, "servo ID")->check(CLI::Range(0, static_cast<int>(kMaxId)))->capture_default_str();
+  app.add_option("--model", o.model, "one of " + knownModelNames())
+      ->check([](const std::string& name) {
+        return modelByName(name) ? std::string() : "unknown model '" + name + "' (known: " + knownModelNames() + ")";
+      })
+      ->capture_default_str();
+  app.add_option("--firmware", bytes.firmware, "firmware version that PING reports")
+      ->check(CLI::Range(0, 255))
+      ->capture_default_str();
+  app.add_option("--velocity-limit", o.velocity_limit, "Velocity Limit (address 44), velocity units")
+      ->check(CLI::Range(0L, static_cast<long>(std::numeric_limits<std::int32_t>::max())))
+      ->capture_default_str();
+  app.add_option("--max-acceleration", o.max_acceleration, "the motor's acceleration, rad/s^2")
+      ->check(command_line::kFinite)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--initial-position", o.initial_position, "Present Position at power-on, counts")
+      ->capture_default_str();
 }
 
 int run(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      printUsage(stdout);
-      return 0;
-    }
-  }
+  CLI::App app{
+      "Serves an emulated DYNAMIXEL X-series servo (Protocol 2.0) on a pseudo-terminal, linked at PATH, until\n"
+      "SIGINT or SIGTERM.",
+      "dynamixel_emulator"};
   EmulatorOptions options;
+  ByteOptions bytes;
+  addOptions(app, options, bytes);
   try {
-    options = parse(argc, argv);
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "dynamixel_emulator: %s (see --help)\n", e.what());
-    return 2;
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
   }
+  options.id = static_cast<std::uint8_t>(bytes.id);
+  options.firmware = static_cast<std::uint8_t>(bytes.firmware);
   catchStopSignals();  // before the pty exists: a signal now still removes the link on the way out
   ServoEmulator servo(options);
   std::printf("dynamixel_emulator: %s ID %d on %s -> %s\n", options.model.c_str(), options.id, servo.port().c_str(),
