@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "experiment_file.hpp"
-#include "experiment_runner.hpp"
+#include "experiment/experiment_file.hpp"
+#include "experiment/backends/experiment_runner.hpp"
 #include "fuzz_input_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
