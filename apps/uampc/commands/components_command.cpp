@@ -81,10 +81,7 @@ void printText(const std::vector<const ComponentLibrary*>& libraries) {
     for (const auto& param : parameters) {
       std::cout << "  param  " << std::left << std::setw(param_name) << param.name << std::setw(param_type)
                 << toString(param.type) << (param.required() ? "required" : "= " + toString(*param.default_value));
-      if (param.min || param.max) {
-        std::cout << " in [" << (param.min ? formatNumber(*param.min) : "-inf") << ", "
-                  << (param.max ? formatNumber(*param.max) : "inf") << "]" << (param.zero_is_off ? " or 0 (off)" : "");
-      }
+      if (param.min || param.max) std::cout << " in " << param.boundsText();
       if (!param.choices.empty()) {
         std::cout << " one of";
         for (const auto& c : param.choices) std::cout << " " << c;
@@ -110,12 +107,8 @@ std::string markdownCell(std::string text) {
   return out;
 }
 
-std::string boundsText(const ParameterSpec& param) {
-  std::string text;
-  if (param.min || param.max) {
-    text = "[" + (param.min ? formatNumber(*param.min) : std::string("-inf")) + ", " +
-           (param.max ? formatNumber(*param.max) : std::string("inf")) + "]" + (param.zero_is_off ? " or 0 (off)" : "");
-  }
+std::string boundsAndChoices(const ParameterSpec& param) {
+  std::string text = param.boundsText();
   if (!param.choices.empty()) {
     for (const auto& c : param.choices) text += (text.empty() ? "" : ", ") + ("`" + c + "`");
   }
@@ -148,7 +141,7 @@ void printMarkdown(const std::vector<const ComponentLibrary*>& libraries) {
     for (const auto& param : spec.parameters()) {
       const std::string value = param.required() ? "required" : "`" + toString(*param.default_value) + "`";
       std::cout << "| " << param.name << (param.rig ? " (*rig*)" : "") << " | " << toString(param.type) << " | "
-                << markdownCell(value) << " | " << markdownCell(boundsText(param)) << " | " << markdownCell(param.doc)
+                << markdownCell(value) << " | " << markdownCell(boundsAndChoices(param)) << " | " << markdownCell(param.doc)
                 << " |\n";
     }
   }

@@ -61,4 +61,15 @@ const char* toString(QosPreset preset) {
   return "?";
 }
 
+bool ParameterSpec::withinBounds(double v) const {
+  if (zero_is_off && v == 0.0) return true;
+  return !((min && v < *min) || (max && v > *max));
+}
+
+std::string ParameterSpec::boundsText() const {
+  if (!min && !max) return {};
+  return "[" + (min ? formatNumber(*min) : std::string("-inf")) + ", " + (max ? formatNumber(*max) : std::string("inf")) +
+         "]" + (zero_is_off ? " or 0 (off)" : "");
+}
+
 }  // namespace uampc

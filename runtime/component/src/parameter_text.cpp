@@ -46,11 +46,7 @@ ParameterValue parseParameterValue(const ParameterSpec& spec, const std::string&
   if (const auto* i = std::get_if<std::int64_t>(&value)) number = static_cast<double>(*i);
   if (const auto* d = std::get_if<double>(&value)) number = *d;
   if (number && !std::isfinite(*number)) throw fail("must be a finite number, not " + text);
-  const bool off = spec.zero_is_off && number && *number == 0.0;
-  if (number && !off && ((spec.min && *number < *spec.min) || (spec.max && *number > *spec.max))) {
-    throw fail(text + " is out of bounds [" + (spec.min ? formatNumber(*spec.min) : "-inf") + ", " +
-               (spec.max ? formatNumber(*spec.max) : "inf") + "]" + (spec.zero_is_off ? " (or 0: off)" : ""));
-  }
+  if (number && !spec.withinBounds(*number)) throw fail(text + " is out of bounds " + spec.boundsText());
   if (const auto* s = std::get_if<std::string>(&value)) {
     if (!spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), *s) == spec.choices.end()) {
       std::string allowed;

@@ -611,12 +611,8 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
       error(node, what + " must be a finite number, not " + node.Scalar());
       return false;
     }
-    if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max)) {
-      if (spec.zero_is_off && v == 0.0) return true;
-      std::ostringstream msg;
-      msg << what << " is " << node.Scalar() << ", out of bounds [" << (spec.min ? formatNumber(*spec.min) : "-inf")
-          << ", " << (spec.max ? formatNumber(*spec.max) : "inf") << "]" << (spec.zero_is_off ? " (or 0: off)" : "");
-      error(node, msg.str());
+    if (!spec.withinBounds(v)) {
+      error(node, what + " is " + node.Scalar() + ", out of bounds " + spec.boundsText());
       return false;
     }
     return true;

@@ -43,6 +43,11 @@ struct ParameterSpec {
   bool rig = false;
 
   bool required() const { return !default_value.has_value(); }
+  // Whether a number lies within [min, max], or is 0 where 0 switches off: the one bounds rule of
+  // scenes, --set, tools and tests.
+  bool withinBounds(double v) const;
+  // The bounds as messages and listings write them: "[0.05, 10] or 0 (off)"; empty without bounds.
+  std::string boundsText() const;
 
   // Fluent setters used in Component::describe().
   ParameterSpec& atLeast(double v) { min = v; return *this; }
