@@ -13,6 +13,8 @@ packages=(
   libeigen3-dev libpcl-dev libceres-dev liboctomap-dev libembree-dev
   # CRC-32 and deflate (MCAP checksums, PNG snapshots)
   zlib1g-dev
+  # the live viewer: a Foxglove WebSocket server (libs/foxglove_server)
+  libwebsocketpp-dev libasio-dev
   # configuration, JSON files, the command line
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   # DDS Security: `uampc security init` runs openssl; the runtime checks certificates with libcrypto
@@ -62,7 +64,7 @@ fi
 # tests/ci_lint checks the CI files with GitHub's workflow parser and GitLab's CI schema,
 # pinned the same way by its package-lock.json.
 checkout="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-for npm_dir in tests/mcap_js tests/ci_lint; do
+for npm_dir in tests/mcap_js tests/ci_lint tests/foxglove_js; do
   if [ -f "$checkout/$npm_dir/package-lock.json" ]; then
     # npm ci starts from an empty node_modules; skip it when node_modules holds this very lockfile.
     lock_sum="$(sha256sum "$checkout/$npm_dir/package-lock.json" | cut -d' ' -f1)"

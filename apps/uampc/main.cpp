@@ -21,6 +21,7 @@
 #include "uampc/command_line/finite_number.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/launcher.hpp"
+#include "view/view_command.hpp"
 
 namespace {
 
@@ -88,6 +89,7 @@ struct CommandLine {
   uampc::app::TopicOptions topic;            // topic
   uampc::app::PlayOptions play;              // play
   uampc::app::RecordOptions record;          // record
+  uampc::app::ViewOptions view;              // view
   uampc::app::SecurityInitOptions security;  // security init
 };
 
@@ -116,6 +118,7 @@ class UampcCli {
     addTopic();
     addRecord();
     addPlay();
+    addView();
     addSecurity();
   }
 
@@ -177,15 +180,17 @@ class UampcCli {
 
   void addLaunch() {
     CLI::App* sub =
-        addCommand("launch", "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]",
+        addCommand("launch", "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]\n[--view [--view-port P] [--view-address A]]",
                    "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
                    "(seed, domain_id, ...). --out DIR collects the run's outputs, with DIR/scene.yaml (the\n"
                    "resolved scene: launch it to run the same again) and DIR/run_info.json (scene, overrides,\n"
                    "seed, versions, every parameter; also in DIR/metrics.json as \"run\"). Ctrl-C stops\n"
-                   "everything, while starting or running (exit code 130).");
+                   "everything, while starting or running (exit code 130). --view serves the run live to Foxglove\n"
+                   "(docs/user/viewing.md).");
     addScene(sub);
     addOverrides(sub);
     addOutput(sub);
+    addViewer(sub, options_.scene.viewer);
     commands_.push_back({sub, withOverrides([this] {
                            options_.scene.uampc_version = uampc::app::uampcVersion();  // for the run's record
                            options_.scene.fastdds_version = uampc::app::fastDdsVersion();
@@ -381,7 +386,7 @@ class UampcCli {
     CLI::App* sub = addCommand(
         "play",
         "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] "
-        "[--wait-for-readers] [--restamp] [--security DIR]",
+        "[--wait-for-readers] [--restamp] [--security DIR] [--view [--view-port P] [--view-address A]]",
         "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
         "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
         "use the player component instead (config/scenes/replay_lo.yaml).");
@@ -410,7 +415,48 @@ class UampcCli {
                     "Join a secured domain with the player identity of DIR (uampc security init), which may\n"
                     "publish every topic, the motor's commands too.")
         ->type_name("DIR");
+    addViewer(sub, o.viewer);
     commands_.push_back({sub, [this] { return uampc::app::playCommand(options_.play); }});
+  }
+
+  // --view and its address, for launch and play: a `uampc view` beside the run.
+  static void addViewer(CLI::App* sub, uampc::ViewerOptions& o) {
+    sub->add_flag("--view", o.enabled,
+                  "Serve the topics live to Foxglove (WebSocket, ws://127.0.0.1:8765; docs/user/viewing.md).");
+    sub->add_option("--view-port", o.port, "The viewer's TCP port (default 8765).")
+        ->check(CLI::Range(1, 65535))
+        ->type_name("P");
+    sub->add_option("--view-address", o.address,
+                    "The address the viewer binds (default 127.0.0.1, this machine only; another address is\n"
+                    "warned about: anyone who reaches it sees every topic).")
+        ->type_name("A");
+  }
+
+  void addView() {
+    uampc::app::ViewOptions& o = options_.view;
+    CLI::App* sub = addCommand(
+        "view", "uampc view [--domain N] [--port P] [--address A] [--security DIR] [--duration S]",
+        "Serve what a DDS domain publishes (a rig, another machine's run, a replay) live to Foxglove over\n"
+        "its WebSocket protocol: every ROS topic with its schema, read from DDS only while a client\n"
+        "subscribes; the domain's /clock sets the clients' time. Ctrl-C stops it (docs/user/viewing.md).");
+    sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
+        ->check(CLI::Range(0, uampc::kMaxDomainId))
+        ->type_name("N");
+    sub->add_option("--port", o.port, "TCP port (default 8765; 0: any free port, printed).")
+        ->check(CLI::Range(0, 65535))
+        ->type_name("P");
+    sub->add_option("--address", o.address,
+                    "Address to bind (default 127.0.0.1, this machine only; another address is warned about).")
+        ->type_name("A");
+    sub->add_option("--security", o.security_dir,
+                    "Join a secured domain with the observer identity of DIR (uampc security init), which may\n"
+                    "read every topic.")
+        ->type_name("DIR");
+    sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
+        ->check(uampc::command_line::kFinite)
+        ->check(CLI::NonNegativeNumber)
+        ->type_name("S");
+    commands_.push_back({sub, [this] { return uampc::app::viewCommand(options_.view); }});
   }
 
   void addSecurity() {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <thread>
 
 #include "uampc/msgs/rosgraph_msgs.hpp"
@@ -55,20 +56,28 @@ class Player {
   }
 
   // False when stopped by a signal first.
-  bool waitForReaders() const {
+  // every_topic false: until one topic has a reader (a viewer's client that subscribed). False
+  // when stopped by a signal.
+  bool waitForReaders(bool every_topic) const {
     auto next_report = SteadyClock::now() + std::chrono::seconds(2);
     for (;;) {
       std::string missing;
+      bool some_read = false;
       for (std::size_t i = 0; i < writers_.size(); ++i) {
         if (!writers_[i]) continue;
         eprosima::fastdds::dds::PublicationMatchedStatus status;
         writers_[i]->get_publication_matched_status(status);
         if (status.current_count < 1) missing += " " + playback_.topics()[i].topic;
+        some_read = some_read || status.current_count > 0;
       }
-      if (missing.empty()) return true;
+      if (every_topic ? missing.empty() : some_read) return true;
       if (stopRequested()) return false;
       if (SteadyClock::now() > next_report) {
-        std::cerr << "uampc play: waiting for readers of" << missing << "\n";
+        if (every_topic) {
+          std::cerr << "uampc play: waiting for readers of" << missing << "\n";
+        } else {
+          std::cerr << "uampc play: waiting for a viewer's client to subscribe to a topic\n";
+        }
         next_report += std::chrono::seconds(5);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -155,6 +164,11 @@ class Player {
 int playCommand(const PlayOptions& options) {
   try {
     const int domain = options.domain_id >= 0 ? options.domain_id : rosDomainIdFromEnvironment().value_or(0);
+    if (options.viewer.enabled) {
+      if (const std::string problem = viewerAddressProblem(options.viewer); !problem.empty()) {
+        throw std::runtime_error("--view: " + problem);
+      }
+    }
     recording::Playback playback(options.file, options.topics);
     for (const auto& warning : playback.warnings()) std::cerr << "uampc play: warning: " << warning << "\n";
     if (playback.topics().empty()) throw std::runtime_error(options.file + ": the recording has no topics");
@@ -164,8 +178,11 @@ int playCommand(const PlayOptions& options) {
               << playback.sampleCount() << " samples, " << (playback.end() - playback.start()).seconds()
               << " s, on domain " << domain << "\n";
     catchStopSignals();
-    if (options.wait_for_readers) {
-      if (!player.waitForReaders()) return 130;
+    std::unique_ptr<ViewerProcess> viewer;
+    if (options.viewer.enabled) viewer = std::make_unique<ViewerProcess>(options.viewer, domain, options.security_dir);
+    if (options.wait_for_readers || viewer) {
+      // With a viewer: from when its client looks, not before (the user is still opening it).
+      if (!player.waitForReaders(options.wait_for_readers)) return 130;
     } else {
       // Give readers a moment to match before the first samples go out, as ros2 bag play does.
       std::this_thread::sleep_for(std::chrono::milliseconds(500));

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "uampc/runtime/viewer_process.hpp"
+
 namespace uampc::app {
 
 struct PlayOptions {
@@ -20,6 +22,7 @@ struct PlayOptions {
   bool wait_for_readers = false;  // start once every topic has a reader (a recorder, the system under test)
   bool restamp = false;           // move stamps to the present (recording/restamp.hpp)
   std::string security_dir;       // a secured domain: DIR of uampc security init (its player identity)
+  ViewerOptions viewer;           // --view: a live viewer of what is played, from when a client subscribes
 };
 
 // Exit codes: 0 at the end of the recording, 1 for a bad recording or DDS failure, 130 on Ctrl-C.

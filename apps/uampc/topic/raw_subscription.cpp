@@ -19,11 +19,14 @@ namespace {
 // Keeps up to this many samples not yet taken: enough for bursts, bounded for large ones.
 constexpr std::int32_t kHistoryDepth = 100;
 
-DataReaderQos readerQos(Subscriber* subscriber, const DiscoveredTopic& topic) {
+DataReaderQos readerQos(Subscriber* subscriber, const DiscoveredTopic& topic, ReaderPolicy policy) {
   const auto& writers = topic.writers;
-  const bool reliable = std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.reliable; });
+  const bool writers_reliable =
+      std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.reliable; });
   const bool transient_local =
-      reliable && std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.transient_local; });
+      writers_reliable &&
+      std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.transient_local; });
+  const bool reliable = policy == ReaderPolicy::kLikeTheWriters ? writers_reliable : transient_local;
   DataReaderQos qos = subscriber->get_default_datareader_qos();
   qos.reliability().kind = reliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
   qos.durability().kind = transient_local ? TRANSIENT_LOCAL_DURABILITY_QOS : VOLATILE_DURABILITY_QOS;
@@ -36,7 +39,8 @@ DataReaderQos readerQos(Subscriber* subscriber, const DiscoveredTopic& topic) {
 
 }  // namespace
 
-RawSubscription::RawSubscription(DomainParticipant* participant, const DiscoveredTopic& topic, OnSample on_sample)
+RawSubscription::RawSubscription(DomainParticipant* participant, const DiscoveredTopic& topic, OnSample on_sample,
+                                 ReaderPolicy policy)
     : participant_(participant), listener_(std::move(on_sample)) {
   const std::string& type = topic.writers.at(0).type;
   TypeSupport support(SerializedTypeSupport::forDdsType(type));
@@ -47,7 +51,7 @@ RawSubscription::RawSubscription(DomainParticipant* participant, const Discovere
   subscriber_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
   if (!topic_ || !subscriber_) throw std::runtime_error("cannot create DDS topic " + topic.dds_name);
   reader_ =
-      subscriber_->create_datareader(topic_, readerQos(subscriber_, topic), &listener_, StatusMask::data_available());
+      subscriber_->create_datareader(topic_, readerQos(subscriber_, topic, policy), &listener_, StatusMask::data_available());
   if (!reader_) throw std::runtime_error("cannot create a DDS reader on " + topic.dds_name);
 }
 

@@ -22,6 +22,15 @@ struct SampleTimes {
   Time published;  // its writer's source timestamp (sim time for a lockstep scene's writers)
 };
 
+// How a raw reader matches its writers.
+enum class ReaderPolicy {
+  kLikeTheWriters,  // reliable when every writer is, so that nothing is lost (record, topic echo)
+  // Best effort except for latched topics: a reliable writer never waits for this reader, so a
+  // slow one cannot hold up a run (the live viewer, docs/decisions/live-viewer.md). Latched topics
+  // stay reliable and transient-local, which is how their kept samples reach a late reader.
+  kNeverHoldWriters,
+};
+
 class RawSubscription {
  public:
   // Called on Fast DDS's thread for every sample.
@@ -29,9 +38,10 @@ class RawSubscription {
 
   // Reads `topic` as its first writer's type. QoS as discovered: reliable when every writer is
   // (a reliable reader would not match a best-effort writer), transient-local when every writer is,
-  // so that a latched topic's kept samples arrive too. Throws std::runtime_error when DDS refuses the reader.
+  // so that a latched topic's kept samples arrive too; kNeverHoldWriters relaxes the first.
+  // Throws std::runtime_error when DDS refuses the reader.
   RawSubscription(eprosima::fastdds::dds::DomainParticipant* participant, const DiscoveredTopic& topic,
-                  OnSample on_sample);
+                  OnSample on_sample, ReaderPolicy policy = ReaderPolicy::kLikeTheWriters);
   ~RawSubscription();
   RawSubscription(const RawSubscription&) = delete;
   RawSubscription& operator=(const RawSubscription&) = delete;

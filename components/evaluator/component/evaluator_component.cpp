@@ -43,6 +43,7 @@
 #include "uampc/run_files/time_series.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
+#include "path_trail.hpp"
 
 namespace uampc {
 
@@ -66,6 +67,12 @@ class EvaluatorComponent : public Component {
                                         "controller's panoramic depth map (32FC1), saved as snapshots");
     spec.output<msg::Metrics>("metrics", "/evaluator/metrics", QosPreset::kSensor, "running ATE and CMPLT")
         .forViewers();
+    spec.output<nav_msgs::msg::Path>("estimated_path", "/evaluator/estimated_path", QosPreset::kSensor,
+                                     "the LO's trajectory so far, for viewers")
+        .forViewers();
+    spec.output<nav_msgs::msg::Path>("true_path", "/evaluator/true_path", QosPreset::kSensor,
+                                     "the ground-truth trajectory so far, for viewers")
+        .forViewers();
     evaluator::CompletenessConfig defaults;
     ParameterBinding binding(spec);
     bindCompletenessParameters(binding, defaults);
@@ -78,6 +85,9 @@ class EvaluatorComponent : public Component {
         .between(-100.0, 100.0);
     adapters::declareRigParameters(spec);  // to place raw scans with ground truth
     spec.param("report_period", 5.0, "running figures are published every this many s").between(0.1, 3600.0);
+    spec.param("path_period", 0.5, "the paths for viewers are published every this many s of sim time")
+        .between(0.05, 3600.0);
+    spec.param("path_spacing", 0.1, "the paths for viewers keep at most one pose per this many s").between(0.0, 60.0);
     spec.param("panorama_period", 20.0, "a panorama snapshot (PNG) every this many s of sim time; 0: none")
         .between(0.0, 1e6);
     spec.param("panorama_max_range", 40.0, "range shown darkest in the snapshots, m (the Mid-360's: 40)")
@@ -89,7 +99,11 @@ class EvaluatorComponent : public Component {
         trajectory_([this](double t) { return ground_truth_(t); }),
         cmplt_(completenessFrom(ctx)),
         cmplt_gt_(completenessFrom(ctx)),
-        metrics_pub_(ctx.publisher<msg::Metrics>("metrics")) {
+        metrics_pub_(ctx.publisher<msg::Metrics>("metrics")),
+        estimated_path_pub_(ctx.publisher<nav_msgs::msg::Path>("estimated_path")),
+        true_path_pub_(ctx.publisher<nav_msgs::msg::Path>("true_path")),
+        estimated_trail_(ctx.paramDouble("path_spacing")),
+        true_trail_(ctx.paramDouble("path_spacing")) {
     calibration_ = adapters::rigCalibration(ctx);
     const std::string& out = ctx.outputDirectory();
     if (out.empty()) {
@@ -105,10 +119,12 @@ class EvaluatorComponent : public Component {
     }
     ctx.subscribe<geometry_msgs::msg::PoseStamped>("ground_truth", [this](const geometry_msgs::msg::PoseStamped& m) {
       ground_truth_.add({fromMsg(m.header().stamp()).seconds(), adapters::toIsometry(m.pose())});
+      true_trail_.add(m.header(), m.pose());
       flush();
     });
     ctx.subscribe<nav_msgs::msg::Odometry>("odometry", [this](const nav_msgs::msg::Odometry& m) {
       pending_estimates_.push_back({fromMsg(m.header().stamp()).seconds(), adapters::toIsometry(m.pose().pose())});
+      estimated_trail_.add(m.header(), m.pose().pose());
       flush();
     });
     ctx.subscribe<sensor_msgs::msg::PointCloud2>("registered", [this](const sensor_msgs::msg::PointCloud2& m) {
@@ -177,6 +193,7 @@ class EvaluatorComponent : public Component {
       if (save_panoramas) onPanorama(m);
     });
     ctx.timer(ctx.paramDouble("report_period"), [this] { publishRunning(); });
+    ctx.timer(ctx.paramDouble("path_period"), [this] { publishPaths(); });
   }
 
   void shutdown() override {
@@ -344,6 +361,11 @@ class EvaluatorComponent : public Component {
     metrics_pub_.publish(m);
   }
 
+  void publishPaths() {
+    if (!estimated_trail_.empty()) estimated_path_pub_.publish(estimated_trail_.path());
+    if (!true_trail_.empty()) true_path_pub_.publish(true_trail_.path());
+  }
+
   Context& ctx_;
   frames::MotorLidarCalibration calibration_;
   frames::PoseKnots lidar_pose_;  // T_WL over the raw scan being placed
@@ -354,6 +376,10 @@ class EvaluatorComponent : public Component {
   evaluator::Completeness cmplt_gt_;
   frames::MotorAngleTrack motor_{5.0};
   Publisher<msg::Metrics> metrics_pub_;
+  Publisher<nav_msgs::msg::Path> estimated_path_pub_;
+  Publisher<nav_msgs::msg::Path> true_path_pub_;
+  PathTrail estimated_trail_;
+  PathTrail true_trail_;
   std::deque<evaluator::TimedPose> pending_estimates_;
   std::deque<PendingScan> pending_scans_;
   std::unique_ptr<run_files::RowWriter<run_files::MotorRow>> motor_csv_;

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <thread>
 
 #include "lockstep_clock.hpp"
@@ -192,6 +193,12 @@ int launch(const LaunchOptions& options) {
   // Only here, not in run-process and clock: launch starts those, and they would repeat them.
   for (const auto& w : scene.warnings) std::cerr << w << "\n";
   if (!ok) return 2;
+  if (options.viewer.enabled) {
+    if (const std::string problem = viewerAddressProblem(options.viewer); !problem.empty()) {
+      std::cerr << "uampc: --view: " << problem << "; nothing was started\n";
+      return 1;
+    }
+  }
   if (!options.output_directory.empty() && !recordRun(scene, options)) return 1;
   if (stopRequested()) return exitCodeAfter(0);  // stopped while loading: nothing to stop
 
@@ -199,6 +206,11 @@ int launch(const LaunchOptions& options) {
             << scene.processes().size() << " process(es), "
             << (scene.clock.mode == ClockMode::kLockstep ? "lockstep" : "real time") << ", DDS domain "
             << scene.domain_id << ")\n";
+  // Before the processes, so that a client sees the run from its first step.
+  std::unique_ptr<ViewerProcess> viewer;
+  if (options.viewer.enabled) {
+    viewer = std::make_unique<ViewerProcess>(options.viewer, scene.domain_id, scene.security_directory);
+  }
   ProcessSupervisor supervisor(scene, options);
   for (const auto& process : scene.processes()) supervisor.start(process);
 
@@ -206,6 +218,7 @@ int launch(const LaunchOptions& options) {
   // The directory once a second: the clock asks every step, and a stat per step would be waste.
   auto next_directory_check = std::chrono::steady_clock::now();
   auto problem = [&] {
+    if (viewer) viewer->poll();
     std::string what = supervisor.poll();
     if (what.empty() && std::chrono::steady_clock::now() >= next_directory_check) {
       next_directory_check = std::chrono::steady_clock::now() + std::chrono::seconds(1);
@@ -235,6 +248,7 @@ int launch(const LaunchOptions& options) {
     }
   }
   supervisor.stopAll();
+  viewer.reset();
   if (supervisor.someKilled()) removeWhatKilledProcessesLeft();
   if (!error.empty()) {
     std::cerr << "uampc: run failed: " << error << "\n";

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "uampc/runtime/scene.hpp"
+#include "uampc/runtime/viewer_process.hpp"
 
 namespace uampc {
 
@@ -13,6 +14,7 @@ struct LaunchOptions {
   std::string scene_path;
   std::vector<Override> overrides;
   std::string output_directory;  // empty: no output directory
+  ViewerOptions viewer;          // launch only: a live viewer beside the run (--view)
   // Recorded with the run (run_record.hpp); the uampc command fills them in from its version.
   std::string uampc_version = "unknown";
   std::string fastdds_version = "unknown";

@@ -1,0 +1,25 @@
+// `uampc view [--domain N] [--port P] [--address A]`: serves what a DDS domain publishes to
+// Foxglove over its WebSocket protocol, live, until Ctrl-C (docs/user/viewing.md). `uampc launch
+// --view` and `uampc play --view` run it beside a run or a replay.
+#pragma once
+
+#include <string>
+
+namespace uampc::app {
+
+struct ViewOptions {
+  int domain_id = -1;  // -1: ROS_DOMAIN_ID, else 0
+  std::string address = "127.0.0.1";
+  int port = 8765;
+  std::string security_dir;  // a secured domain: DIR of uampc security init (its observer identity)
+  double duration_s = 0.0;   // 0: until Ctrl-C or SIGTERM
+};
+
+// The warning for an address other than the loopback one; empty for a loopback address.
+std::string exposureWarning(const std::string& address, int port);
+
+// Exit codes: 0 when stopped (Ctrl-C, SIGTERM, --duration), 1 when it cannot serve (the port is
+// in use, the address is not this machine's, the domain cannot be joined).
+int viewCommand(const ViewOptions& options);
+
+}  // namespace uampc::app

@@ -1,0 +1,70 @@
+// A read-only Foxglove WebSocket server (protocol.hpp) on websocketpp and standalone asio, serving
+// on its own thread. The program that owns it advertises channels and publishes their messages
+// from any thread; publish never blocks on a client: each client has a bounded queue per
+// subscription (send_queues.hpp), filled by publish and drained by the server's thread as fast as
+// the client's socket takes it. Clients that misbehave get status errors and, if they go on, are
+// disconnected; the server and its owner go on. docs/decisions/live-viewer.md says why it is
+// built this way.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <string>
+
+#include "uampc/foxglove/protocol.hpp"
+
+namespace uampc::foxglove {
+
+struct ServerOptions {
+  std::string address = "127.0.0.1";  // an IP address to bind ("0.0.0.0": every interface)
+  std::uint16_t port = 8765;          // 0: any free port (port() tells which)
+  std::string name = "uampc";         // shown by the client
+  std::size_t queue_depth = 10;       // frames kept per subscription for a client that lags
+  // A client's socket may hold this many bytes not yet written before the server stops handing it
+  // more (the rest waits in its queues, and the oldest are dropped there).
+  std::size_t max_buffered_bytes = 8u << 20;
+  std::size_t max_client_message_bytes = 1u << 20;  // larger client messages close the connection
+  int bad_requests_before_disconnect = 10;          // status errors a client gets before it is dropped
+};
+
+struct ServerStatistics {
+  std::size_t clients = 0;
+  std::uint64_t frames_sent = 0;
+  std::uint64_t frames_dropped = 0;  // by all clients' queues, since the start
+  std::uint64_t clients_disconnected_for_bad_requests = 0;
+};
+
+class Server {
+ public:
+  // Binds and starts serving. Throws std::runtime_error naming the address and port when it
+  // cannot (in use, not an address of this machine, a privileged port).
+  explicit Server(const ServerOptions& options);
+  ~Server();  // closes every connection and stops the thread
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  std::uint16_t port() const;
+
+  // A new channel, advertised to every client; `channel.id` is ignored and the new id returned.
+  ChannelId advertise(Channel channel);
+  // Withdraws a channel: clients are told, and their subscriptions to it end.
+  void unadvertise(ChannelId id);
+
+  // One message of a channel, to every client subscribed to it. time_ns: the message's time in the
+  // server's time base (broadcastTime's). Any thread; never blocks on a client.
+  void publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size);
+  // The server's current time, to every client (skipped for a client whose socket is full).
+  void broadcastTime(std::uint64_t time_ns);
+
+  // Channels that at least one client subscribes to: what the owner has to read.
+  std::set<ChannelId> subscribedChannels() const;
+  ServerStatistics statistics() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace uampc::foxglove

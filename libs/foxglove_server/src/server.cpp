@@ -1,0 +1,323 @@
+#include "uampc/foxglove/server.hpp"
+
+// Standalone asio (libasio-dev), not Boost's.
+#define ASIO_STANDALONE
+#include <websocketpp/config/asio_no_tls.hpp>
+#include <websocketpp/server.hpp>
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "uampc/foxglove/send_queues.hpp"
+
+namespace uampc::foxglove {
+
+namespace {
+
+using WsServer = websocketpp::server<websocketpp::config::asio>;
+using Handle = websocketpp::connection_hdl;
+
+constexpr long kPumpPeriodMs = 10;          // queues are drained at least this often
+constexpr long kDropReportPeriodMs = 2000;  // a lagging client hears of its drops at most this often
+constexpr long kCloseGraceMs = 200;         // for close frames to leave before the thread stops
+
+struct Client {
+  explicit Client(std::size_t depth) : queues(depth) {}
+  SendQueues queues;
+  std::map<SubscriptionId, ChannelId> subscriptions;
+  int bad_requests = 0;
+  bool closing = false;  // disconnected for bad requests; gone when its close handler runs
+};
+
+}  // namespace
+
+class Server::Impl {
+ public:
+  explicit Impl(const ServerOptions& options) : options_(options) {
+    server_.clear_access_channels(websocketpp::log::alevel::all);
+    // A client that vanishes mid-message is normal for a viewer; its transport errors are not news.
+    server_.clear_error_channels(websocketpp::log::elevel::all);
+    server_.init_asio();
+    server_.set_reuse_addr(true);
+    server_.set_max_message_size(options_.max_client_message_bytes);
+    server_.set_validate_handler([this](Handle h) { return validate(h); });
+    server_.set_open_handler([this](Handle h) { onOpen(h); });
+    server_.set_close_handler([this](Handle h) { onGone(h); });
+    server_.set_fail_handler([this](Handle h) { onGone(h); });
+    server_.set_message_handler([this](Handle h, WsServer::message_ptr m) { onMessage(h, m); });
+    listen();
+    server_.start_accept();
+    schedulePump();
+    scheduleDropReports();
+    thread_ = std::thread([this] { server_.run(); });
+  }
+
+  ~Impl() {
+    asio::post(server_.get_io_service(), [this] {
+      std::error_code ec;
+      server_.stop_listening(ec);
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& [handle, client] : clients_) server_.close(handle, websocketpp::close::status::going_away, "", ec);
+      stopping_ = true;
+      server_.set_timer(kCloseGraceMs, [this](const std::error_code&) { server_.stop(); });
+    });
+    thread_.join();
+  }
+
+  std::uint16_t port() const { return port_; }
+
+  ChannelId advertise(Channel channel) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    channel.id = next_channel_++;
+    channels_[channel.id] = channel;
+    sendToAll(advertiseJson({channel}));
+    return channel.id;
+  }
+
+  void unadvertise(ChannelId id) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!channels_.erase(id)) return;
+    for (auto& [handle, client] : clients_) {
+      for (auto s = client.subscriptions.begin(); s != client.subscriptions.end();) {
+        if (s->second != id) {
+          ++s;
+          continue;
+        }
+        client.queues.remove(s->first);
+        s = client.subscriptions.erase(s);
+      }
+    }
+    sendToAll(unadvertiseJson({id}));
+  }
+
+  void publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& [handle, client] : clients_) {
+        for (const auto& [subscription, subscribed_channel] : client.subscriptions) {
+          if (subscribed_channel != channel) continue;
+          client.queues.push(subscription, std::make_shared<const std::vector<std::uint8_t>>(
+                                               messageDataFrame(subscription, time_ns, data, size)));
+        }
+      }
+    }
+    // Drained on the server's thread; one wake-up at a time however fast messages come.
+    if (!pump_posted_.exchange(true)) {
+      asio::post(server_.get_io_service(), [this] {
+        pump_posted_ = false;
+        pump();
+      });
+    }
+  }
+
+  void broadcastTime(std::uint64_t time_ns) {
+    auto frame = std::make_shared<const std::vector<std::uint8_t>>(timeFrame(time_ns));
+    asio::post(server_.get_io_service(), [this, frame] {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& [handle, client] : clients_) {
+        if (hasRoom(handle)) send(handle, *frame);
+      }
+    });
+  }
+
+  std::set<ChannelId> subscribedChannels() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::set<ChannelId> subscribed;
+    for (const auto& [handle, client] : clients_) {
+      for (const auto& [subscription, channel] : client.subscriptions) subscribed.insert(channel);
+    }
+    return subscribed;
+  }
+
+  ServerStatistics statistics() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ServerStatistics s = statistics_;
+    s.clients = clients_.size();
+    for (const auto& [handle, client] : clients_) s.frames_dropped += client.queues.totalDrops();
+    return s;
+  }
+
+ private:
+  void listen() {
+    const std::string where = options_.address + ":" + std::to_string(options_.port);
+    std::error_code ec;
+    const asio::ip::address address = asio::ip::make_address(options_.address, ec);
+    if (ec) throw std::runtime_error("cannot serve on " + where + ": '" + options_.address + "' is not an IP address");
+    server_.listen(asio::ip::tcp::endpoint(address, options_.port), ec);
+    if (ec) throw std::runtime_error("cannot serve on " + where + ": " + ec.message());
+    port_ = server_.get_local_endpoint(ec).port();
+  }
+
+  // Only clients that speak the protocol: the handshake must offer foxglove.websocket.v1.
+  bool validate(Handle handle) {
+    WsServer::connection_ptr connection = server_.get_con_from_hdl(handle);
+    for (const std::string& offered : connection->get_requested_subprotocols()) {
+      if (offered == kSubprotocol) {
+        connection->select_subprotocol(kSubprotocol);
+        return true;
+      }
+    }
+    connection->set_status(websocketpp::http::status_code::bad_request);
+    connection->set_body(std::string("this server speaks the WebSocket subprotocol ") + kSubprotocol + " only\n");
+    return false;
+  }
+
+  void onOpen(Handle handle) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_) return;
+    clients_.emplace(handle, Client(options_.queue_depth));
+    send(handle, serverInfoJson(options_.name, session_id_));
+    std::vector<Channel> all;
+    for (const auto& [id, channel] : channels_) all.push_back(channel);
+    send(handle, advertiseJson(all));  // the protocol wants one even when it is empty
+  }
+
+  void onGone(Handle handle) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto client = clients_.find(handle);
+    if (client == clients_.end()) return;
+    statistics_.frames_dropped += client->second.queues.totalDrops();  // kept past the client
+    clients_.erase(client);
+  }
+
+  void onMessage(Handle handle, const WsServer::message_ptr& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto client = clients_.find(handle);
+    if (client == clients_.end() || client->second.closing) return;
+    if (message->get_opcode() != websocketpp::frame::opcode::text) {
+      refuse(handle, client->second, "binary messages are not served (no client publishing)");
+      return;
+    }
+    const ClientRequest request = parseClientRequest(message->get_payload());
+    if (const auto* subscribe = std::get_if<SubscribeRequest>(&request)) {
+      for (const Subscription& s : subscribe->subscriptions) addSubscription(handle, client->second, s);
+    } else if (const auto* unsubscribe = std::get_if<UnsubscribeRequest>(&request)) {
+      for (SubscriptionId id : unsubscribe->subscriptions) {
+        if (!client->second.subscriptions.erase(id)) {
+          refuse(handle, client->second, "unsubscribe: no subscription " + std::to_string(id));
+        }
+        client->second.queues.remove(id);
+      }
+    } else {
+      refuse(handle, client->second, std::get<BadRequest>(request).message);
+    }
+  }
+
+  void addSubscription(Handle handle, Client& client, const Subscription& s) {
+    if (client.closing) return;
+    if (!channels_.count(s.channel)) {
+      refuse(handle, client, "subscribe: no channel " + std::to_string(s.channel));
+    } else if (client.subscriptions.count(s.id)) {
+      refuse(handle, client, "subscribe: subscription id " + std::to_string(s.id) + " is in use");
+    } else {
+      client.subscriptions[s.id] = s.channel;
+      client.queues.add(s.id);
+    }
+  }
+
+  // A status error for a bad request; a client that keeps sending them is disconnected.
+  void refuse(Handle handle, Client& client, const std::string& why) {
+    if (client.closing) return;
+    if (++client.bad_requests > options_.bad_requests_before_disconnect) {
+      std::error_code ec;
+      server_.close(handle, websocketpp::close::status::policy_violation, "too many bad requests", ec);
+      ++statistics_.clients_disconnected_for_bad_requests;
+      client.closing = true;
+      client.subscriptions.clear();
+      return;
+    }
+    send(handle, statusJson(StatusLevel::kError, why));
+  }
+
+  bool hasRoom(Handle handle) {
+    std::error_code ec;
+    WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
+    return !ec && connection->get_buffered_amount() < options_.max_buffered_bytes;
+  }
+
+  void send(Handle handle, const std::string& text) {
+    std::error_code ec;
+    server_.send(handle, text, websocketpp::frame::opcode::text, ec);
+  }
+  void send(Handle handle, const std::vector<std::uint8_t>& frame) {
+    std::error_code ec;
+    server_.send(handle, frame.data(), frame.size(), websocketpp::frame::opcode::binary, ec);
+    if (!ec) ++statistics_.frames_sent;
+  }
+  void sendToAll(const std::string& text) {
+    for (auto& [handle, client] : clients_) send(handle, text);
+  }
+
+  // Hands each client what its socket has room for.
+  void pump() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& [handle, client] : clients_) {
+      while (!client.closing && hasRoom(handle)) {
+        const Frame frame = client.queues.pop();
+        if (!frame) break;
+        send(handle, *frame);
+      }
+    }
+  }
+
+  void schedulePump() {
+    server_.set_timer(kPumpPeriodMs, [this](const std::error_code& ec) {
+      if (ec || stopping_) return;
+      pump();
+      schedulePump();
+    });
+  }
+
+  // Tells each lagging client what it lost, by topic.
+  void scheduleDropReports() {
+    server_.set_timer(kDropReportPeriodMs, [this](const std::error_code& ec) {
+      if (ec || stopping_) return;
+      reportDrops();
+      scheduleDropReports();
+    });
+  }
+
+  void reportDrops() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& [handle, client] : clients_) {
+      for (const auto& [subscription, dropped] : client.queues.takeNewDrops()) {
+        const auto channel = channels_.find(client.subscriptions[subscription]);
+        const std::string topic = channel == channels_.end() ? "a withdrawn channel" : channel->second.topic;
+        send(handle, statusJson(StatusLevel::kWarning, "dropped " + std::to_string(dropped) + " message(s) of " +
+                                                           topic + ": this client reads slower than the run writes"));
+      }
+    }
+  }
+
+  const ServerOptions options_;
+  const std::string session_id_ =
+      std::to_string(std::chrono::system_clock::now().time_since_epoch() / std::chrono::milliseconds(1));
+  WsServer server_;
+  std::thread thread_;
+  std::uint16_t port_ = 0;
+  std::atomic<bool> pump_posted_{false};
+  bool stopping_ = false;  // on the server's thread only
+
+  mutable std::mutex mutex_;  // everything below
+  std::map<ChannelId, Channel> channels_;
+  ChannelId next_channel_ = 1;
+  std::map<Handle, Client, std::owner_less<Handle>> clients_;
+  ServerStatistics statistics_;
+};
+
+Server::Server(const ServerOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+Server::~Server() = default;
+std::uint16_t Server::port() const { return impl_->port(); }
+ChannelId Server::advertise(Channel channel) { return impl_->advertise(std::move(channel)); }
+void Server::unadvertise(ChannelId id) { impl_->unadvertise(id); }
+void Server::publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size) {
+  impl_->publish(channel, time_ns, data, size);
+}
+void Server::broadcastTime(std::uint64_t time_ns) { impl_->broadcastTime(time_ns); }
+std::set<ChannelId> Server::subscribedChannels() const { return impl_->subscribedChannels(); }
+ServerStatistics Server::statistics() const { return impl_->statistics(); }
+
+}  // namespace uampc::foxglove

@@ -1,0 +1,41 @@
+// The live viewer beside a run or a replay (`uampc launch --view`, `uampc play --view`): a child
+// `uampc view` on the run's DDS domain, so that whatever a viewer's clients do stays outside the
+// processes of the run (docs/decisions/live-viewer.md). It is stopped with the run; if it ends
+// early, that is said and the run goes on.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "uampc/runtime/child_processes.hpp"
+
+namespace uampc {
+
+struct ViewerOptions {
+  bool enabled = false;
+  std::string address = "127.0.0.1";
+  int port = 8765;
+};
+
+// Why the viewer could not serve on its address and port (in use, not an address of this
+// machine); empty when it can. Checked before a run starts, so that a run with --view does not
+// start without its viewer.
+std::string viewerAddressProblem(const ViewerOptions& options);
+
+class ViewerProcess {
+ public:
+  // Starts `uampc view --domain D --address A --port P [--security DIR]` (this executable).
+  ViewerProcess(const ViewerOptions& options, int domain_id, const std::string& security_directory);
+  ~ViewerProcess();  // SIGTERM, then SIGKILL if it has not ended within 3 s
+  ViewerProcess(const ViewerProcess&) = delete;
+  ViewerProcess& operator=(const ViewerProcess&) = delete;
+
+  // Says, once, that the viewer ended before the run; never fails the run.
+  void poll();
+
+ private:
+  ChildProcesses child_;
+  bool ended_ = false;
+};
+
+}  // namespace uampc

@@ -1,0 +1,65 @@
+#include "uampc/runtime/viewer_process.hpp"
+
+#include <netdb.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <iostream>
+
+namespace uampc {
+
+std::string viewerAddressProblem(const ViewerOptions& options) {
+  const std::string where = options.address + ":" + std::to_string(options.port);
+  addrinfo hints{};
+  hints.ai_flags = AI_NUMERICHOST | AI_PASSIVE;
+  hints.ai_socktype = SOCK_STREAM;
+  addrinfo* found = nullptr;
+  const std::string host = options.address == "localhost" ? "127.0.0.1" : options.address;
+  if (getaddrinfo(host.c_str(), std::to_string(options.port).c_str(), &hints, &found) != 0 || !found) {
+    return "cannot serve on " + where + ": '" + options.address + "' is not an IP address";
+  }
+  std::string problem;
+  const int fd = socket(found->ai_family, SOCK_STREAM, 0);
+  const int yes = 1;
+  // As the server binds: SO_REUSEADDR, so that a port a previous viewer just left counts as free.
+  if (fd < 0 || setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes) != 0 ||
+      bind(fd, found->ai_addr, found->ai_addrlen) != 0 || listen(fd, 1) != 0) {
+    problem = "cannot serve on " + where + ": " + std::strerror(errno);
+  }
+  if (fd >= 0) close(fd);
+  freeaddrinfo(found);
+  return problem;
+}
+
+ViewerProcess::ViewerProcess(const ViewerOptions& options, int domain_id, const std::string& security_directory) {
+  ChildCommand command;
+  command.name = "viewer";
+  command.executable = "/proc/self/exe";
+  command.argv = {"uampc",     "view",          "--domain", std::to_string(domain_id),
+                  "--address", options.address, "--port",   std::to_string(options.port)};
+  if (!security_directory.empty()) {
+    command.argv.push_back("--security");
+    command.argv.push_back(security_directory);
+  }
+  command.exec_failure_message = "uampc: exec of the viewer failed\n";
+  child_.start(command);
+}
+
+ViewerProcess::~ViewerProcess() {
+  if (child_.empty()) return;
+  child_.signalAll(SIGTERM);
+  if (!child_.waitForExit(ChildProcesses::Clock::now() + std::chrono::seconds(3))) child_.killAll();
+}
+
+void ViewerProcess::poll() {
+  if (ended_) return;
+  const auto exit = child_.pollExit();
+  if (!exit) return;
+  ended_ = true;
+  std::cerr << "uampc: the viewer ended before the run (status " << exit->status << "); the run goes on without it\n";
+}
+
+}  // namespace uampc
