@@ -13,11 +13,15 @@
 namespace uampc::test {
 
 pid_t startLaunch(const std::string& args, const std::string& log, const std::string& environment) {
+  return startUampc("launch " + args, log, environment);
+}
+
+pid_t startUampc(const std::string& args, const std::string& log, const std::string& environment) {
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
     const std::string command = "exec env UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " + environment +
-                                " " + binaryPath("bin/uampc") + " launch " + args + " > " + log + " 2>&1";
+                                " " + binaryPath("bin/uampc") + " " + args + " > " + log + " 2>&1";
     execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }

@@ -13,6 +13,8 @@ namespace uampc::test {
 // `uampc launch ARGS` in a process group of its own, as a shell starts a command, with stdout and
 // stderr to `log`; `environment` is put before the command (NAME=VALUE ...).
 pid_t startLaunch(const std::string& args, const std::string& log, const std::string& environment = "");
+// The same for any command: `uampc ARGS`.
+pid_t startUampc(const std::string& args, const std::string& log, const std::string& environment = "");
 
 // Waits for condition, at most `limit` (a test that hangs is a failure, not a stall).
 bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds limit);

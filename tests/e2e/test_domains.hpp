@@ -20,7 +20,7 @@ enum class DomainBlock {
   kRunInfo,
   kRecordReplay,
   kWireFormat,
-  kTopicCommand,
+  kTopicTools,  // uampc topic (index 0) and the live viewer (1..)
   kExperimentE2e,
   kSceneValidation,
   kDdsProfile,

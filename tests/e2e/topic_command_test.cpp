@@ -37,7 +37,7 @@ namespace {
 
 using namespace eprosima::fastdds::dds;
 
-constexpr int kDomain = testDomain(DomainBlock::kTopicCommand, 0);
+constexpr int kDomain = testDomain(DomainBlock::kTopicTools, 0);
 constexpr double kRateHz = 20.0;
 const std::string kDomainOption = " --domain " + std::to_string(kDomain);
 

@@ -4,12 +4,13 @@
 // @foxglove/rosmsg2-serialization from the schema the server advertised.
 //
 //   node watch.mjs URL --topics /a,/b|all [--seconds S] [--until-closed] [--lazy-client]
-//                      [--bad-requests N] [--churn N]
+//                      [--bad-requests N] [--huge-frame] [--churn N]
 //
 // --topics      what to subscribe to (all: every channel advertised, also those advertised later)
 // --seconds     how long to watch (default 10); --until-closed: until the server closes instead
 // --lazy-client a second client that subscribes to the same and never reads its socket
 // --bad-requests N first send N malformed or unsupported requests (a cycle of six kinds)
+// --huge-frame  send a 2 MiB text message (more than the server takes)
 // --churn N     first connect and drop N clients (every other one mid-subscription, abruptly)
 //
 // Prints one JSON object: per topic the messages received and decoded and a digest of the first
@@ -23,7 +24,7 @@ import WebSocket from "ws";
 const { FoxgloveClient } = wsProtocol;
 
 function options(argv) {
-  const o = { url: argv[0], topics: "all", seconds: 10, untilClosed: false, lazy: false, bad: 0, churn: 0 };
+  const o = { url: argv[0], topics: "all", seconds: 10, untilClosed: false, lazy: false, bad: 0, huge: false, churn: 0 };
   for (let i = 1; i < argv.length; ++i) {
     const a = argv[i];
     if (a === "--topics") o.topics = argv[++i];
@@ -31,6 +32,7 @@ function options(argv) {
     else if (a === "--until-closed") o.untilClosed = true;
     else if (a === "--lazy-client") o.lazy = true;
     else if (a === "--bad-requests") o.bad = Number(argv[++i]);
+    else if (a === "--huge-frame") o.huge = true;
     else if (a === "--churn") o.churn = Number(argv[++i]);
     else throw new Error(`unknown argument ${a}`);
   }
@@ -147,6 +149,7 @@ async function main() {
     ws.once("error", reject);
   });
   if (opts.bad > 0) badRequests(ws, opts.bad);
+  if (opts.huge) ws.send(JSON.stringify({ op: "subscribe", subscriptions: [], padding: "x".repeat(2 << 20) }));
 
   let lazy = null;
   if (opts.lazy) {

@@ -1,0 +1,213 @@
+// The live viewer (`uampc view`, `launch --view`, `play --view`) against Foxglove's own client,
+// @foxglove/ws-protocol, with ROS 2 decoding by @foxglove/rosmsg2-serialization from the schemas
+// the server advertises (tests/foxglove_js/watch.mjs): real runs of the default scene, a real
+// recording, real sockets. Also: a run's outputs are the same bytes with a viewer subscribed to
+// every topic, a client that never reads costs the run nothing, and misbehaving clients are
+// answered and then disconnected while the server goes on.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "background_launch.hpp"
+#include "command_runner.hpp"
+#include "test_domains.hpp"
+
+namespace uampc::test {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+int domain(int index) { return testDomain(DomainBlock::kTopicTools, index); }
+// A port per test, beside the domain, so that tests running in parallel do not meet.
+int port(int index) { return 18760 + domain(index); }
+std::string url(int index) { return "ws://127.0.0.1:" + std::to_string(port(index)); }
+
+std::string defaultScene(int index, double seconds) {
+  std::ostringstream s;
+  s << sourcePath("config/scenes/default.yaml") << " --set clock.duration=" << seconds
+    << " --set clock.real_time_factor=2 --set domain_id=" << domain(index);
+  return s.str();
+}
+
+std::string viewOptions(int index) { return " --view --view-port " + std::to_string(port(index)); }
+
+// Foxglove's client; its one line of JSON (watch.mjs says what is in it).
+json watch(const std::string& args) {
+  const CommandResult r = runShell("node " + sourcePath("tests/foxglove_js/watch.mjs") + " " + args);
+  const json result = json::parse(r.output, nullptr, false);
+  EXPECT_FALSE(result.is_discarded()) << r.output;
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return result.is_discarded() ? json::object() : result;
+}
+
+bool waitUntilServing(const std::string& log) {
+  return waitFor([&] { return logHas(log, "uampc view: serving"); }, std::chrono::seconds(30));
+}
+
+// A run's outputs, file by file, without what differs between any two runs: run_info.json (when
+// and where), metrics.json's "run" (the same), the wall-clock columns of timings.csv.
+std::map<std::string, std::string> comparableOutputs(const std::string& directory) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    const std::string name = entry.path().filename().string();
+    std::string text = readFile(entry.path().string());
+    if (name == "run_info.json") continue;
+    if (name == "metrics.json") {
+      json metrics = json::parse(text);
+      metrics.erase("run");
+      text = metrics.dump();
+    } else if (name == "timings.csv") {
+      std::istringstream in(text);
+      std::string line, kept;
+      while (std::getline(in, line)) {
+        std::size_t cut = 0;
+        for (int commas = 0; commas < 3 && cut != std::string::npos; ++commas) cut = line.find(',', cut + 1);
+        kept += line.substr(0, cut) + "\n";
+      }
+      text = kept;
+    }
+    files[name] = text;
+  }
+  return files;
+}
+
+TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
+  const std::string alone = freshDirectory("viewer_alone");
+  const CommandResult reference = runUampc("launch " + defaultScene(1, 8) + " --out " + alone);
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+
+  const std::string viewed = freshDirectory("viewer_viewed");
+  const std::string log = viewed + ".log";
+  const pid_t run = startLaunch(defaultScene(1, 8) + viewOptions(1) + " --out " + viewed, log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  // Every topic, until the run ends and its viewer closes the connection.
+  const json seen = watch(url(1) + " --topics all --until-closed");
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+
+  EXPECT_EQ(seen["server"]["capabilities"], json::array({"time"}));
+  EXPECT_TRUE(seen["decode_errors"].empty()) << seen.dump();
+  for (const char* topic : {"/lidar/points", "/tf", "/lo/odometry", "/mpc/panorama", "/evaluator/estimated_path",
+                            "/evaluator/true_path", "/world/points", "/motor/state"}) {
+    ASSERT_TRUE(seen["topics"].contains(topic)) << topic << " " << seen.dump().substr(0, 2000);
+    EXPECT_GT(seen["topics"][topic]["decoded"].get<int>(), 0) << topic;
+  }
+  EXPECT_EQ(seen["topics"]["/mpc/panorama"]["first"]["encoding"], "32FC1");
+  EXPECT_EQ(seen["topics"]["/lidar/points"]["first"]["frame_id"], "lidar");
+  EXPECT_GT(seen["topics"]["/evaluator/true_path"]["first"]["poses"].get<int>(), 0);
+  // The clients' time is the run's sim time, not the wall clock.
+  EXPECT_GT(seen["time_messages"].get<int>(), 0);
+  EXPECT_LE(std::stoll(seen["last_time_ns"].get<std::string>()), 8'000'000'000LL);
+  EXPECT_TRUE(seen["closed_by_server"].get<bool>());
+
+  const auto expected = comparableOutputs(alone);
+  const auto actual = comparableOutputs(viewed);
+  ASSERT_EQ(expected.size(), actual.size());
+  for (const auto& [name, bytes] : expected) {
+    ASSERT_TRUE(actual.count(name)) << name;
+    EXPECT_TRUE(actual.at(name) == bytes) << name << " differs with a viewer attached";
+  }
+}
+
+TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
+  const std::string log = freshDirectory("viewer_lazy") + ".log";
+  const pid_t run = startLaunch(defaultScene(2, 16) + viewOptions(2), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const json seen =
+      watch(url(2) + " --topics /lidar/points,/lo/local_map,/lo/registered,/world/points,/tf --lazy-client --until-closed");
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+  EXPECT_TRUE(seen["decode_errors"].empty());
+  EXPECT_GT(seen["topics"]["/lidar/points"]["decoded"].get<int>(), 0);
+  // The viewer's last word counts what the lazy client's queues dropped.
+  std::smatch dropped;
+  const std::string text = readFile(log);
+  ASSERT_TRUE(std::regex_search(text, dropped, std::regex("([0-9]+) dropped for clients that read too slowly")))
+      << text;
+  EXPECT_GT(std::stoll(dropped[1]), 0) << text;
+}
+
+TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
+  const std::string log = freshDirectory("viewer_bad_clients") + ".log";
+  const pid_t view = startUampc("view --domain " + std::to_string(domain(3)) + " --port " + std::to_string(port(3)), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+
+  const json some = watch(url(3) + " --seconds 1 --bad-requests 6");
+  ASSERT_EQ(some["statuses"].size(), 6u) << some.dump();
+  for (const auto& s : some["statuses"]) EXPECT_EQ(s["level"], 2);
+  EXPECT_FALSE(some["closed_by_server"].get<bool>());
+
+  const json persistent = watch(url(3) + " --seconds 5 --bad-requests 11");
+  EXPECT_EQ(persistent["statuses"].size(), 10u) << persistent.dump();
+  EXPECT_TRUE(persistent["closed_by_server"].get<bool>());
+
+  EXPECT_TRUE(watch(url(3) + " --seconds 5 --huge-frame")["closed_by_server"].get<bool>());
+
+  // 200 clients that come and go, half of them cut off mid-subscription; then one that stays.
+  const json after = watch(url(3) + " --seconds 1 --churn 200");
+  EXPECT_EQ(after["server"]["name"], "uampc view (DDS domain " + std::to_string(domain(3)) + ")");
+  EXPECT_GT(after["time_messages"].get<int>(), 0);
+
+  kill(view, SIGTERM);
+  EXPECT_EQ(exitCodeOf(view), 0) << readFile(log);
+  EXPECT_TRUE(logHas(log, "uampc view: stopped"));
+}
+
+TEST(Viewer, APortInUseIsAClearErrorBeforeAnythingStarts) {
+  const std::string log = freshDirectory("viewer_port") + ".log";
+  const pid_t view = startUampc("view --domain " + std::to_string(domain(4)) + " --port " + std::to_string(port(4)), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const std::string where = "cannot serve on 127.0.0.1:" + std::to_string(port(4));
+
+  const CommandResult launch = runUampc("launch " + defaultScene(4, 2) + viewOptions(4));
+  EXPECT_EQ(launch.exit_code, 1) << launch.output;
+  EXPECT_NE(launch.output.find(where), std::string::npos) << launch.output;
+  EXPECT_NE(launch.output.find("nothing was started"), std::string::npos) << launch.output;
+
+  const CommandResult second = runUampc("view --domain " + std::to_string(domain(4)) + " --port " +
+                                        std::to_string(port(4)) + " --duration 1");
+  EXPECT_EQ(second.exit_code, 1) << second.output;
+  EXPECT_NE(second.output.find(where), std::string::npos) << second.output;
+  kill(view, SIGTERM);
+  EXPECT_EQ(exitCodeOf(view), 0);
+
+  const CommandResult not_an_address = runUampc("view --address somewhere --port 0 --duration 1");
+  EXPECT_EQ(not_an_address.exit_code, 1);
+  EXPECT_NE(not_an_address.output.find("'somewhere' is not an IP address"), std::string::npos) << not_an_address.output;
+
+  const CommandResult everywhere =
+      runUampc("view --domain " + std::to_string(domain(4)) + " --address 0.0.0.0 --port 0 --duration 0.5");
+  EXPECT_EQ(everywhere.exit_code, 0) << everywhere.output;
+  EXPECT_NE(everywhere.output.find("anyone who reaches it sees every topic"), std::string::npos) << everywhere.output;
+}
+
+TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
+  const std::string recorded = freshDirectory("viewer_recording");
+  const CommandResult record = runUampc("launch " + sourcePath("config/scenes/record_default.yaml") +
+                                        " --set clock.duration=3 --set domain_id=" + std::to_string(domain(5)) +
+                                        " --out " + recorded);
+  ASSERT_EQ(record.exit_code, 0) << record.output;
+  std::string file;
+  for (const auto& entry : fs::directory_iterator(recorded)) {
+    if (entry.path().extension() == ".mcap") file = entry.path().string();
+  }
+  ASSERT_FALSE(file.empty());
+
+  const std::string log = freshDirectory("viewer_play") + ".log";
+  const pid_t play = startUampc(
+      "play " + file + " --rate 2 --domain " + std::to_string(domain(5)) + viewOptions(5), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const json seen = watch(url(5) + " --topics /lidar/points,/lo/odometry --until-closed");
+  ASSERT_EQ(exitCodeOf(play), 0) << readFile(log);
+  EXPECT_TRUE(seen["decode_errors"].empty());
+  // From the start: play waited for the subscription, so every scan of the 3 s (10 Hz) arrives.
+  EXPECT_GE(seen["topics"]["/lidar/points"]["decoded"].get<int>(), 25) << seen.dump();
+  EXPECT_GT(seen["topics"]["/lo/odometry"]["decoded"].get<int>(), 0);
+}
+
+}  // namespace
+}  // namespace uampc::test
