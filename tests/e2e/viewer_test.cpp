@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "background_launch.hpp"
@@ -104,6 +105,21 @@ TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
   EXPECT_GT(seen["time_messages"].get<int>(), 0);
   EXPECT_LE(std::stoll(seen["last_time_ns"].get<std::string>()), 8'000'000'000LL);
   EXPECT_TRUE(seen["closed_by_server"].get<bool>());
+  // The shipped layout shows only topics the default scene has.
+  const json layout = json::parse(readFile(sourcePath("docs/user/foxglove-layout.json")));
+  std::set<std::string> shown;
+  for (const auto& [panel, config] : layout["configById"].items()) {
+    if (config.contains("topics")) {
+      for (const auto& [topic, settings] : config["topics"].items()) shown.insert(topic);
+    }
+    if (config.contains("imageMode")) shown.insert(config["imageMode"]["imageTopic"].get<std::string>());
+    for (const auto& path : config.value("paths", json::array())) {
+      const std::string value = path["value"];
+      shown.insert(value.substr(0, value.find('.')));
+    }
+  }
+  EXPECT_GE(shown.size(), 9u);
+  for (const std::string& topic : shown) EXPECT_TRUE(seen["topics"].contains(topic)) << topic << " is in the layout";
 
   const auto expected = comparableOutputs(alone);
   const auto actual = comparableOutputs(viewed);

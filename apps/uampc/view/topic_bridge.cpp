@@ -89,6 +89,7 @@ void TopicBridge::advertiseNewTopics(const std::map<std::string, DiscoveredTopic
     }
     const foxglove::ChannelId id = server_.advertise({0, name, "cdr", type, schema, "ros2msg"});
     advertised_[dds_name] = {id, dds_type};
+    ++offered_;
   }
 }
 

@@ -29,7 +29,7 @@ class TopicBridge {
   // and sends the latest clock. Called periodically from one thread.
   void update();
 
-  std::size_t channels() const { return advertised_.size(); }
+  std::size_t channelsOffered() const { return offered_; }  // since the start, withdrawn ones too
 
  private:
   struct Advertised {
@@ -46,6 +46,7 @@ class TopicBridge {
   TopicDiscovery& discovery_;
   foxglove::Server& server_;
   std::map<std::string, Advertised> advertised_;  // by DDS topic name
+  std::size_t offered_ = 0;
   std::map<foxglove::ChannelId, std::unique_ptr<RawSubscription>> readers_;
   std::map<std::string, bool> skipped_;  // topics said to be unviewable, said once
   std::unique_ptr<RawSubscription> clock_reader_;

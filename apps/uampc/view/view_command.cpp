@@ -60,7 +60,7 @@ int viewCommand(const ViewOptions& options) {
       std::this_thread::sleep_for(kUpdatePeriod);
     }
     const foxglove::ServerStatistics s = server.statistics();
-    std::cerr << "uampc view: stopped; " << bridge.channels() << " topic(s) offered, " << s.frames_sent
+    std::cerr << "uampc view: stopped; " << bridge.channelsOffered() << " topic(s) offered, " << s.frames_sent
               << " message(s) sent, " << s.frames_dropped << " dropped for clients that read too slowly\n";
     return 0;
   } catch (const std::exception& e) {
