@@ -12,6 +12,7 @@
 #include <future>
 #include <thread>
 
+#include "background_launch.hpp"
 #include "command_runner.hpp"
 #include "test_domains.hpp"
 #include "uampc/msgs/sensor_msgs.hpp"
@@ -345,6 +346,24 @@ TEST(Security, MissingExpiredAndMismatchedFilesAreRefusedByNameAtTheSceneLine) {
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("security.directory: not a directory: " + k.dir), std::string::npos) << r.output;
   }
+}
+
+// `launch --view` on a secured run: the viewer joins with the observer identity of the scene's
+// security directory, and Foxglove's client decodes the run's scans through it.
+TEST(Security, TheViewerOfASecuredRunJoinsWithTheObserverIdentity) {
+  const int port = 18760 + domain(8);
+  const std::string log = freshDirectory("security_viewer") + ".log";
+  const pid_t run = startLaunch(sourcePath(kScene) + securedBy(keys()) + " --set domain_id=" +
+                                    std::to_string(domain(8)) +
+                                    " --set clock.duration=8 --set clock.real_time_factor=1 --view --view-port " +
+                                    std::to_string(port),
+                                log);
+  ASSERT_TRUE(waitFor([&] { return logHas(log, "uampc view: serving"); }, std::chrono::seconds(30))) << readFile(log);
+  const CommandResult seen = runShell("node " + sourcePath("tests/foxglove_js/watch.mjs") + " ws://127.0.0.1:" +
+                                      std::to_string(port) + " --topics /lidar/points --until-closed");
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+  EXPECT_EQ(seen.exit_code, 0) << seen.output;
+  EXPECT_NE(seen.output.find("\"/lidar/points\":{\"received\":"), std::string::npos) << seen.output;
 }
 
 }  // namespace

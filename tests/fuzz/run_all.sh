@@ -38,6 +38,7 @@ targets=(
   "panorama 16384 -"
   "mcap 16384 mcap/mcap.dict"
   "idl 4096 idl/idl.dict"
+  "foxglove_request 4096 foxglove_request/request.dict"
 )
 bin="$root/build-fuzz/fuzz"
 work="$(mktemp -d "${TMPDIR:-/tmp}/uampc-fuzz-run.XXXXXX")"
