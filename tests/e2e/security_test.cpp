@@ -352,8 +352,9 @@ TEST(Security, MissingExpiredAndMismatchedFilesAreRefusedByNameAtTheSceneLine) {
 // security directory, and Foxglove's client decodes the run's scans through it.
 TEST(Security, TheViewerOfASecuredRunJoinsWithTheObserverIdentity) {
   const int port = 18760 + domain(8);
-  const std::string log = freshDirectory("security_viewer") + ".log";
-  const pid_t run = startLaunch(sourcePath(kScene) + securedBy(keys()) + " --set domain_id=" +
+  const std::string out = freshDirectory("security_viewer");
+  const std::string log = out + ".log";
+  const pid_t run = startLaunch(sourcePath(kScene) + " --out " + out + securedBy(keys()) + " --set domain_id=" +
                                     std::to_string(domain(8)) +
                                     " --set clock.duration=8 --set clock.real_time_factor=1 --view --view-port " +
                                     std::to_string(port),
