@@ -359,7 +359,10 @@ class UampcCli {
         "other DDS vendor, by default) to an MCAP file as rosbag2 writes it (Foxglove, ros2 bag, uampc play).\n"
         "Ctrl-C stops it and completes the file. Inside a scene, use the recorder component.");
     sub->add_option("-o,--output", o.output, "The file to write.")->required()->type_name("FILE.mcap");
-    sub->add_option("TOPIC", o.topics, "Topics to record (default: all).")->type_name("");
+    sub->add_option("TOPIC", o.topics,
+                    "Topics to record (default: all but the lockstep protocol's, /uampc/lockstep/...; name one to\n"
+                    "record it).")
+        ->type_name("");
     sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
         ->check(CLI::Range(0, uampc::kMaxDomainId))
         ->type_name("N");
@@ -403,7 +406,9 @@ class UampcCli {
         ->type_name("S");
     sub->add_option("--topics", o.topics, "Play only these topics (default: all).")->type_name("TOPIC ...");
     sub->add_flag("--loop", o.loop, "Start over at the end, until Ctrl-C.");
-    sub->add_flag("--clock", o.clock, "Publish /clock (100 Hz) with the recording's time, as ros2 bag play --clock.");
+    sub->add_flag("--clock", o.clock,
+                  "Publish /clock (100 Hz) with the recording's time, as ros2 bag play --clock. A recorded /clock\n"
+                  "and the lockstep protocol's topics (/uampc/lockstep/...) are never played.");
     sub->add_flag("--wait-for-readers", o.wait_for_readers,
                   "Start only once every played topic has a reader (else after 0.5 s), so that no sample goes\n"
                   "out before the system under test or a recorder hears it.");

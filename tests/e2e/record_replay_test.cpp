@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 
+#include "background_launch.hpp"
 #include "command_runner.hpp"
 #include "test_domains.hpp"
 #include "uampc/mcap/mcap.hpp"
@@ -141,6 +142,42 @@ TEST_F(RecordReplay, PlayAndRecordCommandsCarryEverySampleOverDds) {
       EXPECT_EQ(copied.at(topic)[i].data, original.at(topic)[i].data) << topic << " sample " << i;
     }
   }
+}
+
+// A recording of one run played onto the domain of another, live (docs/decisions/replay-leaves-lockstep-topics.md):
+// `uampc record` leaves the lockstep protocol's topics out unless they are named, `uampc play` never
+// publishes them nor a recorded /clock, and the live run goes on to its end (it used to stop, taking
+// the played protocol for another lockstep run).
+TEST_F(RecordReplay, APlayOnTheDomainOfALiveRunLeavesTheRunAlone) {
+  const std::string out = freshDirectory("play_beside_a_run");
+  const std::string scene = sourcePath("tests/scenes/motor_constant_speed.yaml") + " --set clock.real_time_factor=1";
+  const std::string recorded_domain = std::to_string(testDomain(DomainBlock::kRecordReplay, 5));
+  const pid_t recorded =
+      startLaunch(scene + " --set clock.duration=5 --out " + out + "/recorded --set domain_id=" + recorded_domain,
+                  out + "/recorded.log");
+  // The recorders and the player join runs that are already stepping, as in the reported case.
+  const auto stepping = [](const std::string& log) { return [log] { return logHas(log, "uampc: sim "); }; };
+  ASSERT_TRUE(waitFor(stepping(out + "/recorded.log"), std::chrono::seconds(30))) << readFile(out + "/recorded.log");
+  const std::string record =
+      binaryPath("bin/uampc") + " record --domain " + recorded_domain + " --duration 3 -o " + out;
+  const CommandResult recording =
+      runShell(record + "/named.mcap /clock /uampc/lockstep/progress /motor/state > " + out + "/named.log 2>&1 & " +
+               record + "/all.mcap > " + out + "/all.log 2>&1; wait; cat " + out + "/named.log " + out + "/all.log");
+  ASSERT_EQ(exitCodeOf(recorded), 0) << readFile(out + "/recorded.log");
+  const auto all = samplesByTopic(out + "/all.mcap");
+  EXPECT_TRUE(all.count("/motor/state")) << recording.output;
+  for (const auto& [topic, samples] : all) EXPECT_NE(topic.rfind("/uampc/lockstep/", 0), 0u) << topic;
+  ASSERT_TRUE(samplesByTopic(out + "/named.mcap").count("/uampc/lockstep/progress")) << recording.output;
+
+  const std::string live_domain = std::to_string(testDomain(DomainBlock::kRecordReplay, 6));
+  const pid_t live = startLaunch(
+      scene + " --set clock.duration=8 --out " + out + "/live --set domain_id=" + live_domain, out + "/live.log");
+  ASSERT_TRUE(waitFor(stepping(out + "/live.log"), std::chrono::seconds(30))) << readFile(out + "/live.log");
+  const CommandResult play = runUampc("play " + out + "/named.mcap --domain " + live_domain);
+  EXPECT_EQ(play.exit_code, 0) << play.output;
+  EXPECT_NE(play.output.find("not playing /uampc/lockstep/progress"), std::string::npos) << play.output;
+  EXPECT_NE(play.output.find("not playing /clock"), std::string::npos) << play.output;
+  EXPECT_EQ(exitCodeOf(live), 0) << readFile(out + "/live.log");
 }
 
 TEST_F(RecordReplay, ARecorderKilledMidRunLeavesItsCompleteChunksReadable) {

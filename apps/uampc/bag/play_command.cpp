@@ -13,6 +13,7 @@
 #include "uampc/recording/restamp.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/dds_node.hpp"
+#include "uampc/runtime/lockstep_topics.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 #include "uampc/runtime/wall_clock.hpp"
@@ -40,11 +41,6 @@ class Player {
   Player(const PlayOptions& options, recording::Playback& playback, DdsNode& dds)
       : options_(options), playback_(playback), costs_(playback.topics().size()) {
     for (const auto& topic : playback.topics()) {
-      if (options.clock && topic.topic == kClockTopic) {
-        // The recording's own /clock would fight the one made from its time line.
-        writers_.push_back(nullptr);
-        continue;
-      }
       const std::string dds_type = ddsTypeName(topic.type);
       writers_.push_back(dds.createWriter(
           topic.topic, topic.type, [dds_type] { return SerializedTypeSupport::forDdsType(dds_type); }, topic.qos));
@@ -159,6 +155,17 @@ class Player {
   recording::Restamper restamper_{Time{0}};
 };
 
+// Recorded /clock and lockstep protocol topics are never played: on a live domain, the run there
+// would take them for another run's (docs/decisions/replay-leaves-lockstep-topics.md).
+void sayWhatIsNotPlayed(const recording::Playback& playback, const PlayOptions& options) {
+  for (const std::string& topic : playback.skipped()) {
+    std::cerr << "uampc play: not playing " << topic << ": a lockstep run's own topic"
+              << (topic == kClockTopic && !options.clock ? " (--clock publishes one from the recording's time line)"
+                                                         : "")
+              << "\n";
+  }
+}
+
 }  // namespace
 
 int playCommand(const PlayOptions& options) {
@@ -171,7 +178,8 @@ int playCommand(const PlayOptions& options) {
     }
     recording::Playback playback(options.file, options.topics);
     for (const auto& warning : playback.warnings()) std::cerr << "uampc play: warning: " << warning << "\n";
-    if (playback.topics().empty()) throw std::runtime_error(options.file + ": the recording has no topics");
+    sayWhatIsNotPlayed(playback, options);
+    if (playback.topics().empty()) throw std::runtime_error(options.file + ": the recording has no topics to play");
     DdsNode dds(domain, "", false, "uampc/play", checkedSecurityIdentity(options.security_dir, kPlayerIdentity));
     Player player(options, playback, dds);
     std::cerr << "uampc play: " << options.file << ": " << playback.topics().size() << " topics, "

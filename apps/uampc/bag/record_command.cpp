@@ -15,6 +15,7 @@
 #include "topic/topic_discovery.hpp"
 #include "uampc/recording/recording_writer.hpp"
 #include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/lockstep_topics.hpp"
 #include "uampc/runtime/message_type.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
@@ -56,6 +57,12 @@ class Recorder {
       if (name.empty()) continue;  // not a ROS topic (DDS's own or a vendor's internals)
       if (!options_.topics.empty() && !wanted(name)) continue;
       subscribed_.insert(dds_name);
+      if (options_.topics.empty() && isLockstepProtocolTopic(name)) {
+        // Not the run's data; played back onto a live domain they would stop the run there
+        // (docs/decisions/replay-leaves-lockstep-topics.md). Named on the command line, they are kept.
+        std::cerr << "uampc record: leaving out " << name << ": the lockstep protocol's (name it to record it)\n";
+        continue;
+      }
       const DiscoveredEndpoint& writer = topic.writers.front();
       const std::string type = rosTypeName(writer.type);
       if (type.empty()) {

@@ -2,6 +2,7 @@
 // Publishes the world's surfaces once (latched, in chunks) for ray-casters in any process, a
 // point-cloud sample of it for viewers and tools, and the ground-truth base pose at sim time.
 #include <algorithm>
+#include <optional>
 #include <unordered_map>
 
 #include "uampc/adapters/pose_messages.hpp"
@@ -12,10 +13,10 @@
 #include "uampc/pointcloud/scan_cloud.hpp"
 #include "uampc/runtime/component.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
-#include "world_parameters.hpp"
 #include "uampc/world/density_profile.hpp"
 #include "uampc/world/point_sampling.hpp"
 #include "uampc/world/world_source.hpp"
+#include "world_parameters.hpp"
 
 namespace uampc {
 
@@ -139,8 +140,12 @@ class MapProvider : public Component {
     ctx_.log().info("published the world in ", count, " chunk(s) and a map sample of ", sample.size(), " points");
   }
 
+  // The trajectory starts at the first pose: at 0 in lockstep; in real time, whose clock reads
+  // the Unix epoch's seconds, when the run starts (docs/dev/time-and-lockstep.md). The pose is
+  // stamped with the clock's time.
   void publishPose() {
-    const double t = ctx_.now().seconds();
+    if (!start_) start_ = ctx_.now();
+    const double t = (ctx_.now() - *start_).seconds();
     double at = t;
     if (!world_.trajectory.contains(t)) {
       at = std::clamp(t, world_.trajectory.startTime(), world_.trajectory.endTime());
@@ -160,6 +165,7 @@ class MapProvider : public Component {
   Publisher<sensor_msgs::msg::PointCloud2> map_pub_;
   Publisher<geometry_msgs::msg::PoseStamped> pose_pub_;
   RateLimitedLog end_log_ = RateLimitedLog::once();
+  std::optional<Time> start_;  // the clock's time at the first pose
 };
 
 }  // namespace uampc

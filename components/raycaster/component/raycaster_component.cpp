@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "scan_parameters.hpp"
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/frames/motor_angle_track.hpp"
@@ -21,7 +22,6 @@
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/runtime/component.hpp"
-#include "scan_parameters.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
 
 namespace uampc {
@@ -108,6 +108,7 @@ class RaycasterComponent : public Component {
     raycaster::ImuSimulatorConfig c;
     c.calibration = scans.calibration;
     c.seed = scans.seed;
+    c.start_time = ctx.now().seconds();  // real time: now, not the epoch (docs/dev/time-and-lockstep.md)
     ParameterBinding binding(ctx);
     bindImuParameters(binding, c);
     return c;
@@ -190,6 +191,7 @@ class RaycasterComponent : public Component {
   void render() {
     if (!caster_) return;
     const double period = caster_->frameDuration();
+    if (!chooseFirstFrame(period)) return;
     for (;;) {
       const double start = static_cast<double>(next_frame_) * period;
       const double end = start + period;
@@ -205,6 +207,19 @@ class RaycasterComponent : public Component {
       const double needed_from = next_imu_ ? std::min(end, imuStencilStart()) : end;
       while (poses_.size() > 2 && poses_[1].time <= needed_from) poses_.pop_front();
     }
+  }
+
+  // Frames are cast at k * period. The first is the first the buffers hold from its start on:
+  // frame 0 in lockstep, whose poses and encoder states start at 0; in real time, whose clock reads
+  // the Unix epoch's seconds, the first after the run's start (docs/dev/time-and-lockstep.md).
+  // False while there is nothing to choose from.
+  bool chooseFirstFrame(double period) {
+    if (first_frame_chosen_) return true;
+    if (poses_.empty() || motor_.empty()) return false;
+    const double from = std::max(poses_.front().time, motor_.oldest().time);
+    next_frame_ = from > 0.0 ? static_cast<std::uint64_t>(std::ceil(from / period)) : 0;
+    first_frame_chosen_ = true;
+    return true;
   }
 
   // The earliest time the next IMU sample needs poses and encoder states from.
@@ -289,6 +304,7 @@ class RaycasterComponent : public Component {
   std::deque<world::TimedPose> poses_;
   frames::MotorAngleTrack motor_{2.0};
   std::uint64_t next_frame_ = 0;
+  bool first_frame_chosen_ = false;
   std::optional<raycaster::ImuSimulator> imu_;    // with imu: true
   std::deque<frames::MotorReading> motor_rates_;  // encoder velocities, for the IMU
   std::optional<std::uint64_t> next_imu_;         // the next IMU sample to publish

@@ -30,6 +30,9 @@ class PlayerComponent : public Component {
         rate_(ctx.lockstep() ? 1.0 : ctx.paramDouble("rate")),
         loop_(ctx.paramBool("loop")) {
     for (const std::string& warning : playback_.warnings()) ctx.log().warn(warning);
+    // Never played (docs/decisions/replay-leaves-lockstep-topics.md).
+    for (const std::string& topic : playback_.skipped())
+      ctx.log().info("not playing ", topic, ": a lockstep run's own topic");
     for (const auto& topic : playback_.topics()) publishers_.push_back(ctx.serializedPublisher(topic.topic));
     ctx.log().info("playing ", playback_.sampleCount(), " samples on ", playback_.topics().size(), " topics from ",
                    ctx.paramString("file"));

@@ -39,7 +39,8 @@ TEST(Recording, TopicsTypesQosAndSamplesComeBack) {
     const auto state = writer.addTopic({"/motor/state", "sensor_msgs/msg/JointState", QosPreset::kControl});
     for (int i = 0; i < 50; ++i) {
       writer.write(state, Time::fromSeconds(0.1 * i + 0.01), Time::fromSeconds(0.1 * i), bytes(i, 200));
-      if (i % 10 == 0) writer.write(scan, Time::fromSeconds(0.1 * i + 0.02), Time::fromSeconds(0.1 * i), bytes(100 + i, 5000));
+      if (i % 10 == 0)
+        writer.write(scan, Time::fromSeconds(0.1 * i + 0.02), Time::fromSeconds(0.1 * i), bytes(100 + i, 5000));
     }
     writer.close();
     EXPECT_EQ(writer.messages(), 55u);
@@ -112,6 +113,32 @@ TEST(Recording, LockstepRecordingsAreDueWhenPublishedAndGapsAreCrossed) {
   playback.seek(Time::fromSeconds(7.0));
   ASSERT_TRUE(playback.next(Time::fromSeconds(7.005), s));
   EXPECT_EQ(s.data.data, bytes(2).data);
+}
+
+// A lockstep run's own topics are never played, asked for or not: a live run on the domain would take
+// them for another run's (docs/decisions/replay-leaves-lockstep-topics.md).
+TEST(Recording, ClockAndLockstepProtocolTopicsAreNeverPlayed) {
+  const std::string file = tempFile("protocol_topics.mcap");
+  {
+    RecordingWriter writer(file, {});
+    const auto clock = writer.addTopic({"/clock", "rosgraph_msgs/msg/Clock", QosPreset::kControl});
+    const auto progress = writer.addTopic({"/uampc/lockstep/progress", "uampc/msg/StepAck", QosPreset::kControl});
+    const auto state = writer.addTopic({"/motor/state", "sensor_msgs/msg/JointState", QosPreset::kControl});
+    writer.write(clock, Time{1}, Time{1}, bytes(1));
+    writer.write(progress, Time{2}, Time{2}, bytes(2));
+    writer.write(state, Time{3}, Time{3}, bytes(3));
+  }
+  for (const std::vector<std::string>& asked :
+       {std::vector<std::string>{}, std::vector<std::string>{"/clock", "/uampc/lockstep/progress", "/motor/state"}}) {
+    Playback playback(file, asked);
+    ASSERT_EQ(playback.topics().size(), 1u);
+    EXPECT_EQ(playback.topics()[0].topic, "/motor/state");
+    EXPECT_EQ(playback.skipped(), (std::vector<std::string>{"/clock", "/uampc/lockstep/progress"}));
+    RecordedSample s;
+    ASSERT_TRUE(playback.next(Time{3}, s));
+    EXPECT_EQ(s.data.data, bytes(3).data);
+    EXPECT_FALSE(playback.next(Time{3}, s));
+  }
 }
 
 TEST(Recording, ATypeWithoutDefinitionIsRecordedAndSaidSo) {

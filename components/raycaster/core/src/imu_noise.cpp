@@ -11,8 +11,12 @@ namespace {
 constexpr std::uint64_t kImuStream = 0x494D55;  // "IMU"
 }  // namespace
 
-ImuNoise::ImuNoise(const ImuNoiseParameters& parameters, double rate_hz, std::uint64_t seed)
-    : parameters_(parameters), dt_(1.0 / rate_hz), seed_(world::mixSeed(seed, kImuStream)) {
+ImuNoise::ImuNoise(const ImuNoiseParameters& parameters, double rate_hz, std::uint64_t seed, std::uint64_t origin)
+    : parameters_(parameters),
+      dt_(1.0 / rate_hz),
+      seed_(world::mixSeed(seed, kImuStream)),
+      origin_(origin),
+      bias_index_(origin) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw std::invalid_argument("ImuNoise: rate must be > 0");
   if (!(parameters.gyro_noise_density >= 0.0) || !(parameters.accel_noise_density >= 0.0) ||
       !(parameters.gyro_random_walk >= 0.0) || !(parameters.accel_random_walk >= 0.0)) {
@@ -36,7 +40,7 @@ ImuNoise::Normals ImuNoise::draw(std::uint64_t index) const {
 
 ImuErrors ImuNoise::at(std::uint64_t index) {
   if (index < bias_index_) {
-    bias_index_ = 0;
+    bias_index_ = origin_;
     gyro_bias_.setZero();
     accel_bias_.setZero();
   }

@@ -61,7 +61,9 @@ ImuKinematics imuKinematics(double t, const ImuMotion& motion, const frames::Mot
 }
 
 ImuSimulator::ImuSimulator(ImuSimulatorConfig config)
-    : config_(std::move(config)), noise_(config_.noise, config_.rate_hz, config_.seed) {}
+    : config_(std::move(config)),
+      noise_(config_.noise, config_.rate_hz, config_.seed,
+             config_.rate_hz > 0.0 ? firstIndexAtOrAfter(config_.start_time) : 0) {}
 
 std::uint64_t ImuSimulator::firstIndexAtOrAfter(double t) const {
   if (!(t > 0.0)) return 0;

@@ -271,6 +271,28 @@ TEST(ImuSimulator, SamplesDependOnlyOnSeedAndIndex) {
   }
 }
 
+// In real time the clock reads the Unix epoch's seconds: the bias walk starts at the start, zero
+// there, and the first sample costs one step, not one per sample since 1970.
+TEST(ImuSimulator, TheBiasWalkStartsAtTheStartNotAtTimeZero) {
+  ImuSimulatorConfig config = noiseFree();
+  config.noise.gyro_random_walk = 1e-3;
+  config.noise.accel_random_walk = 1e-2;
+  const ImuMotion motion = atRest();
+  for (const double start : {1000.0, 1.7e9}) {
+    config.start_time = start;
+    ImuSimulatorConfig exact_config = noiseFree();
+    exact_config.start_time = start;
+    ImuSimulator imu(config), exact_imu(exact_config);
+    const std::uint64_t first = imu.firstIndexAtOrAfter(start);
+    const ImuSample exact = exact_imu.sample(first, motion);
+    const ImuSample s = imu.sample(first, motion);
+    EXPECT_EQ(s.angular_velocity, exact.angular_velocity) << start;  // no bias yet
+    EXPECT_EQ(s.linear_acceleration, exact.linear_acceleration) << start;
+    EXPECT_NE(imu.sample(first + 1, motion).angular_velocity, exact_imu.sample(first + 1, motion).angular_velocity)
+        << start;
+  }
+}
+
 TEST(ImuSimulator, SampleTimesAndFirstIndex) {
   ImuSimulator imu(noiseFree());
   EXPECT_EQ(imu.firstIndexAtOrAfter(0.0), 0u);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "uampc/runtime/lockstep_topics.hpp"
+
 namespace uampc::recording {
 
 namespace {
@@ -29,9 +31,15 @@ Playback::Playback(const std::string& path, const std::vector<std::string>& topi
   warnings_ = reader_->warnings();
   std::vector<std::string> recorded;
   for (const auto& channel : reader_->channels()) recorded.push_back(channel.topic);
-  topic_names_ = topics.empty() ? recorded : topics;
   bool clock_known = false;
-  for (const std::string& name : topic_names_) {
+  for (const std::string& name : topics.empty() ? recorded : topics) {
+    if (isLockstepRunTopic(name)) {
+      // A lockstep run's own topics: a live run on the domain would take them for another run's
+      // (docs/decisions/replay-leaves-lockstep-topics.md).
+      skipped_.push_back(name);
+      continue;
+    }
+    topic_names_.push_back(name);
     const mcap::Channel* channel = reader_->findChannel(name);
     if (!channel)
       throw std::runtime_error(path + ": the recording has no topic " + name + " (it has: " + join(recorded) + ")");

@@ -2,6 +2,8 @@
 // layer's clock and process groups, and kept free of component ports by the scene validator.
 #pragma once
 
+#include <string_view>
+
 namespace uampc {
 
 constexpr const char* kClockTopic = "/clock";
@@ -11,5 +13,16 @@ constexpr const char* kStepAckTopic = "/uampc/lockstep/ack";
 constexpr const char* kStepProgressTopic = "/uampc/lockstep/progress";
 // Every topic of the protocol starts with this; no component port may use one.
 constexpr const char* kLockstepTopicPrefix = "/uampc/lockstep/";
+
+// A topic of the protocol itself (not /clock, which outside tools read too). A recording of one
+// replayed onto a live domain would reach that run's clock as another run's
+// (docs/decisions/replay-leaves-lockstep-topics.md).
+inline bool isLockstepProtocolTopic(std::string_view topic) { return topic.rfind(kLockstepTopicPrefix, 0) == 0; }
+
+// What a player never publishes: the protocol's topics and /clock, which a run on the domain
+// writes itself (a player makes its own /clock on request, from the recording's time line).
+inline bool isLockstepRunTopic(std::string_view topic) {
+  return topic == kClockTopic || isLockstepProtocolTopic(topic);
+}
 
 }  // namespace uampc

@@ -3,10 +3,13 @@
 // The standard continuous model (Kalibr, "IMU Noise Model",
 // https://github.com/ethz-asl/kalibr/wiki/IMU-Noise-Model) sampled at dt = 1 / rate:
 //   white noise   n[k]     = noise_density / sqrt(dt) * w[k]
-//   bias          b[k + 1] = b[k] + random_walk * sqrt(dt) * w'[k],   b[0] = 0
-// with w, w' independent standard normals. Sample k draws its numbers from a stream of its own,
-// seeded from (seed, k), so the noise of sample k depends only on the seed and k: not on which
-// samples were asked for before, nor how often.
+//   bias          b[k + 1] = b[k] + random_walk * sqrt(dt) * w'[k],   b[k0] = 0
+// with w, w' independent standard normals and k0 the origin, the sample at the simulation's start
+// (0 in lockstep; in real time the first sample at or after the wall-clock time the component
+// started, not the Unix epoch's sample 0, which would be ~10^11 steps away: docs/dev/time-and-lockstep.md).
+// Sample k draws its numbers from a stream of its own, seeded from (seed, k), so the noise of
+// sample k depends only on the seed, the origin and k: not on which samples were asked for before,
+// nor how often.
 #pragma once
 
 #include <Eigen/Core>
@@ -39,10 +42,11 @@ struct ImuErrors {
 class ImuNoise {
  public:
   // Throws std::invalid_argument for a negative parameter or a rate that is not positive.
-  ImuNoise(const ImuNoiseParameters& parameters, double rate_hz, std::uint64_t seed);
+  ImuNoise(const ImuNoiseParameters& parameters, double rate_hz, std::uint64_t seed, std::uint64_t origin = 0);
 
-  // The errors of sample `index`. The bias is the sum of the increments of samples 0..index-1:
-  // asking in increasing order costs O(1) per sample, asking for an earlier index replays from 0.
+  // The errors of sample `index`. The bias is the sum of the increments of samples origin..index-1
+  // (zero before the origin): asking in increasing order costs O(1) per sample, asking for an
+  // earlier index replays from the origin.
   ImuErrors at(std::uint64_t index);
 
   // Standard deviation of the white noise of one sample (noise_density * sqrt(rate)).
@@ -58,7 +62,8 @@ class ImuNoise {
   ImuNoiseParameters parameters_;
   double dt_;
   std::uint64_t seed_;
-  std::uint64_t bias_index_ = 0;  // the biases below are those of sample bias_index_
+  std::uint64_t origin_;
+  std::uint64_t bias_index_;  // the biases below are those of sample bias_index_
   Eigen::Vector3d gyro_bias_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d accel_bias_ = Eigen::Vector3d::Zero();
 };

@@ -45,6 +45,9 @@ struct ImuSimulatorConfig {
   ImuNoiseParameters noise;
   double rate_hz = 200.0;  // the Mid-360's IMU rate
   std::uint64_t seed = 0;
+  // s: the simulation's start; the bias random walk starts (at zero) at the first sample at or
+  // after it (ImuNoise's origin). 0 in lockstep, the component's first wall-clock time in real time.
+  double start_time = 0.0;
 };
 
 // Finite-difference steps (s), see imuKinematics().

@@ -25,12 +25,16 @@ struct RecordedSample {
 
 class Playback {
  public:
-  // topics: those to play (empty: every topic of the recording). Throws std::runtime_error naming
+  // topics: those to play (empty: every topic of the recording), less /clock and the lockstep
+  // protocol's topics, which are never played (skipped() names those left out). Throws std::runtime_error naming
   // the file for a file that is not a readable recording, a topic it lacks (listing those it has),
   // and a topic whose samples are not CDR of a ros2msg type.
   Playback(const std::string& path, const std::vector<std::string>& topics);
 
   const std::vector<RecordedTopic>& topics() const { return topics_; }
+  // The recording's topics (or those asked for) that a lockstep run writes itself and a player
+  // therefore never publishes (uampc/runtime/lockstep_topics.hpp, isLockstepRunTopic).
+  const std::vector<std::string>& skipped() const { return skipped_; }
   // Lockstep recordings are played by publish time: each sample goes out in the step its original
   // writer published it, so that a lockstep scene sees every sample in the same step as the run
   // that was recorded. Others by log (receive) time, as rosbag2 plays.
@@ -55,6 +59,7 @@ class Playback {
   std::unique_ptr<mcap::Reader> reader_;
   std::vector<RecordedTopic> topics_;
   std::vector<std::string> topic_names_;
+  std::vector<std::string> skipped_;
   std::map<std::uint16_t, std::size_t> topic_by_channel_;
   RecordingClock clock_ = RecordingClock::kRealtime;
   Time start_, end_;
