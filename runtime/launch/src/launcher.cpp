@@ -2,11 +2,13 @@
 
 #include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -15,6 +17,7 @@
 
 #include "lockstep_clock.hpp"
 #include "uampc/runtime/child_processes.hpp"
+#include "uampc/runtime/domain_run_lock.hpp"
 #include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/run_record.hpp"
@@ -172,6 +175,14 @@ void endIfTheStopHangs(const std::string& process) {
 
 }  // namespace
 
+// What a run on a domain is, for a launch the domain's lock refuses.
+static std::string runDescription(const LaunchOptions& options) {
+  const std::time_t now = std::time(nullptr);
+  char started[32] = {};
+  std::strftime(started, sizeof started, "%Y-%m-%d %H:%M:%S", std::localtime(&now));
+  return "uampc launch " + options.scene_path + ", pid " + std::to_string(getpid()) + ", started " + started;
+}
+
 // The run's record in its output directory (run_record.hpp); false, said, when it cannot be written.
 static bool recordRun(const Scene& scene, const LaunchOptions& options) {
   try {
@@ -193,6 +204,16 @@ int launch(const LaunchOptions& options) {
   // Only here, not in run-process and clock: launch starts those, and they would repeat them.
   for (const auto& w : scene.warnings) std::cerr << w << "\n";
   if (!ok) return 2;
+  // Before anything of this run exists: a run already on the domain must not hear of this one.
+  std::string holder;
+  const auto domain_lock = DomainRunLock::take(scene.domain_id, runDescription(options), &holder);
+  if (!domain_lock) {
+    std::cerr << "uampc: another run is on DDS domain " << scene.domain_id << " ("
+              << (holder.empty() ? "its launcher did not say which" : holder)
+              << "); two runs on one domain hear each other's clock and topics, so give this one its own domain_id "
+                 "(--set domain_id=N); nothing was started\n";
+    return 1;
+  }
   if (options.viewer.enabled) {
     if (const std::string problem = viewerAddressProblem(options.viewer); !problem.empty()) {
       std::cerr << "uampc: --view: " << problem << "; nothing was started\n";
