@@ -247,6 +247,19 @@ TEST(SceneValidation, ExtendsMergesComponentsKeyByKeyAndNamesTheFileOfEachMistak
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find(b + ":2:10: error: extends cycle: " + a + " -> " + b + " -> " + a), std::string::npos)
       << r.output;
+  // A chain of 64 scenes is read; the 65th link is refused where it is written (a chain of 10,000
+  // overflowed the stack).
+  writeScene(dir, "link0.yaml", "name: chain\ncomponents: {}\n");
+  for (int i = 1; i <= 64; ++i) {
+    writeScene(dir, "link" + std::to_string(i) + ".yaml", "extends: link" + std::to_string(i - 1) + ".yaml\n");
+  }
+  EXPECT_EQ(runUampc("validate " + dir + "/link63.yaml").exit_code, 0);
+  r = runUampc("validate " + dir + "/link64.yaml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(dir + "/link1.yaml:1:10: error: extends: more than 64 scenes in one chain (from " + dir +
+                          "/link64.yaml)"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(ComponentLoader, RefusesALibraryBuiltForAnotherAbiVersion) {

@@ -201,6 +201,7 @@ class SceneValidator {
   std::vector<std::pair<YAML::Node, std::string>> override_nodes_;  // value grafted by --set, its text
   std::vector<std::pair<std::string, std::string>> override_keys_;  // last name of each --set, its text
   std::vector<PortReference> pending_;
+  std::set<std::string> component_names_;  // of scene.components, for finding one defined twice
   std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
 
   // The rig (docs/dev/architecture.md section 5): parameters a component marks partOfRig() take
@@ -498,7 +499,7 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
   readParameters(node["params"], instance, spec, scene);
   std::vector<PortReference> references;
   readTopics(node["topics"], instance, spec, references);
-  if (scene.find(instance.name)) {
+  if (!component_names_.insert(instance.name).second) {
     error(key, "component '" + instance.name + "' is defined twice");
     return;
   }

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -28,9 +29,9 @@ class SceneDocument {
   void remember(const YAML::Node& node, const std::string& file);
   YAML::Node loadChain(const std::string& file, std::vector<std::string>& chain);
 
-  // Every node of every file read, with its file. Looked up by identity (YAML::Node::is) only
-  // when a location is asked for; scenes are small.
-  std::vector<std::pair<YAML::Node, std::string>> origins_;
+  // Every node of every file read, with its file, by the node's identity (nodeIdentity): a lookup
+  // per location asked for, so that validating a scene stays linear in its size.
+  std::unordered_map<const void*, std::string> origins_;
 };
 
 // `over` deep-merged over `base`: maps merged key by key, recursively; anything else replaced.
