@@ -374,8 +374,7 @@ class UampcCli {
         ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 30))
         ->type_name("BYTES");
     sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
-        ->check(uampc::command_line::kFinite)
-        ->check(CLI::NonNegativeNumber)
+        ->check(uampc::command_line::kFiniteNonNegative)
         ->type_name("S");
     sub->add_option("--security", o.security_dir,
                     "Join a secured domain with the observer identity of DIR (uampc security init), which may\n"
@@ -458,8 +457,7 @@ class UampcCli {
                     "read every topic.")
         ->type_name("DIR");
     sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
-        ->check(uampc::command_line::kFinite)
-        ->check(CLI::NonNegativeNumber)
+        ->check(uampc::command_line::kFiniteNonNegative)
         ->type_name("S");
     commands_.push_back({sub, [this] { return uampc::app::viewCommand(options_.view); }});
   }

@@ -108,6 +108,19 @@ TEST(CommandLine, NumbersMustBeFinite) {
   }
 }
 
+// A refused number is named with its value and what is wanted, in words, not CLI11's bound of
+// 1.8e308 written out in 300 digits.
+TEST(CommandLine, RefusedNumbersAreSaidShortly) {
+  for (const auto& [args, wanted] : {std::pair<std::string, std::string>{"topic echo /x -n 0", "'0' is not a whole number of 1 or more"},
+                                     {"topic hz /x --window -7", "'-7' is not a whole number of 1 or more"},
+                                     {"record -o x.mcap --duration -1", "'-1' must not be negative"}}) {
+    const CommandResult r = runUampc(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_TRUE(contains(r.output, wanted)) << args << "\n" << r.output;
+    EXPECT_FALSE(contains(r.output, "179769313486231570")) << args << "\n" << r.output;
+  }
+}
+
 TEST(CommandLine, SetTakesOneValueAndMayComeBeforeTheScene) {
   // --set is repeatable but takes one value each time: the scene after it is the scene.
   const CommandResult r =

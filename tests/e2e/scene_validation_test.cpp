@@ -249,7 +249,7 @@ TEST(SceneValidation, ExtendsMergesComponentsKeyByKeyAndNamesTheFileOfEachMistak
       << r.output;
   // A chain of 64 scenes is read; the 65th link is refused where it is written (a chain of 10,000
   // overflowed the stack).
-  writeScene(dir, "link0.yaml", "name: chain\ncomponents: {}\n");
+  writeScene(dir, "link0.yaml", "name: chain\ncomponents:\n  motor: {type: motor_bridge}\n");
   for (int i = 1; i <= 64; ++i) {
     writeScene(dir, "link" + std::to_string(i) + ".yaml", "extends: link" + std::to_string(i - 1) + ".yaml\n");
   }
@@ -260,6 +260,31 @@ TEST(SceneValidation, ExtendsMergesComponentsKeyByKeyAndNamesTheFileOfEachMistak
                           "/link64.yaml)"),
             std::string::npos)
       << r.output;
+}
+
+// What launch would refuse, validate refuses, and every message is readable: it names the value,
+// what is wanted, and shows control bytes as \xNN instead of sending them to the terminal.
+TEST(SceneValidation, MessagesAreReadableAndValidateCatchesWhatLaunchWouldRefuse) {
+  const std::string dir = freshDirectory("validation_messages");
+  const std::string scene = sourcePath("config/scenes/default.yaml");
+  const std::pair<std::string, std::string> cases[] = {
+      {scene + " --set seed=-7", "seed: cannot read '-7' as a whole number of 0 or more"},
+      {scene + " --set 'world.map_offset=[1]'", "'map_offset' of component 'world' (map_provider) must be a list of 3 numbers, not 1"},
+      {scene + " --set 'world.map_offset=[.nan,0,0]'", "must be a finite number, not .nan"},
+      {scene + " --set world.world=file", "world: file needs map_file (component 'world', map_provider)"},
+      {scene + " --set world.world=file", "world: file needs trajectory: file"},
+      {scene + " --set world.trajectory=file", "trajectory: file needs trajectory_file"},
+      {sourcePath("config/scenes"), "config/scenes: error: is a directory, not a file"},
+      {writeScene(dir, "empty.yaml", "name: empty\ncomponents: {}\n"), "'components' is empty: the scene has nothing to run"},
+      {writeScene(dir, "escape.yaml", "name: x\ncomponents:\n  \"\x1b[2Jbad\": {type: motor_bridge}\n"),
+       "component name '\\x1b[2Jbad' must start with a letter"},
+  };
+  for (const auto& [args, wanted] : cases) {
+    const CommandResult r = runUampc("validate " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(wanted), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << args;
+  }
 }
 
 TEST(ComponentLoader, RefusesALibraryBuiltForAnotherAbiVersion) {

@@ -41,8 +41,7 @@ void addOptions(CLI::App& app, EmulatorOptions& o, ByteOptions& bytes) {
       ->check(CLI::Range(0L, static_cast<long>(std::numeric_limits<std::int32_t>::max())))
       ->capture_default_str();
   app.add_option("--max-acceleration", o.max_acceleration, "the motor's acceleration, rad/s^2")
-      ->check(command_line::kFinite)
-      ->check(CLI::PositiveNumber)
+      ->check(command_line::kFinitePositive)
       ->capture_default_str();
   app.add_option("--initial-position", o.initial_position, "Present Position at power-on, counts")
       ->capture_default_str();

@@ -69,7 +69,7 @@ int replay(int argc, char** argv) {
   app.add_option("--motor", motor_speed, "constant motor speed, rad/s")->check(command_line::kFinite)->capture_default_str();
   app.add_option("--seed", seed, "the world's and the noise's seed")->capture_default_str();
   app.add_option("--every", every, "print every N-th frame (and every frame more than 1 degree off)")
-      ->check(CLI::PositiveNumber)
+      ->check(command_line::kPositiveCount)
       ->capture_default_str();
   app.add_option("--set", assignments,
                  "a component's parameter, as in a scene: lo.NAME, world.NAME or lidar.NAME (uampc components "

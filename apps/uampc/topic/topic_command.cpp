@@ -331,7 +331,7 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
       add("echo", TopicAction::kEcho, "uampc topic echo TOPIC [--domain N] [--wait S] [-n N] [--full] [--security DIR]",
           "Print TOPIC's samples as YAML (types this uampc knows; of others, the size). Ctrl-C stops.");
   echo_command->add_option("-n", options.count, "Stop after N samples.")
-      ->check(CLI::PositiveNumber.description(""))
+      ->check(uampc::command_line::kPositiveCount.description(""))
       ->type_name("N");
   echo_command->add_flag("--full", options.full,
                          "Print byte arrays whole (longer than " + std::to_string(kLongestBytesShown) +
@@ -344,7 +344,7 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
             std::string("Print TOPIC's ") + what + " every second, over the last N samples. Ctrl-C stops.");
     sub->add_option("--window", options.window,
                     "Samples the figures are over (default " + std::to_string(default_window) + ").")
-        ->check(CLI::PositiveNumber.description(""))
+        ->check(uampc::command_line::kPositiveCount.description(""))
         ->type_name("N");
   }
 }

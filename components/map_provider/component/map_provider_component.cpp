@@ -36,8 +36,13 @@ class MapProvider : public Component {
     // Not bound (ParameterBinding has no path or 3-vector binding); the core's defaults are the
     // same: no file, no offset.
     spec.pathParam("map_file", "", "world: file: a PCD or PLY map (PLY with faces: a mesh)");
-    spec.param("map_offset", std::vector<double>{0.0, 0.0, 0.0}, "added to every map point, m (x, y, z)");
+    spec.param("map_offset", std::vector<double>{0.0, 0.0, 0.0}, "added to every map point, m (x, y, z)").ofLength(3);
     spec.pathParam("trajectory_file", "", "MCD CSV (num,t,x,y,z,qx,qy,qz,qw) or TUM (t x y z qx qy qz qw)");
+    // What world_source.cpp refuses at start, refused by `uampc validate` already.
+    spec.require({"trajectory", "file", "trajectory_file", ""});
+    spec.require({"world", "file", "map_file", ""});
+    spec.require({"world", "file", "trajectory", "file"});
+    spec.require({"world", "around_trajectory", "trajectory", "file"});
     spec.param("pose_rate", 200.0, "ground-truth pose rate, Hz").between(1.0, 10000.0);
     spec.param("map_point_spacing", 0.5, "voxel size of the published map sample, m").between(0.05, 10.0);
     spec.param("chunk_triangles", 10000, "triangles per world chunk (keeps samples under ~0.5 MB)")

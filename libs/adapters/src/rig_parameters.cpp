@@ -10,6 +10,7 @@ void declareRigParameters(ComponentSpec& spec) {
       .between(-180.0, 180.0)
       .partOfRig();
   spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame (r_ML), m")
+      .ofLength(3)
       .partOfRig();
 }
 

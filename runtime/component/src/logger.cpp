@@ -20,13 +20,31 @@ LogLevel logThreshold() {
   return threshold;
 }
 
+std::string printableText(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) {
+      static const char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 void Logger::write(LogLevel level, const std::string& text) const {
   if (level < logThreshold()) return;
   static const char* const kNames[] = {"DEBUG", "INFO ", "WARN ", "ERROR"};
   static std::mutex mutex;  // one line at a time, whichever thread logs
   const double t = clock_seconds_ ? clock_seconds_() : 0.0;
   std::lock_guard<std::mutex> lock(mutex);
-  std::fprintf(stderr, "[%11.6f] [%s] %s %s\n", t, name_.c_str(), kNames[static_cast<int>(level)], text.c_str());
+  std::fprintf(stderr, "[%11.6f] [%s] %s %s\n", t, name_.c_str(), kNames[static_cast<int>(level)],
+               printableText(text).c_str());
 }
 
 RateLimitedLog RateLimitedLog::everyNth(long n) {

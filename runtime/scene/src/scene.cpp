@@ -16,6 +16,7 @@
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/edit_distance.hpp"
 #include "uampc/runtime/file_checks.hpp"
+#include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/lockstep_topics.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 
@@ -34,8 +35,14 @@ static std::string joinLines(const std::vector<std::string>& lines) {
   return out;
 }
 
+// Messages quote what the scene says; printable, so that a terminal shows them, not obeys them.
+static std::vector<std::string> printable(std::vector<std::string> messages) {
+  for (auto& m : messages) m = printableText(m);
+  return messages;
+}
+
 SceneError::SceneError(std::vector<std::string> messages)
-    : std::runtime_error(joinLines(messages)), messages_(std::move(messages)) {}
+    : std::runtime_error(joinLines(printable(messages))), messages_(printable(std::move(messages))) {}
 
 std::vector<std::string> Scene::processes() const {
   std::vector<std::string> out;
@@ -163,6 +170,7 @@ class SceneValidator {
   void readSecurity(const YAML::Node& node, Scene& scene);
   void readComponent(const YAML::Node& key, const YAML::Node& node, Scene& scene);
   void readParameters(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec, Scene& scene);
+  void checkRequirements(const YAML::Node& params, const ComponentInstance& instance, const ComponentSpec& spec);
   std::optional<ParameterValue> readValue(const YAML::Node& node, const ParameterSpec& spec, const std::string& owner);
   void readTopics(const YAML::Node& node, ComponentInstance& instance, const ComponentSpec& spec,
                   std::vector<PortReference>& references);
@@ -185,6 +193,8 @@ class SceneValidator {
   static const char* typeWord() {
     if constexpr (std::is_same_v<T, bool>)
       return "true or false";
+    else if constexpr (std::is_unsigned_v<T>)
+      return "a whole number of 0 or more";
     else if constexpr (std::is_integral_v<T>)
       return "an integer";
     else if constexpr (std::is_floating_point_v<T>)
@@ -281,6 +291,9 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     error(SourceLocation{file_, 1, 1}, "the scene has no 'components'");
   } else if (!components.IsMap()) {
     error(components, "'components' must map instance names to components");
+  } else if (components.size() == 0) {
+    // A run of nothing would report negative sim time; say what is wrong instead.
+    error(components, "'components' is empty: the scene has nothing to run");
   } else {
     for (const auto& kv : components) readComponent(kv.first, kv.second, scene);
     checkRigKeys(scene);
@@ -497,6 +510,7 @@ void SceneValidator::readComponent(const YAML::Node& key, const YAML::Node& node
   }
   const ComponentSpec& spec = instance.library->spec();
   readParameters(node["params"], instance, spec, scene);
+  checkRequirements(node["params"], instance, spec);
   std::vector<PortReference> references;
   readTopics(node["topics"], instance, spec, references);
   if (!component_names_.insert(instance.name).second) {
@@ -549,6 +563,24 @@ void SceneValidator::readParameters(const YAML::Node& node, ComponentInstance& i
     } else {
       instance.params[p.name] = *p.default_value;
     }
+  }
+}
+
+void SceneValidator::checkRequirements(const YAML::Node& params, const ComponentInstance& instance,
+                                       const ComponentSpec& spec) {
+  auto text = [&](const std::string& name) -> std::string {
+    const auto value = instance.params.find(name);
+    const auto* s = value == instance.params.end() ? nullptr : std::get_if<std::string>(&value->second);
+    return s ? *s : std::string();
+  };
+  for (const auto& r : spec.requirements()) {
+    if (text(r.parameter) != r.value) continue;
+    const std::string needed = text(r.needed);
+    if (r.needed_value.empty() ? !needed.empty() : needed == r.needed_value) continue;
+    const YAML::Node where = params && params.IsMap() ? params[r.parameter] : YAML::Node();
+    const std::string what = r.needed_value.empty() ? r.needed : r.needed + ": " + r.needed_value;
+    error(where ? locationOf(where) : instance.location, r.parameter + ": " + r.value + " needs " + what +
+                                                             " (component '" + instance.name + "', " + instance.type + ")");
   }
 }
 
@@ -607,13 +639,15 @@ void SceneValidator::checkRigKeys(const Scene& scene) {
 std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, const ParameterSpec& spec,
                                                         const std::string& owner) {
   const std::string what = "parameter '" + spec.name + "' of " + owner;
-  auto checkBounds = [&](double v) {
+  // `text`: the scalar the number was read from (a list's element, not the list); the message
+  // points at `node`, which a --set names.
+  auto checkBounds = [&](double v, const std::string& text) {
     if (!std::isfinite(v)) {
-      error(node, what + " must be a finite number, not " + node.Scalar());
+      error(node, what + " must be a finite number, not " + text);
       return false;
     }
     if (!spec.withinBounds(v)) {
-      error(node, what + " is " + node.Scalar() + ", out of bounds " + spec.boundsText());
+      error(node, what + " is " + text + ", out of bounds " + spec.boundsText());
       return false;
     }
     return true;
@@ -624,12 +658,12 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
       return std::nullopt;
     case ParameterType::kInt:
       if (auto v = scalar<std::int64_t>(node, what)) {
-        if (checkBounds(static_cast<double>(*v))) return ParameterValue(*v);
+        if (checkBounds(static_cast<double>(*v), node.Scalar())) return ParameterValue(*v);
       }
       return std::nullopt;
     case ParameterType::kDouble:
       if (auto v = scalar<double>(node, what)) {
-        if (checkBounds(*v)) return ParameterValue(*v);
+        if (checkBounds(*v, node.Scalar())) return ParameterValue(*v);
       }
       return std::nullopt;
     case ParameterType::kString:
@@ -663,8 +697,13 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
       for (const auto& item : node) {
         auto v = scalar<double>(item, what);
         if (!v) return std::nullopt;
-        if (!checkBounds(*v)) return std::nullopt;
+        if (!checkBounds(*v, item.Scalar())) return std::nullopt;
         values.push_back(*v);
+      }
+      if (spec.list_length > 0 && values.size() != spec.list_length) {
+        error(node, what + " must be a list of " + std::to_string(spec.list_length) + " numbers, not " +
+                        std::to_string(values.size()));
+        return std::nullopt;
       }
       return ParameterValue(values);
     }
@@ -748,7 +787,10 @@ void SceneValidator::readTopics(const YAML::Node& node, ComponentInstance& insta
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides, ComponentCatalog& catalog,
                 bool check_security) {
   const std::string file = fs::absolute(path).lexically_normal().string();
-  if (!isRegularFile(file)) throw SceneError({path + ": error: scene file not found"});
+  if (!isRegularFile(file)) {
+    const std::string why = whyNotAFile(file);
+    throw SceneError({path + ": error: " + (why == "file not found" ? "scene file not found" : why)});
+  }
   const SceneDocument document = SceneDocument::load(file);
   SceneValidator validator(file, document, catalog);
   validator.check_security_ = check_security;

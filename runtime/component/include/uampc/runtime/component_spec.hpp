@@ -79,6 +79,15 @@ class ComponentSpec {
   // A parameter the scene must set.
   ParameterSpec& requiredParam(const std::string& name, ParameterType type, const std::string& doc);
 
+  // A rule between two string parameters that the scene validator checks, so that `uampc
+  // validate` refuses what the component would refuse at start: when `parameter` is `value`,
+  // `needed` must be `needed_value`, or, with no needed_value, a non-empty string (a file given).
+  struct Requirement {
+    std::string parameter, value, needed, needed_value;
+  };
+  void require(Requirement requirement) { requirements_.push_back(std::move(requirement)); }
+  const std::vector<Requirement>& requirements() const { return requirements_; }
+
   // Ports only the scene can tell (which topics a recorder records, which a player publishes from
   // its file), decided when the scene is loaded, in addition to the declared ones. The component
   // opens them with Context::subscribeSerialized / serializedPublisher.
@@ -101,6 +110,7 @@ class ComponentSpec {
 
   std::vector<PortSpec> ports_;
   std::vector<ParameterSpec> parameters_;
+  std::vector<Requirement> requirements_;
   ScenePortResolver scene_port_resolver_;
   std::string scene_ports_doc_;
 };

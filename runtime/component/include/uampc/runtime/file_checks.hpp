@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <system_error>
 
 namespace uampc {
@@ -24,6 +25,14 @@ inline bool isRegularFile(const std::filesystem::path& path) {
 inline bool isDirectory(const std::filesystem::path& path) {
   std::error_code ignored;
   return std::filesystem::is_directory(path, ignored);
+}
+
+// Why a path a user gave as a file is not one: "is a directory, not a file", "is not a regular
+// file" (a device, a pipe), or "file not found"; for messages.
+inline std::string whyNotAFile(const std::filesystem::path& path) {
+  if (isDirectory(path)) return "is a directory, not a file";
+  if (pathExists(path)) return "is not a regular file";
+  return "file not found";
 }
 
 }  // namespace uampc

@@ -16,6 +16,11 @@ enum class LogLevel { kDebug = 0, kInfo = 1, kWarn = 2, kError = 3 };
 // The level below which lines are dropped, from UAMPC_LOG_LEVEL (debug, info, warn, error).
 LogLevel logThreshold();
 
+// `text` with its control bytes (but newlines and tabs) written as \xNN: what a scene, a map
+// header or a peer sent is quoted in messages, and a terminal must not act on it (an escape
+// sequence that recolours or clears it). Every log line and scene error goes through it.
+std::string printableText(const std::string& text);
+
 class Logger {
  public:
   // clock_seconds gives the time printed in front of each line.

@@ -38,6 +38,7 @@ struct ParameterSpec {
   std::optional<double> max;
   bool zero_is_off = false;                     // 0 is allowed besides [min, max]: it switches off
   std::vector<std::string> choices;             // allowed strings; empty: any
+  std::size_t list_length = 0;                  // a list of numbers of exactly this many; 0: any
   // Part of the rig (the LiDAR, its model and its mounting on the motor): set once in the scene's
   // rig: block and given to every component that declares it, never in one component's params.
   bool rig = false;
@@ -55,6 +56,7 @@ struct ParameterSpec {
   ParameterSpec& between(double lo, double hi) { min = lo; max = hi; return *this; }
   ParameterSpec& orOff() { zero_is_off = true; return *this; }
   ParameterSpec& oneOf(std::vector<std::string> allowed) { choices = std::move(allowed); return *this; }
+  ParameterSpec& ofLength(std::size_t n) { list_length = n; return *this; }
   ParameterSpec& partOfRig() { rig = true; return *this; }
 };
 
