@@ -180,16 +180,22 @@ class UampcCli {
 
   void addLaunch() {
     CLI::App* sub =
-        addCommand("launch", "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR]\n[--view [--view-port P] [--view-address A]]",
+        addCommand("launch",
+                   "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR [--overwrite]]\n"
+                   "[--view [--view-port P] [--view-address A]]",
                    "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
                    "(seed, domain_id, ...). --out DIR collects the run's outputs, with DIR/scene.yaml (the\n"
                    "resolved scene: launch it to run the same again) and DIR/run_info.json (scene, overrides,\n"
-                   "seed, versions, every parameter; also in DIR/metrics.json as \"run\"). Ctrl-C stops\n"
+                   "seed, versions, every parameter; also in DIR/metrics.json as \"run\"); a DIR that holds a run\n"
+                   "already is refused unless --overwrite is given. Ctrl-C stops\n"
                    "everything, while starting or running (exit code 130). --view serves the run live to Foxglove\n"
                    "(docs/user/viewing.md).");
     addScene(sub);
     addOverrides(sub);
     addOutput(sub);
+    sub->add_flag("--overwrite", options_.scene.overwrite,
+                  "Write into --out DIR even if it holds a run already (its run_info.json or metrics.json);\n"
+                  "files the new run does not write are left as they are.");
     addViewer(sub, options_.scene.viewer);
     commands_.push_back({sub, withOverrides([this] {
                            options_.scene.uampc_version = uampc::app::uampcVersion();  // for the run's record
@@ -353,12 +359,15 @@ class UampcCli {
     uampc::app::RecordOptions& o = options_.record;
     CLI::App* sub = addCommand(
         "record",
-        "uampc record -o FILE.mcap [--domain N] [--compression zstd|lz4|none] [--chunk-size BYTES]\n"
-        "[--duration S] [--security DIR] [TOPIC ...]",
+        "uampc record -o FILE.mcap [--overwrite] [--domain N] [--compression zstd|lz4|none]\n"
+        "[--chunk-size BYTES] [--duration S] [--security DIR] [TOPIC ...]",
         "Record the topics of a running system (every ROS topic discovered on the domain, of uampc or any\n"
         "other DDS vendor, by default) to an MCAP file as rosbag2 writes it (Foxglove, ros2 bag, uampc play).\n"
         "Ctrl-C stops it and completes the file. Inside a scene, use the recorder component.");
-    sub->add_option("-o,--output", o.output, "The file to write.")->required()->type_name("FILE.mcap");
+    sub->add_option("-o,--output", o.output, "The file to write; an existing one only with --overwrite.")
+        ->required()
+        ->type_name("FILE.mcap");
+    sub->add_flag("--overwrite", o.overwrite, "Replace -o FILE.mcap if it exists (without it, an existing file is refused).");
     sub->add_option("TOPIC", o.topics,
                     "Topics to record (default: all but the lockstep protocol's, /uampc/lockstep/...; name one to\n"
                     "record it).")

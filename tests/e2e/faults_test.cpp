@@ -176,5 +176,55 @@ TEST(Faults, AnOutputDirectoryRemovedDuringTheRunStopsItWithTheReason) {
   EXPECT_TRUE(processesOfRun(domain).empty());
 }
 
+// A launch into a directory that holds a run replaced it silently; it is refused, naming the file
+// that shows the run and the option, unless --overwrite is given. An empty existing directory is
+// fine (docs/decisions/no-silent-overwrite.md).
+TEST(Faults, AnOutputDirectoryHoldingARunIsRefusedUnlessOverwriteIsGiven) {
+  const std::string out = freshDirectory("faults_out_holds_a_run");  // exists, empty
+  const std::string launch = "launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + out +
+                             " --set clock.duration=0.5" + domainOverride(DomainBlock::kFaults, 7);
+  const CommandResult first = runUampc(launch);
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::string record = run_files::inDirectory(out, run_files::kRunInfoFile);
+  const std::string before = readFile(record);
+  const CommandResult again = runUampc(launch + " --set seed=2");
+  EXPECT_EQ(again.exit_code, 1) << again.output;
+  EXPECT_NE(again.output.find("--out " + out + " already holds a run (" + record + "); give --overwrite"),
+            std::string::npos)
+      << again.output;
+  EXPECT_NE(again.output.find("nothing was started"), std::string::npos) << again.output;
+  EXPECT_EQ(readFile(record), before);
+  // metrics.json alone says so too (a run whose record was removed).
+  fs::remove(record);
+  std::ofstream(run_files::inDirectory(out, run_files::kMetricsFile)) << "{}";
+  EXPECT_EQ(runUampc(launch).exit_code, 1);
+  const CommandResult overwritten = runUampc(launch + " --set seed=2 --overwrite");
+  EXPECT_EQ(overwritten.exit_code, 0) << overwritten.output;
+  EXPECT_NE(readFile(record).find("\"seed\": 2"), std::string::npos) << readFile(record);
+}
+
+// `uampc record -o EXISTING.mcap` replaced a 50 MB recording with a 165-byte one; it is refused
+// before anything is recorded, unless --overwrite is given.
+TEST(Faults, RecordRefusesAnExistingFileUnlessOverwriteIsGiven) {
+  const std::string dir = freshDirectory("faults_record_existing");
+  const std::string file = dir + "/earlier.mcap";
+  std::ofstream(file) << "an earlier recording";
+  const std::string record = "record -o " + file + " --duration 0.2 --domain " +
+                             std::to_string(testDomain(DomainBlock::kFaults, 8));
+  const CommandResult refused = runUampc(record);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find(file + " exists; give --overwrite to replace it"), std::string::npos)
+      << refused.output;
+  EXPECT_EQ(readFile(file), "an earlier recording");
+  const CommandResult replaced = runUampc(record + " --overwrite");
+  EXPECT_EQ(replaced.exit_code, 0) << replaced.output;
+  EXPECT_NE(readFile(file), "an earlier recording");
+  // A new file needs no option.
+  EXPECT_EQ(runUampc("record -o " + dir + "/new.mcap --duration 0.2 --domain " +
+                     std::to_string(testDomain(DomainBlock::kFaults, 8)))
+                .exit_code,
+            0);
+}
+
 }  // namespace
 }  // namespace uampc::test

@@ -3,6 +3,7 @@
 // by the scene's path.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -11,6 +12,8 @@
 #include "command_runner.hpp"
 #include "test_domains.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/component_library.hpp"
+#include "uampc/runtime/scene.hpp"
 
 namespace uampc::test {
 namespace {
@@ -194,6 +197,33 @@ TEST(SceneValidation, ShippedScenesValidateWithoutWarnings) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << scene << ":\n" << r.output;
   }
+}
+
+// The shipped scenes name no DDS domain (default.yaml pinned 0): each runs on ROS_DOMAIN_ID when it
+// is set, as a ROS 2 user expects, else on 0; --set domain_id=N still wins (docs/user/scenes.md).
+TEST(SceneValidation, ShippedScenesRunOnRosDomainIdUnlessDomainIdIsSet) {
+  const std::string ros_domain = std::to_string(testDomain(DomainBlock::kSceneValidation, 1));
+  const std::string uampc = "ROS_DOMAIN_ID=" + ros_domain + " " + binaryPath("bin/uampc");
+  const CommandResult r =
+      runShell(uampc + " launch " + sourcePath("config/scenes/default.yaml") + " --set clock.duration=0.05");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("lockstep, DDS domain " + ros_domain + ")"), std::string::npos) << r.output;
+  const std::string set_domain = std::to_string(testDomain(DomainBlock::kSceneValidation, 2));
+  const CommandResult set = runShell(uampc + " launch " + sourcePath("config/scenes/default_split.yaml") +
+                                     " --set clock.duration=0.05 --set domain_id=" + set_domain);
+  EXPECT_EQ(set.exit_code, 0) << set.output;
+  EXPECT_NE(set.output.find("lockstep, DDS domain " + set_domain + ")"), std::string::npos) << set.output;
+  // Every other shipped scene the same, loaded as launch loads it (replay_lo.yaml needs a recording
+  // to load: its file is read below).
+  ASSERT_EQ(setenv("ROS_DOMAIN_ID", ros_domain.c_str(), 1), 0);
+  ComponentCatalog catalog({binaryPath("lib/uampc/components")});
+  for (const auto& entry : std::filesystem::directory_iterator(sourcePath("config/scenes"))) {
+    if (entry.path().extension() != ".yaml") continue;
+    EXPECT_EQ(readFile(entry.path().string()).find("\ndomain_id:"), std::string::npos) << entry.path();
+    if (entry.path().filename() == "replay_lo.yaml") continue;
+    EXPECT_EQ(loadScene(entry.path().string(), {}, catalog).domain_id, std::stoi(ros_domain)) << entry.path();
+  }
+  unsetenv("ROS_DOMAIN_ID");
 }
 
 TEST(SceneValidation, GraphPrintsMermaidByDefault) {

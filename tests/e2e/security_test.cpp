@@ -351,11 +351,11 @@ TEST(Security, MissingExpiredAndMismatchedFilesAreRefusedByNameAtTheSceneLine) {
 // `launch --view` on a secured run: the viewer joins with the observer identity of the scene's
 // security directory, and Foxglove's client decodes the run's scans through it.
 TEST(Security, TheViewerOfASecuredRunJoinsWithTheObserverIdentity) {
-  const int port = 18760 + domain(8);
+  const int port = 18760 + domain(9);
   const std::string out = freshDirectory("security_viewer");
   const std::string log = out + ".log";
   const pid_t run = startLaunch(sourcePath(kScene) + " --out " + out + securedBy(keys()) + " --set domain_id=" +
-                                    std::to_string(domain(8)) +
+                                    std::to_string(domain(9)) +
                                     " --set clock.duration=8 --set clock.real_time_factor=1 --view --view-port " +
                                     std::to_string(port),
                                 log);
@@ -365,6 +365,46 @@ TEST(Security, TheViewerOfASecuredRunJoinsWithTheObserverIdentity) {
   ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
   EXPECT_EQ(seen.exit_code, 0) << seen.output;
   EXPECT_NE(seen.output.find("\"/lidar/points\":{\"received\":"), std::string::npos) << seen.output;
+}
+
+// A private key open to group or others, or a folder of the keys they may write in, is used with a
+// warning naming the file, its mode and the chmod that fixes it: for a scene's security directory
+// (validate, launch) and for a tool's --security. init makes none, whatever the umask
+// (docs/decisions/security-key-permissions.md).
+TEST(Security, KeysAndFoldersOpenToOthersAreUsedWithAWarningSayingHowToFixThem) {
+  BrokenKeys k("security_open_keys");
+  const std::string control_key = k.dir + "/processes/control/key.pem";
+  fs::permissions(control_key, fs::perms(0666));
+  fs::permissions(k.dir + "/processes", fs::perms::all);
+  const CommandResult r = k.validate();
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(k.scene + ":3:14: warning: security: " + control_key + ": a private key with mode 0666"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("fix: chmod 600 " + control_key), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(k.dir + "/processes: a folder of the security directory with mode 0777"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("fix: chmod go-w " + k.dir + "/processes\n"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(k.dir + "/processes/sim/key.pem"), std::string::npos) << r.output;  // 0600: fine
+
+  const std::string observer_key = k.dir + "/tools/observer/key.pem";
+  fs::permissions(observer_key, fs::perms(0640));
+  const CommandResult tool =
+      runUampc("topic list --wait 0 --domain " + std::to_string(domain(8)) + " --security " + k.dir);
+  EXPECT_EQ(tool.exit_code, 0) << tool.output;
+  EXPECT_NE(tool.output.find("warning: security: " + observer_key + ": a private key with mode 0640"),
+            std::string::npos)
+      << tool.output;
+
+  const std::string fresh = k.root + "/made_under_umask_000";
+  const CommandResult init = runShell("umask 000 && UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
+                                      binaryPath("bin/uampc") + " security init " + fresh + " --scene " +
+                                      sourcePath(kScene));
+  ASSERT_EQ(init.exit_code, 0) << init.output;
+  const CommandResult clean = runUampc("validate " + sourcePath(kScene) + securedBy(fresh));
+  EXPECT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_EQ(clean.output.find("warning: security"), std::string::npos) << clean.output;
 }
 
 }  // namespace

@@ -111,5 +111,22 @@ TEST(Simulator, CorruptMapsAndTrajectoriesStopTheRunNamingTheFile) {
   EXPECT_NE(r.output.find(bad_tum + ":2:"), std::string::npos) << r.output;
 }
 
+// A pose 1e20 m out aborted the ray-caster inside Embree (signal 6). It is refused when the
+// trajectory is read, and the run does not start (docs/user/faults.md).
+TEST(Simulator, ATrajectoryFarFromTheOriginIsRefusedBeforeTheRayCasterRuns) {
+  const std::string dir = freshDirectory("simulator_far_trajectory");
+  const std::string far_tum = dir + "/far.tum";
+  std::ofstream(far_tum) << "0 0 0 1 0 0 0 1\n1 1e20 0 1 0 0 0 1\n2 2 0 1 0 0 0 1\n";
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") +
+                                   domainOverride(DomainBlock::kSimulator, 3) +
+                                   " --set world.trajectory=file --set world.trajectory_file=" + far_tum);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("component 'world' (map_provider) could not start: " + far_tum +
+                          ":2: position is 1e+20 m from the origin"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("signal"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace uampc::test

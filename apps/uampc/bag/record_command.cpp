@@ -15,6 +15,7 @@
 #include "topic/topic_discovery.hpp"
 #include "uampc/recording/recording_writer.hpp"
 #include "uampc/runtime/dds_names.hpp"
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/lockstep_topics.hpp"
 #include "uampc/runtime/message_type.hpp"
 #include "uampc/runtime/stop_signals.hpp"
@@ -155,6 +156,14 @@ class Recorder {
   std::deque<Arrival> arrivals_;
 };
 
+// An existing recording is not replaced without --overwrite (docs/decisions/no-silent-overwrite.md):
+// a 50 MB recording became a 165-byte one. Only regular files: a device (/dev/null) is written as
+// before, and a directory fails in the writer with its own message.
+void refuseExistingOutput(const RecordOptions& options) {
+  if (options.overwrite || !isRegularFile(options.output)) return;
+  throw std::runtime_error(options.output + " exists; give --overwrite to replace it, or another -o FILE.mcap");
+}
+
 }  // namespace
 
 int recordCommand(const RecordOptions& options) {
@@ -162,6 +171,7 @@ int recordCommand(const RecordOptions& options) {
     for (const std::string& t : options.topics) {
       if (t.empty() || t.front() != '/') throw std::runtime_error("'" + t + "' is not a ROS topic name (/name/space)");
     }
+    refuseExistingOutput(options);
     const int domain = options.domain_id >= 0 ? options.domain_id : rosDomainIdFromEnvironment().value_or(0);
     catchStopSignals();
     Recorder recorder(options, domain);

@@ -11,6 +11,7 @@ namespace uampc::app {
 
 struct RecordOptions {
   std::string output;
+  bool overwrite = false;  // replace an existing output file (docs/decisions/no-silent-overwrite.md)
   int domain_id = -1;               // -1: ROS_DOMAIN_ID, else 0
   std::vector<std::string> topics;  // ROS names; empty: every ROS topic discovered
   std::string compression = "zstd";
@@ -19,7 +20,8 @@ struct RecordOptions {
   std::string security_dir;  // a secured domain: DIR of uampc security init (its observer identity)
 };
 
-// Exit codes: 0 when stopped by Ctrl-C, SIGTERM or --duration (the file is complete), 1 on errors.
+// Exit codes: 0 when stopped by Ctrl-C, SIGTERM or --duration (the file is complete), 1 on errors
+// (an existing output file without overwrite among them: refused before anything is recorded).
 int recordCommand(const RecordOptions& options);
 
 }  // namespace uampc::app

@@ -135,6 +135,12 @@ void ownerOnly(const fs::path& file) {
   fs::permissions(file, fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::replace);
 }
 
+// The folders hold the keys: nobody but their owner may replace files in them, whatever the umask
+// (the runtime warns about such folders: docs/decisions/security-key-permissions.md).
+void ownerWritesOnly(const fs::path& folder) {
+  fs::permissions(folder, fs::perms::group_write | fs::perms::others_write, fs::perm_options::remove);
+}
+
 void makeCa(const fs::path& dir, int days) {
   openssl(dir, {"req", "-x509", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes", "-keyout",
                 (dir / "ca.key.pem").string(), "-out", (dir / "ca.cert.pem").string(), "-days", std::to_string(days),
@@ -150,6 +156,9 @@ void signDocument(const fs::path& dir, const fs::path& xml, const fs::path& sign
 void makeIdentity(const fs::path& dir, const std::string& identity, const TopicGrant& grant, int days, int serial) {
   const fs::path folder = identityFolder(dir.string(), identity);
   fs::create_directories(folder);
+  ownerWritesOnly(folder);
+  std::error_code ec;
+  if (!fs::equivalent(folder.parent_path(), dir, ec)) ownerWritesOnly(folder.parent_path());  // processes/, tools/
   const fs::path request = folder / "cert.csr";
   openssl(dir, {"req", "-new", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes", "-keyout",
                 (folder / "key.pem").string(), "-out", request.string(), "-subj", "/O=uampc/CN=" + identity});
@@ -214,6 +223,7 @@ int securityInitCommand(const SecurityInitOptions& options) {
   const auto grants = topicGrants(scene);
   try {
     fs::create_directories(dir);
+    ownerWritesOnly(dir);
     makeCa(dir, options.days);
     run_files::writeTextFile(dir / "governance.xml", governanceXml(options.sign_metadata));
     signDocument(dir, dir / "governance.xml", dir / "governance.p7s");

@@ -9,8 +9,11 @@
 
 #include <ctime>
 #include <filesystem>
+#include <iostream>
 #include <memory>
+#include <optional>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 
 #include "uampc/runtime/file_checks.hpp"
@@ -93,7 +96,54 @@ void checkValidity(const std::string& file, const std::string& document, std::ve
   if (match[1].str() < now) problems.push_back(file + ": the permissions expired on " + match[1].str() + " (UTC)");
 }
 
+// A file's permission bits as chmod writes them ("0666"); nullopt when they cannot be read.
+std::optional<std::string> modeText(const fs::path& path, fs::perms& perms) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status)) return std::nullopt;
+  perms = status.permissions() & fs::perms::mask;
+  std::ostringstream text;
+  text << '0' << std::oct << static_cast<unsigned>(perms & fs::perms::all);
+  return text.str();
+}
+
+bool any(fs::perms perms, fs::perms bits) { return (perms & bits) != fs::perms::none; }
+
+// ssh's rule for a private key: no permission bit for group or others.
+void checkKeyMode(const fs::path& key, std::vector<std::string>& warnings) {
+  fs::perms perms{};
+  const auto mode = modeText(key, perms);
+  if (!mode || !any(perms, fs::perms::group_all | fs::perms::others_all)) return;
+  warnings.push_back(key.string() + ": a private key with mode " + *mode +
+                     ", open to others than its owner (they could act as this identity on the domain); "
+                     "fix: chmod 600 " + key.string());
+}
+
+// The folders from the key's up to the security directory: who may write in one may replace the
+// key, the certificates and the permissions in it.
+void checkFolderModes(const fs::path& root, const fs::path& key, std::vector<std::string>& warnings) {
+  const fs::path top = root.lexically_normal();
+  for (fs::path folder = key.parent_path().lexically_normal(); !folder.empty(); folder = folder.parent_path()) {
+    fs::perms perms{};
+    const auto mode = modeText(folder, perms);
+    if (mode && any(perms, fs::perms::group_write | fs::perms::others_write)) {
+      warnings.push_back(folder.string() + ": a folder of the security directory with mode " + *mode +
+                         ", writable by others than its owner (they could replace its keys and certificates); "
+                         "fix: chmod go-w " + folder.string());
+    }
+    if (folder == top || folder == folder.parent_path()) break;
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> securityPermissionWarnings(const DdsIdentity& identity) {
+  std::vector<std::string> warnings;
+  if (!identity.enabled()) return warnings;
+  checkKeyMode(identity.private_key, warnings);
+  checkFolderModes(fs::path(identity.ca).parent_path(), identity.private_key, warnings);
+  return warnings;
+}
 
 std::string identityFolder(const std::string& directory, const std::string& name) {
   const fs::path root(directory);
@@ -172,7 +222,10 @@ DdsIdentity checkedSecurityIdentity(const std::string& directory, const std::str
   const DdsIdentity identity = securityIdentity(directory, name);
   if (!identity.enabled()) return identity;
   const std::vector<std::string> problems = checkSecurityIdentity(identity);
-  if (problems.empty()) return identity;
+  if (problems.empty()) {
+    for (const auto& w : securityPermissionWarnings(identity)) std::cerr << "warning: security: " << w << "\n";
+    return identity;
+  }
   std::string text = "security directory " + directory + ", identity " + name + ":";
   for (const auto& p : problems) text += "\n  " + p;
   throw std::runtime_error(text);

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "lockstep_clock.hpp"
+#include "uampc/run_files/run_directory.hpp"
 #include "uampc/runtime/child_processes.hpp"
 #include "uampc/runtime/domain_run_lock.hpp"
 #include "uampc/runtime/file_checks.hpp"
@@ -173,6 +174,27 @@ void endIfTheStopHangs(const std::string& process) {
   }).detach();
 }
 
+// The file that shows DIR already holds a run (its record or its metrics); empty if none. An empty
+// or unrelated directory is fine: only a run's own files say a run would be overwritten.
+std::string earlierRunIn(const std::string& directory) {
+  for (const char* name : {run_files::kRunInfoFile, run_files::kMetricsFile}) {
+    const std::string file = run_files::inDirectory(directory, name);
+    if (pathExists(file)) return file;
+  }
+  return {};
+}
+
+// A run is not written over another without --overwrite (docs/decisions/no-silent-overwrite.md):
+// the earlier run's outputs would be replaced file by file, silently.
+bool refusesEarlierRun(const LaunchOptions& options) {
+  if (options.output_directory.empty() || options.overwrite) return false;
+  const std::string file = earlierRunIn(options.output_directory);
+  if (file.empty()) return false;
+  std::cerr << "uampc: --out " << options.output_directory << " already holds a run (" << file
+            << "); give --overwrite to write over it, or choose another directory; nothing was started\n";
+  return true;
+}
+
 }  // namespace
 
 // What a run on a domain is, for a launch the domain's lock refuses.
@@ -220,6 +242,7 @@ int launch(const LaunchOptions& options) {
       return 1;
     }
   }
+  if (refusesEarlierRun(options)) return 1;
   if (!options.output_directory.empty() && !recordRun(scene, options)) return 1;
   if (stopRequested()) return exitCodeAfter(0);  // stopped while loading: nothing to stop
 

@@ -402,8 +402,15 @@ void SceneValidator::readSecurity(const YAML::Node& node, Scene& scene) {
                 "); make the directory again with `uampc security init DIR --scene` this scene");
       continue;
     }
-    for (const auto& problem : checkSecurityIdentity(securityIdentity(scene.security_directory, name))) {
+    const DdsIdentity identity = securityIdentity(scene.security_directory, name);
+    for (const auto& problem : checkSecurityIdentity(identity)) {
       if (said.insert(problem).second) error(node["directory"], "security: identity '" + name + "': " + problem);
+    }
+    // Keys open to others are used, with a word (docs/decisions/security-key-permissions.md).
+    for (const auto& warning : securityPermissionWarnings(identity)) {
+      if (said.insert(warning).second) {
+        scene.warnings.push_back(diagnostic(locationOf(node["directory"]), "warning", "security: " + warning));
+      }
     }
   }
 }

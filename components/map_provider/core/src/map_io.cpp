@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "ply_reader.hpp"
+#include "uampc/world/coordinate_bound.hpp"
 #include "uampc/world/point_sampling.hpp"
 
 namespace uampc::world {
@@ -269,15 +270,44 @@ PcdLayout checkPcd(const std::string& path, const std::string& bytes) {
   return layout;
 }
 
+// The file line of an ASCII PCD's point `index`, counting data rows as checkPcdAsciiRows does
+// (lines without a value skipped).
+std::size_t asciiPcdLine(const std::string& bytes, std::size_t header_bytes, std::size_t index) {
+  std::size_t line = static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + header_bytes, '\n'));
+  std::istringstream in(bytes.substr(header_bytes));
+  std::size_t row = 0;
+  for (std::string text; std::getline(in, text);) {
+    ++line;
+    if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
+    if (row++ == index) break;
+  }
+  return line;
+}
+
+// Refuses the first finite point beyond the coordinate bound (coordinate_bound.hpp), by its line
+// in an ASCII file, by its index in a binary one. Indices are the file's: toPoints keeps them.
+void checkPcdCoordinates(const std::vector<Eigen::Vector3f>& points, const std::string& path,
+                         const std::string& bytes, const PcdLayout& layout) {
+  const auto beyond =
+      std::find_if(points.begin(), points.end(), [](const Eigen::Vector3f& p) { return !withinCoordinateBound(p); });
+  if (beyond == points.end()) return;
+  const auto index = static_cast<std::size_t>(beyond - points.begin());
+  const std::string where = layout.data == "ascii"
+                                ? path + ":" + std::to_string(asciiPcdLine(bytes, layout.header_bytes, index)) + ": point "
+                                : path + ": point " + std::to_string(index) + " (counted from 0) ";
+  throw std::runtime_error(where + beyondBoundText(*beyond));
+}
+
 void loadPcd(const std::string& path, LoadedMap& map) {
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  checkPcd(path, bytes);
+  const PcdLayout layout = checkPcd(path, bytes);
   pcl::PCLPointCloud2 cloud;
   if (pcl::io::loadPCDFile(path, cloud) < 0) {
     throw std::runtime_error(path + ": not a readable PCD file");
   }
   map.points = toPoints(cloud, path);
+  checkPcdCoordinates(map.points, path, bytes, layout);
   keepFinitePoints(map.points, map);
 }
 
@@ -332,6 +362,9 @@ LoadedMap loadMap(const std::string& path, const MapLoadOptions& options) {
     throw std::runtime_error(path + ": no such map file");
   }
   if (std::filesystem::file_size(path, ec) == 0) throw std::runtime_error(path + ": empty file");
+  if (!withinCoordinateBound(options.offset)) {
+    throw std::runtime_error(path + ": the map's offset " + beyondBoundText(options.offset));
+  }
   LoadedMap map;
   const std::string ext = extensionOf(path);
   try {

@@ -1,5 +1,6 @@
 #include "ply_reader.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -7,6 +8,8 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "uampc/world/coordinate_bound.hpp"
 
 namespace uampc::world {
 namespace {
@@ -50,8 +53,8 @@ bool typeOf(const std::string& t, int& size, char& kind) {
 // Reads values one at a time from the data part, never past its end.
 class DataReader {
  public:
-  DataReader(std::string data, Format format, const std::string& path)
-      : data_(std::move(data)), format_(format), path_(path) {
+  DataReader(std::string data, Format format, const std::string& path, std::size_t header_lines)
+      : data_(std::move(data)), format_(format), path_(path), header_lines_(header_lines) {
     if (format_ == Format::kAscii) ascii_.str(data_);
   }
 
@@ -134,10 +137,21 @@ class DataReader {
     throw std::runtime_error(path_ + ": corrupt PLY data: " + what);
   }
 
+  // Where the value last read is, to name it in an error: "FILE:LINE: " in ASCII data (counted
+  // only then), "FILE: " in binary data, where the caller names the element's index.
+  std::string where() {
+    if (format_ != Format::kAscii) return path_ + ": ";
+    const std::streamoff pos = ascii_.tellg();  // -1 once the data's end was reached
+    const auto end = pos < 0 ? data_.end() : data_.begin() + pos;
+    const auto line = header_lines_ + 1 + static_cast<std::size_t>(std::count(data_.begin(), end, '\n'));
+    return path_ + ":" + std::to_string(line) + ": ";
+  }
+
  private:
   std::string data_;
   Format format_;
   std::string path_;
+  std::size_t header_lines_;
   std::istringstream ascii_;
   std::size_t position_ = 0;
 };
@@ -145,6 +159,7 @@ class DataReader {
 struct PlyHeader {
   Format format = Format::kAscii;
   std::vector<Element> elements;
+  std::size_t lines = 0;  // "ply" to end_header
 };
 
 using BadPly = std::function<std::runtime_error(const std::string&)>;
@@ -182,6 +197,7 @@ PlyHeader readPlyHeader(std::istream& in, const BadPly& bad) {
     words >> key;
     if (key == "end_header") {
       ended = true;
+      header.lines = static_cast<std::size_t>(n) + 2;  // with the "ply" line
       break;
     }
     if (key.empty() || key == "comment" || key == "obj_info") continue;
@@ -252,6 +268,14 @@ std::vector<std::uint32_t> readList(DataReader& reader, const Element& e, const 
   return items;
 }
 
+// A finite vertex beyond the coordinate bound is refused (coordinate_bound.hpp), checked as read,
+// before float can turn it into infinity and the skip of non-finite vertices hides it.
+void checkVertexBound(DataReader& reader, const Eigen::Vector3d& v, std::size_t index) {
+  if (withinCoordinateBound(v)) return;
+  throw std::runtime_error(reader.where() + "vertex " + std::to_string(index) + " (counted from 0) " +
+                           beyondBoundText(v));
+}
+
 // One element's rows: vertices and faces go into contents, anything else is read past.
 void readElement(DataReader& reader, const Element& e, const std::string& path, PlyContents& contents) {
   if (e.count > reader.remainingValues()) reader.fail("element '" + e.name + "' count too large");
@@ -278,7 +302,10 @@ void readElement(DataReader& reader, const Element& e, const std::string& path, 
       std::vector<std::uint32_t> items = readList(reader, e, p, keep);
       if (keep) contents.faces.push_back(std::move(items));
     }
-    if (is_vertex) contents.vertices.push_back(v.cast<float>());
+    if (is_vertex) {
+      checkVertexBound(reader, v, i);
+      contents.vertices.push_back(v.cast<float>());
+    }
   }
 }
 
@@ -290,7 +317,7 @@ PlyContents readPly(const std::string& path) {
   const BadPly bad = [&](const std::string& what) { return std::runtime_error(path + ": not a valid PLY file: " + what); };
   const PlyHeader header = readPlyHeader(in, bad);
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  DataReader reader(std::move(data), header.format, path);
+  DataReader reader(std::move(data), header.format, path, header.lines);
   PlyContents contents;
   for (const Element& e : header.elements) readElement(reader, e, path, contents);
   return contents;

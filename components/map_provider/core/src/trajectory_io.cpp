@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "uampc/world/coordinate_bound.hpp"
+
 namespace uampc::world {
 namespace {
 
@@ -82,6 +84,7 @@ TimedPose parsePose(const std::vector<std::string>& f, std::size_t first, const 
   TimedPose p;
   p.time = v[0];
   p.position = {v[1], v[2], v[3]};
+  if (!withinCoordinateBound(p.position)) fail(path, line, "position " + beyondBoundText(p.position));
   p.orientation = Eigen::Quaterniond(v[7], v[4], v[5], v[6]);  // w, x, y, z
   const double norm = p.orientation.norm();
   if (norm < 1e-6) fail(path, line, "quaternion has zero norm");

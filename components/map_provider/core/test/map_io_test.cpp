@@ -192,6 +192,44 @@ std::string binaryPly(const TriangleMesh& mesh) {
   return out;
 }
 
+// Map points beyond 1e6 m from the origin are refused when read (a pose at 1e20 m aborted the
+// ray-caster inside Embree; docs/user/faults.md): by line in ASCII files, by index in binary ones.
+TEST(MapIo, PointsBeyondTheCoordinateBoundAreRefusedWithLineOrIndex) {
+  TempDir dir;
+  const std::string ascii_pcd = std::string(kAsciiPcdHeader) + "WIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA ascii\n";
+  // Line 13: the header is 10 lines, then a point, an empty line, then the far one.
+  expectLoadError(dir.write("far_ascii.pcd", ascii_pcd + "1 2 3\n\n0 1e20 0\n4 5 6\n"),
+                  "far_ascii.pcd:13: point is 1e+20 m from the origin, beyond the 1e+06 m");
+  std::vector<Eigen::Vector3f> points(5, Eigen::Vector3f(1, 2, 3));
+  points[3] = {0, 0, -3e7f};
+  savePointsPcd(dir.file("far_binary.pcd"), points);
+  expectLoadError(dir.file("far_binary.pcd"), "far_binary.pcd: point 3 (counted from 0) is 3e+07 m from the origin");
+  savePointsPcd(dir.file("far_compressed.pcd"), points, PcdEncoding::kBinaryCompressed);
+  expectLoadError(dir.file("far_compressed.pcd"), "far_compressed.pcd: point 3 (counted from 0) is 3e+07 m");
+
+  const std::string ply_header =
+      "ply\nformat ascii 1.0\ncomment far\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  // Beyond float's range too: refused, not turned into infinity and skipped.
+  expectLoadError(dir.write("far_ascii.ply", ply_header + "0 0 0\n1 0 0\n0 0 1e39\n3 0 1 2\n"),
+                  "far_ascii.ply:13: vertex 2 (counted from 0) is 1e+39 m from the origin");
+  TriangleMesh box;
+  box.addBox({0, 0, 0}, {1, 2, 3});
+  box.vertices[5].x() = 5e6f;
+  expectLoadError(dir.write("far_binary.ply", binaryPly(box)), "far_binary.ply: vertex 5 (counted from 0) is 5e+06 m");
+
+  // Non-finite points are still skipped, points within the bound loaded, and the offset bounded too.
+  EXPECT_EQ(loadMap(dir.write("near.pcd", ascii_pcd + "999999 0 0\nnan 0 0\n0 0 1\n")).points.size(), 2u);
+  MapLoadOptions far_offset;
+  far_offset.offset = {0, 0, 1e20f};
+  try {
+    loadMap(dir.file("near.pcd"), far_offset);
+    ADD_FAILURE() << "a map offset of 1e20 m was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("offset is 1e+20 m from the origin"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MapIo, BinaryPlyMesh) {
   TempDir dir;
   TriangleMesh box;

@@ -135,6 +135,19 @@ TEST(TrajectoryIo, MalformedFilesNameFileAndLine) {
   EXPECT_NO_THROW(readMcdCsv(dir.write("gap2.csv", header + good1 + "2,102.0,0,0,0,0,0,0,1\n"), loose));
 }
 
+// A position 1e20 m out aborted the ray-caster inside Embree; positions beyond 1e6 m from the
+// origin are refused when read, with file and line, in both formats (docs/user/faults.md).
+TEST(TrajectoryIo, PositionsBeyondTheCoordinateBoundAreRefusedWithFileAndLine) {
+  TempDir dir;
+  const std::string header = "num,t,x,y,z,qx,qy,qz,qw\n";
+  expectError([&] { readMcdCsv(dir.write("far.csv", header + "1,0,0,0,0,0,0,0,1\n2,0.1,0,1e20,0,0,0,0,1\n")); },
+              "far.csv:3: position is 1e+20 m from the origin, beyond the 1e+06 m");
+  expectError([&] { readTum(dir.write("far.tum", "# t x y z qx qy qz qw\n0 0 0 0 0 0 0 1\n0.1 0 0 -2e6 0 0 0 1\n")); },
+              "far.tum:3: position is 2e+06 m from the origin");
+  // Far, but within the bound: read as before.
+  EXPECT_NO_THROW(readTum(dir.write("near.tum", "0 999999 0 0 0 0 0 1\n0.1 0 0 999999 0 0 0 1\n")));
+}
+
 // The MCD trajectories copied into the repository (data/mcd).
 std::string mcdData() {
   const char* source = std::getenv("UAMPC_SOURCE_DIR");

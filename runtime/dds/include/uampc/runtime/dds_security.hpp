@@ -51,8 +51,16 @@ void applyDdsSecurity(eprosima::fastdds::dds::DomainParticipantQos& qos, const D
 // Fast DDS would only refuse to create the participant, without saying why.
 std::vector<std::string> checkSecurityIdentity(const DdsIdentity& identity);
 
+// What others than the owner could do with an identity's files: read its private key (any group or
+// other permission bit, as ssh judges a key), or replace its files (a folder from the security
+// directory down to the key writable by group or others). Each message names the file, its mode
+// and the chmod that fixes it. Warnings, not problems: the run goes on
+// (docs/decisions/security-key-permissions.md). Empty when all is well or a file is missing.
+std::vector<std::string> securityPermissionWarnings(const DdsIdentity& identity);
+
 // securityIdentity, checked: throws std::runtime_error with every problem checkSecurityIdentity
-// finds. Security off (an empty identity) when directory is empty. For the tools' --security.
+// finds, and writes securityPermissionWarnings to stderr. Security off (an empty identity) when
+// directory is empty. For the tools' --security.
 DdsIdentity checkedSecurityIdentity(const std::string& directory, const std::string& name);
 
 }  // namespace uampc

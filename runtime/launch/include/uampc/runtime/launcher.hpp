@@ -14,6 +14,9 @@ struct LaunchOptions {
   std::string scene_path;
   std::vector<Override> overrides;
   std::string output_directory;  // empty: no output directory
+  // launch only: write into an output directory that already holds a run (--overwrite); without it
+  // launch refuses one (docs/decisions/no-silent-overwrite.md).
+  bool overwrite = false;
   ViewerOptions viewer;          // launch only: a live viewer beside the run (--view)
   // Recorded with the run (run_record.hpp); the uampc command fills them in from its version.
   std::string uampc_version = "unknown";
@@ -21,7 +24,7 @@ struct LaunchOptions {
 };
 
 // Exit codes: 0 success, 1 a process or component failed (or the run's record could not be
-// written), 2 the scene is invalid, 130 Ctrl-C (SIGINT), whether the processes were still starting
+// written, or the output directory holds an earlier run and overwrite is false), 2 the scene is invalid, 130 Ctrl-C (SIGINT), whether the processes were still starting
 // or already running. With an output directory, writes the run's record there before anything
 // starts (run_record.hpp).
 int launch(const LaunchOptions& options);

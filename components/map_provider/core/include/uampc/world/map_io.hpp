@@ -11,7 +11,8 @@
 // A point map has no surfaces; the ray-caster gives each point a small sphere (see
 // raycaster::RayCastScene), so a point map must be dense enough for rays not to slip through.
 // Non-finite points are skipped and counted; triangles that use a skipped vertex or an index out
-// of range are dropped and counted. A missing, unreadable, corrupt or empty file throws
+// of range are dropped and counted. A finite point or vertex more than 1e6 m from the origin
+// (coordinate_bound.hpp) is refused, with its line (ASCII) or index (binary). A missing, unreadable, corrupt or empty file throws
 // std::runtime_error whose message starts with the file name.
 #pragma once
 

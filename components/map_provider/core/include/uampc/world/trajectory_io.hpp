@@ -4,8 +4,9 @@
 //            its quaternions describe a z-down body frame, see TrajectoryReadOptions::forMcd()).
 //   TUM:     "t x y z qx qy qz qw", whitespace separated, '#' starts a comment line.
 //
-// Every error (missing file, wrong column count, a field that is not a finite number, a zero
-// quaternion, a time not after the previous one, a gap longer than max_gap) throws
+// Every error (missing file, wrong column count, a field that is not a finite number, a position
+// more than 1e6 m from the origin (coordinate_bound.hpp), a zero quaternion, a time not after the
+// previous one, a gap longer than max_gap) throws
 // std::runtime_error naming file and line, e.g. "ntu.csv:17: expected 9 columns, got 7".
 #pragma once
 
