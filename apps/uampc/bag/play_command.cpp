@@ -8,6 +8,8 @@
 #include <memory>
 #include <thread>
 
+#include "cli/command_set.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/msgs/rosgraph_msgs.hpp"
 #include "uampc/recording/playback.hpp"
 #include "uampc/recording/restamp.hpp"
@@ -207,6 +209,47 @@ int playCommand(const PlayOptions& options) {
     std::cerr << "uampc play: error: " << e.what() << "\n";
     return 1;
   }
+}
+
+void addPlayCommand(CommandSet& commands) {
+  auto options = std::make_shared<PlayOptions>();
+  PlayOptions& o = *options;
+  CLI::App* sub = commands.add(
+      "play",
+      "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] "
+      "[--wait-for-readers] [--restamp] [--security DIR] [--view [--view-port P] [--view-address A]]",
+      "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
+      "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
+      "use the player component instead (config/scenes/replay_lo.yaml).");
+  sub->add_option("FILE.mcap", o.file, "The recording.")->required()->type_name("");
+  sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
+      ->check(CLI::Range(0, uampc::kMaxDomainId))
+      ->type_name("N");
+  sub->add_option("--rate", o.rate, "Playback speed: 2 plays twice as fast (default 1).")
+      ->check(command_line::kFinite)
+      ->check(CLI::Range(0.01, 100.0))
+      ->type_name("R");
+  sub->add_option("--start", o.start_s, "Skip the recording's first S seconds.")
+      ->check(command_line::kFiniteNonNegative)
+      ->type_name("S");
+  sub->add_option("--topics", o.topics, "Play only these topics (default: all).")->type_name("TOPIC ...");
+  sub->add_flag("--loop", o.loop, "Start over at the end, until Ctrl-C.");
+  sub->add_flag("--clock", o.clock,
+                "Publish /clock (100 Hz) with the recording's time, as ros2 bag play --clock. A recorded /clock\n"
+                "and the lockstep protocol's topics (/uampc/lockstep/...) are never played.");
+  sub->add_flag("--wait-for-readers", o.wait_for_readers,
+                "Start only once every played topic has a reader (else after 0.5 s), so that no sample goes\n"
+                "out before the system under test or a recorder hears it.");
+  sub->add_flag("--restamp", o.restamp,
+                "Move every header stamp (and a PointCloud2's absolute point times) to the present, as if the\n"
+                "recording were happening now: for a real-time system that pairs the played samples with live ones\n"
+                "by stamp (a recorded LiDAR beside a live motor, docs/user/rig.md).");
+  sub->add_option("--security", o.security_dir,
+                  "Join a secured domain with the player identity of DIR (uampc security init), which may\n"
+                  "publish every topic, the motor's commands too.")
+      ->type_name("DIR");
+  addViewerOptions(sub, o.viewer);
+  commands.onRun(sub, [options] { return playCommand(*options); });
 }
 
 }  // namespace uampc::app

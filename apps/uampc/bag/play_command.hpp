@@ -4,6 +4,8 @@
 // system (the player component does the same inside a scene, also in lockstep).
 #pragma once
 
+#include "cli/command_set.hpp"
+
 #include <string>
 #include <vector>
 
@@ -27,5 +29,8 @@ struct PlayOptions {
 
 // Exit codes: 0 at the end of the recording, 1 for a bad recording or DDS failure, 130 on Ctrl-C.
 int playCommand(const PlayOptions& options);
+
+// `uampc play` and its options.
+void addPlayCommand(CommandSet& commands);
 
 }  // namespace uampc::app

@@ -11,8 +11,10 @@
 #include <set>
 #include <thread>
 
+#include "cli/command_set.hpp"
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/recording/recording_writer.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/file_checks.hpp"
@@ -198,6 +200,45 @@ int recordCommand(const RecordOptions& options) {
     std::cerr << "uampc record: error: " << e.what() << "\n";
     return 1;
   }
+}
+
+void addRecordCommand(CommandSet& commands) {
+  auto options = std::make_shared<RecordOptions>();
+  RecordOptions& o = *options;
+  CLI::App* sub = commands.add(
+      "record",
+      "uampc record -o FILE.mcap [--overwrite] [--domain N] [--compression zstd|lz4|none]\n"
+      "[--chunk-size BYTES] [--duration S] [--security DIR] [TOPIC ...]",
+      "Record the topics of a running system (every ROS topic discovered on the domain, of uampc or any\n"
+      "other DDS vendor, by default) to an MCAP file as rosbag2 writes it (Foxglove, ros2 bag, uampc play).\n"
+      "Ctrl-C stops it and completes the file. Inside a scene, use the recorder component.");
+  sub->add_option("-o,--output", o.output, "The file to write; an existing one only with --overwrite.")
+      ->required()
+      ->type_name("FILE.mcap");
+  sub->add_flag("--overwrite", o.overwrite,
+                "Replace -o FILE.mcap if it exists (without it, an existing file is refused).");
+  sub->add_option("TOPIC", o.topics,
+                  "Topics to record (default: all but the lockstep protocol's, /uampc/lockstep/...; name one to\n"
+                  "record it).")
+      ->type_name("");
+  sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
+      ->check(CLI::Range(0, uampc::kMaxDomainId))
+      ->type_name("N");
+  sub->add_option("--compression", o.compression, "Chunk compression: zstd (default), lz4 or none.")
+      ->check(CLI::IsMember({"zstd", "lz4", "none"}).description(""))
+      ->type_name("zstd|lz4|none");
+  sub->add_option("--chunk-size", o.chunk_size,
+                  "Bytes of samples per chunk (default 4 MiB); a killed recorder loses at most the last three chunks.")
+      ->check(CLI::Range(std::uint64_t{1024}, std::uint64_t{1} << 30))
+      ->type_name("BYTES");
+  sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
+      ->check(command_line::kFiniteNonNegative)
+      ->type_name("S");
+  sub->add_option("--security", o.security_dir,
+                  "Join a secured domain with the observer identity of DIR (uampc security init), which may\n"
+                  "read every topic.")
+      ->type_name("DIR");
+  commands.onRun(sub, [options] { return recordCommand(*options); });
 }
 
 }  // namespace uampc::app

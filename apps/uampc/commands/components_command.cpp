@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
+#include "cli/command_set.hpp"
 #include "uampc/run_files/json_text.hpp"
 #include "uampc/runtime/component_library.hpp"
 
@@ -20,9 +22,13 @@ run_files::Json jsonValue(const ParameterValue& v) {
 const char* directionName(PortDirection d) { return d == PortDirection::kInput ? "input" : "output"; }
 
 run_files::Json portJson(const PortSpec& port) {
-  return {{"name", port.name},         {"direction", directionName(port.direction)},
-          {"type", port.type_name},    {"topic", port.default_topic},
-          {"qos", toString(port.qos)}, {"doc", port.doc}, {"for_viewers", port.for_viewers}};
+  return {{"name", port.name},
+          {"direction", directionName(port.direction)},
+          {"type", port.type_name},
+          {"topic", port.default_topic},
+          {"qos", toString(port.qos)},
+          {"doc", port.doc},
+          {"for_viewers", port.for_viewers}};
 }
 
 run_files::Json parameterJson(const ParameterSpec& param) {
@@ -141,8 +147,8 @@ void printMarkdown(const std::vector<const ComponentLibrary*>& libraries) {
     for (const auto& param : spec.parameters()) {
       const std::string value = param.required() ? "required" : "`" + toString(*param.default_value) + "`";
       std::cout << "| " << param.name << (param.rig ? " (*rig*)" : "") << " | " << toString(param.type) << " | "
-                << markdownCell(value) << " | " << markdownCell(boundsAndChoices(param)) << " | " << markdownCell(param.doc)
-                << " |\n";
+                << markdownCell(value) << " | " << markdownCell(boundsAndChoices(param)) << " | "
+                << markdownCell(param.doc) << " |\n";
     }
   }
 }
@@ -186,6 +192,25 @@ int validateCommand(const LaunchOptions& options) {
     for (const auto& m : e.messages()) std::cerr << m << "\n";
     return 2;
   }
+}
+
+void addComponentsCommand(CommandSet& commands) {
+  struct Options {
+    bool json = false;
+    bool markdown = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* sub = commands.add("components", "uampc components [--json | --markdown]",
+                               "List installed component types with their ports and parameters.");
+  CLI::Option* json = sub->add_flag("--json", options->json, "Print them as JSON (for tools) instead of text.");
+  sub->add_flag("--markdown", options->markdown,
+                "Print them as the Markdown page docs/user/components.md (without the libraries' paths).")
+      ->excludes(json);
+  commands.onRun(sub, [options] {
+    return componentsCommand(options->json       ? ComponentListFormat::kJson
+                             : options->markdown ? ComponentListFormat::kMarkdown
+                                                 : ComponentListFormat::kText);
+  });
 }
 
 }  // namespace uampc::app

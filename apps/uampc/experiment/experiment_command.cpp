@@ -5,8 +5,10 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <set>
 
+#include "cli/command_set.hpp"
 #include "experiment/backends/backend_outcome.hpp"
 #include "experiment/backends/experiment_runner.hpp"
 #include "experiment/backends/slurm_backend.hpp"
@@ -63,8 +65,8 @@ std::string experimentOptionsError(const ExperimentOptions& options) {
   if (options.plan_only && (options.dry_run || options.backend == "slurm")) {
     return "--plan-only runs nothing and submits nothing: not with --dry-run or --backend slurm";
   }
-  if (options.backend != "slurm" &&
-      (!options.partition.empty() || !options.time_limit.empty() || !options.sbatch_options.empty() || options.no_wait)) {
+  if (options.backend != "slurm" && (!options.partition.empty() || !options.time_limit.empty() ||
+                                     !options.sbatch_options.empty() || options.no_wait)) {
     return "--partition, --time, --sbatch-option and --no-wait need --backend slurm";
   }
   for (const std::string& text : options.overrides) {
@@ -119,9 +121,9 @@ BackendOutcome submitToSlurm(const ExperimentSnapshot& snapshot, const std::stri
 int writePlanOnly(const ExperimentSnapshot& snapshot, const std::string& out) {
   writeExperimentSnapshot(out, snapshot);
   std::cerr << "uampc experiment: " << snapshot.plan.size() << " runs planned in " << out << "/"
-            << kExperimentSnapshotFile << "; run K with `uampc experiment --run-task K --out " << out
-            << "` (K = 0.." << snapshot.plan.size() - 1 << ", e.g. a Kubernetes Indexed Job with completions: "
-            << snapshot.plan.size() << ", docker/k8s/), then `uampc experiment --collect " << out << "`\n";
+            << kExperimentSnapshotFile << "; run K with `uampc experiment --run-task K --out " << out << "` (K = 0.."
+            << snapshot.plan.size() - 1 << ", e.g. a Kubernetes Indexed Job with completions: " << snapshot.plan.size()
+            << ", docker/k8s/), then `uampc experiment --collect " << out << "`\n";
   return 0;
 }
 
@@ -155,7 +157,8 @@ int writeOutcome(const Experiment& experiment, const BackendOutcome& outcome, co
 
 int experimentCommand(const ExperimentOptions& options) {
   if (!options.collect_directory.empty()) return collectCommand(options.collect_directory);
-  if (options.run_task >= 0) return experimentTaskCommand(options.output_directory, options.run_task, options.domain_base);
+  if (options.run_task >= 0)
+    return experimentTaskCommand(options.output_directory, options.run_task, options.domain_base);
   std::map<std::string, std::string> variables;
   if (!options.data_directory.empty()) {
     variables["data_dir"] = fs::absolute(options.data_directory).lexically_normal().string();
@@ -188,6 +191,74 @@ int experimentCommand(const ExperimentOptions& options) {
   snapshot = withHostOnlyDds(std::move(snapshot), scenes_with_profile, out);
   if (options.plan_only) return writePlanOnly(snapshot, out);
   return writeOutcome(snapshot.experiment, submitToSlurm(snapshot, out, options), out);
+}
+
+void addExperimentCommand(CommandSet& commands) {
+  auto options = std::make_shared<ExperimentOptions>();
+  ExperimentOptions& o = *options;
+  CLI::App* sub =
+      commands.add("experiment",
+                   "uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]\n"
+                   "[--set NAME=VALUE ...] [--dry-run | --plan-only] [--backend local|slurm [--partition P] [--time T] "
+                   "[--no-wait]]\n"
+                   "uampc experiment --collect DIR\n"
+                   "uampc experiment --run-task K --out DIR [--domain-base N]",
+                   "Run every scene x controller x seed of an experiment (at most N at once, default: one per\n"
+                   "CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,\n"
+                   "DIR/results.md (the paper's table) and DIR/report/index.html. Finished runs are kept:\n"
+                   "running it again only runs what is missing or failed. ${data_dir} in the experiment's\n"
+                   "overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.\n"
+                   "--backend slurm submits the unfinished runs as one Slurm job array instead (DIR on a filesystem\n"
+                   "the nodes share), watches it and collects; --collect DIR builds the results from DIR's run\n"
+                   "directories wherever they ran; --run-task K runs planned run K of DIR (what an array task does).");
+  sub->add_option("EXPERIMENT.yaml", o.experiment_file, "The experiment file.")->type_name("");
+  sub->add_option("--out", o.output_directory, "Write the runs, results and report into DIR.")->type_name("DIR");
+  sub->add_option("--jobs", o.jobs,
+                  "Run at most N (1 to " + std::to_string(kMostJobs) + ") at once (default: one per CPU).")
+      ->check(CLI::Range(1, kMostJobs).description(""))
+      ->type_name("N");
+  sub->add_option("--data-dir", o.data_directory, "What ${data_dir} in the experiment's overrides stands for.")
+      ->type_name("DIR");
+  sub->add_option("--domain-base", o.domain_base,
+                  "The first run's DDS domain; slot k runs on N + k (default " + std::to_string(kDefaultDomainBase) +
+                      ", at most " + std::to_string(kHighestDomainId) +
+                      " with the slots). On Slurm, each\ntask takes the first domain from N that no "
+                      "other task on its node holds.")
+      ->check(CLI::Range(0, kHighestDomainId).description(""))
+      ->type_name("N");
+  sub->add_option("--set", o.overrides,
+                  "Override a value of every run's scene (NAME=VALUE as for launch;\n"
+                  "not seed or domain_id, which the experiment sets). Repeatable.")
+      ->allow_extra_args(false)
+      ->type_name("NAME=VALUE");
+  sub->add_flag("--dry-run", o.dry_run, "Only validate the experiment and its scenes and list the runs.");
+  sub->add_option("--backend", o.backend,
+                  "local (default): runs as child processes here; slurm: one Slurm job array, one task per run.")
+      ->check(CLI::IsMember({"local", "slurm"}).description(""))
+      ->type_name("local|slurm");
+  sub->add_option("--partition", o.partition, "Slurm: the partition to submit to (default: the cluster's).")
+      ->type_name("P");
+  sub->add_option("--time", o.time_limit, "Slurm: the time limit of each run's task, as sbatch --time takes it.")
+      ->type_name("T");
+  sub->add_option("--sbatch-option", o.sbatch_options,
+                  "Slurm: one more sbatch option for the job array, e.g. --sbatch-option=--mem=2G. Repeatable.")
+      ->allow_extra_args(false)
+      ->type_name("OPTION");
+  sub->add_flag("--plan-only", o.plan_only,
+                "Write DIR/experiment.json and run nothing: for a scheduler that runs --run-task K itself\n"
+                "(docker/k8s/experiment-indexed-job.yaml).");
+  sub->add_flag("--no-wait", o.no_wait, "Slurm: submit and return; --collect DIR builds the results later.");
+  sub->add_option("--collect", o.collect_directory,
+                  "Build DIR/results.json, results.md and the report from DIR's finished run directories.")
+      ->type_name("DIR");
+  sub->add_option("--run-task", o.run_task, "Run planned run K of --out DIR (what a Slurm array task runs).")
+      ->check(CLI::Range(0L, 1000000L).description(""))
+      ->type_name("K");
+  commands.onRun(sub, [&commands, sub, options] {
+    const std::string error = experimentOptionsError(*options);
+    if (!error.empty()) return commands.usageError(sub, error);
+    return experimentCommand(*options);
+  });
 }
 
 }  // namespace uampc::app

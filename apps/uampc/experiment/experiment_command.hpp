@@ -1,9 +1,12 @@
 // `uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]
-//  [--set NAME=VALUE ...] [--dry-run] [--backend local|slurm ...]`, `uampc experiment --collect DIR`: validates the experiment and every scene it runs, runs the matrix
+//  [--set NAME=VALUE ...] [--dry-run] [--backend local|slurm ...]`, `uampc experiment --collect DIR`: validates the
+//  experiment and every scene it runs, runs the matrix
 // (experiment_runner.hpp), and writes DIR/results.json, DIR/results.md and DIR/report/index.html.
 // --dry-run stops after validation and prints every planned run's command line.
 // The command line is parsed in main.cpp; this file has what the command does with it.
 #pragma once
+
+#include "cli/command_set.hpp"
 
 #include <algorithm>
 #include <string>
@@ -29,10 +32,10 @@ struct ExperimentOptions {
   std::string partition;               // slurm: --partition
   std::string time_limit;              // slurm: --time per run
   std::vector<std::string> sbatch_options;
-  bool no_wait = false;     // slurm: submit only
-  bool plan_only = false;   // write DIR/experiment.json for another scheduler, run nothing
+  bool no_wait = false;           // slurm: submit only
+  bool plan_only = false;         // write DIR/experiment.json for another scheduler, run nothing
   std::string collect_directory;  // --collect DIR: results from DIR's run directories (experiment_collect.hpp)
-  long run_task = -1;       // --run-task K: run plan entry K of --out (experiment_task.hpp)
+  long run_task = -1;             // --run-task K: run plan entry K of --out (experiment_task.hpp)
 };
 
 // What is wrong with options that parsed (a --set the experiment owns or that is no NAME=VALUE,
@@ -43,5 +46,8 @@ std::string experimentOptionsError(const ExperimentOptions& options);
 // 130 Ctrl-C (what finished is still written to the results). --collect and --run-task are
 // dispatched to their own commands.
 int experimentCommand(const ExperimentOptions& options);
+
+// `uampc experiment` and its options.
+void addExperimentCommand(CommandSet& commands);
 
 }  // namespace uampc::app

@@ -6,9 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <vector>
 
+#include "cli/command_set.hpp"
 #include "external_command.hpp"
 #include "uampc/plots/svg_plot.hpp"  // svg::escapeXml
 #include "uampc/run_files/text_file.hpp"
@@ -34,7 +36,8 @@ void openssl(const fs::path& directory, const std::vector<std::string>& args) {
   argv.insert(argv.end(), args.begin(), args.end());
   const ExternalCommandResult r = runExternalCommand(argv, (directory / "openssl.log").string());
   if (!r.started) {
-    throw OpensslError("cannot run openssl (" + r.error + "); install Debian's openssl package (docker/install-deps.sh does)");
+    throw OpensslError("cannot run openssl (" + r.error +
+                       "); install Debian's openssl package (docker/install-deps.sh does)");
   }
   if (!r.ok()) throw OpensslError(commandText(argv) + " failed:\n" + r.output);
 }
@@ -256,6 +259,31 @@ int securityInitCommand(const SecurityInitOptions& options) {
             << dir.string()
             << "/ca.key.pem signs identities and permissions: keep it away from the machines that run.\n";
   return 0;
+}
+
+void addSecurityCommand(CommandSet& commands) {
+  auto options = std::make_shared<SecurityInitOptions>();
+  SecurityInitOptions& o = *options;
+  CLI::App* sub =
+      commands.add("security", "uampc security init DIR --scene SCENE.yaml [--days N] [--sign-metadata]",
+                   "DDS Security (authentication, encryption, permissions) for a scene's runs. 'init' makes\n"
+                   "DIR with openssl: a CA, an identity per process of the scene and one for the launcher,\n"
+                   "the governance and, per identity, permissions for exactly the topics its components read\n"
+                   "and write, signed by the CA. Then run the scene with security: {directory: DIR}.");
+  sub->require_subcommand(1);
+  CLI::App* init = sub->add_subcommand("init", "Make the security directory DIR for a scene.");
+  commands.addSynopsis("init", "uampc security init DIR --scene SCENE.yaml [--days N] [--sign-metadata]");
+  init->add_option("DIR", o.directory, "The directory to make (must not hold one already).")->required()->type_name("");
+  init->add_option("--scene", o.scene_path, "The scene whose processes and topics are granted.")
+      ->required()
+      ->type_name("SCENE.yaml");
+  init->add_option("--days", o.days, "Validity of the certificates and permissions, days (default 365).")
+      ->check(CLI::Range(1, 36500))
+      ->type_name("N");
+  init->add_flag("--sign-metadata", o.sign_metadata,
+                 "Also sign every submessage around the samples (heartbeats, acknowledgements), so that an\n"
+                 "outsider cannot disturb delivery; costs more CPU (docs/user/security.md, \"Cost\").");
+  commands.onRun(sub, [options] { return securityInitCommand(*options); });
 }
 
 }  // namespace uampc::app

@@ -5,6 +5,8 @@
 // Each process is granted exactly the topics its components read and write.
 #pragma once
 
+#include "cli/command_set.hpp"
+
 #include <map>
 #include <set>
 #include <string>
@@ -37,5 +39,8 @@ std::map<std::string, TopicGrant> topicGrants(const Scene& scene);
 
 // Exit codes: 0 done, 1 openssl failed or DIR cannot be written, 2 bad scene or DIR already used.
 int securityInitCommand(const SecurityInitOptions& options);
+
+// `uampc security init` and its options.
+void addSecurityCommand(CommandSet& commands);
 
 }  // namespace uampc::app

@@ -16,6 +16,7 @@
 #include <thread>
 #include <utility>
 
+#include "cli/command_set.hpp"
 #include "topic/raw_subscription.hpp"
 #include "topic/topic_discovery.hpp"
 #include "topic/topic_statistics.hpp"
@@ -323,8 +324,9 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
         ->type_name("DIR");
     return sub;
   };
-  CLI::App* list_command = add("list", TopicAction::kList, "uampc topic list [--domain N] [--wait S] [-v] [--security DIR]",
-                               "Every topic on the domain with its type and its number of writers and readers.");
+  CLI::App* list_command =
+      add("list", TopicAction::kList, "uampc topic list [--domain N] [--wait S] [-v] [--security DIR]",
+          "Every topic on the domain with its type and its number of writers and readers.");
   list_command->add_flag("-v,--verbose", options.verbose,
                          "Also each writer and reader: its participant's name, GUID prefix and vendor, and its QoS.");
   CLI::App* echo_command =
@@ -340,13 +342,27 @@ void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
        {std::tuple{"hz", TopicAction::kHz, "rate (min/max/std dev of the period)", kDefaultHzWindow},
         std::tuple{"bw", TopicAction::kBw, "bandwidth (mean/min/max sample size)", kDefaultBwWindow}}) {
     CLI::App* sub =
-        add(name, action, std::string("uampc topic ") + name + " TOPIC [--domain N] [--wait S] [--window N] [--security DIR]",
+        add(name, action,
+            std::string("uampc topic ") + name + " TOPIC [--domain N] [--wait S] [--window N] [--security DIR]",
             std::string("Print TOPIC's ") + what + " every second, over the last N samples. Ctrl-C stops.");
     sub->add_option("--window", options.window,
                     "Samples the figures are over (default " + std::to_string(default_window) + ").")
         ->check(uampc::command_line::kPositiveCount.description(""))
         ->type_name("N");
   }
+}
+
+void addTopicCommand(CommandSet& commands) {
+  auto options = std::make_shared<TopicOptions>();
+  CLI::App* sub =
+      commands.add("topic", "uampc topic list|echo|hz|bw [TOPIC] [--domain N] ...",
+                   "Look at the topics of a running system, from DDS discovery (uampc's and any other vendor's):\n"
+                   "list them with their types, writers and readers; echo a topic's samples as YAML; measure its\n"
+                   "rate (hz) or bandwidth (bw). uampc topic list|echo|hz|bw --help describes each.");
+  addTopicSubcommands(*sub, *options, [&commands](const std::string& name, const std::string& synopsis) {
+    commands.addSynopsis(name, synopsis);
+  });
+  commands.onRun(sub, [options] { return topicCommand(*options); });
 }
 
 }  // namespace uampc::app

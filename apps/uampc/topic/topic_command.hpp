@@ -4,6 +4,8 @@
 // registered in this uampc (messageDefinition, cdr_decoder.hpp) and prints only the size of others.
 #pragma once
 
+#include "cli/command_set.hpp"
+
 #include <functional>
 #include <string>
 
@@ -43,5 +45,8 @@ int topicCommand(const TopicOptions& options);
 // options, parsed into `options`; add_synopsis(name, synopsis) is told each one's synopsis line.
 void addTopicSubcommands(CLI::App& topic, TopicOptions& options,
                          const std::function<void(const std::string&, const std::string&)>& add_synopsis);
+
+// `uampc topic list|echo|hz|bw` and their options.
+void addTopicCommand(CommandSet& commands);
 
 }  // namespace uampc::app

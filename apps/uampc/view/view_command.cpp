@@ -2,9 +2,12 @@
 
 #include <chrono>
 #include <iostream>
+#include <memory>
 #include <thread>
 
+#include "cli/command_set.hpp"
 #include "topic/topic_discovery.hpp"
+#include "uampc/command_line/finite_number.hpp"
 #include "uampc/foxglove/server.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/stop_signals.hpp"
@@ -67,6 +70,45 @@ int viewCommand(const ViewOptions& options) {
     std::cerr << "uampc view: error: " << e.what() << "\n";
     return 1;
   }
+}
+
+void addViewerOptions(CLI::App* sub, ViewerOptions& o) {
+  sub->add_flag("--view", o.enabled,
+                "Serve the topics live to Foxglove (WebSocket, ws://127.0.0.1:8765; docs/user/viewing.md).");
+  sub->add_option("--view-port", o.port, "The viewer's TCP port (default 8765).")
+      ->check(CLI::Range(1, 65535))
+      ->type_name("P");
+  sub->add_option("--view-address", o.address,
+                  "The address the viewer binds (default 127.0.0.1, this machine only; another address is\n"
+                  "warned about: anyone who reaches it sees every topic).")
+      ->type_name("A");
+}
+
+void addViewCommand(CommandSet& commands) {
+  auto options = std::make_shared<ViewOptions>();
+  ViewOptions& o = *options;
+  CLI::App* sub =
+      commands.add("view", "uampc view [--domain N] [--port P] [--address A] [--security DIR] [--duration S]",
+                   "Serve what a DDS domain publishes (a rig, another machine's run, a replay) live to Foxglove over\n"
+                   "its WebSocket protocol: every ROS topic with its schema, read from DDS only while a client\n"
+                   "subscribes; the domain's /clock sets the clients' time. Ctrl-C stops it (docs/user/viewing.md).");
+  sub->add_option("--domain", o.domain_id, "DDS domain (default: ROS_DOMAIN_ID, else 0).")
+      ->check(CLI::Range(0, uampc::kMaxDomainId))
+      ->type_name("N");
+  sub->add_option("--port", o.port, "TCP port (default 8765; 0: any free port, printed).")
+      ->check(CLI::Range(0, 65535))
+      ->type_name("P");
+  sub->add_option("--address", o.address,
+                  "Address to bind (default 127.0.0.1, this machine only; another address is warned about).")
+      ->type_name("A");
+  sub->add_option("--security", o.security_dir,
+                  "Join a secured domain with the observer identity of DIR (uampc security init), which may\n"
+                  "read every topic.")
+      ->type_name("DIR");
+  sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
+      ->check(command_line::kFiniteNonNegative)
+      ->type_name("S");
+  commands.onRun(sub, [options] { return viewCommand(*options); });
 }
 
 }  // namespace uampc::app

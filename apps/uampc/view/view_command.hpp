@@ -3,6 +3,9 @@
 // --view` and `uampc play --view` run it beside a run or a replay.
 #pragma once
 
+#include "cli/command_set.hpp"
+#include "uampc/runtime/viewer_process.hpp"
+
 #include <string>
 
 namespace uampc::app {
@@ -21,5 +24,10 @@ std::string exposureWarning(const std::string& address, int port);
 // Exit codes: 0 when stopped (Ctrl-C, SIGTERM, --duration), 1 when it cannot serve (the port is
 // in use, the address is not this machine's, the domain cannot be joined).
 int viewCommand(const ViewOptions& options);
+
+// `uampc view` and its options.
+void addViewCommand(CommandSet& commands);
+// --view, --view-port and --view-address, for launch and play: a `uampc view` beside the run.
+void addViewerOptions(CLI::App* sub, ViewerOptions& options);
 
 }  // namespace uampc::app
