@@ -87,7 +87,10 @@ class EvaluatorComponent : public Component {
     spec.param("report_period", 5.0, "running figures are published every this many s").between(0.1, 3600.0);
     spec.param("path_period", 0.5, "the paths for viewers are published every this many s of sim time")
         .between(0.05, 3600.0);
-    spec.param("path_spacing", 0.1, "the paths for viewers keep at most one pose per this many s").between(0.0, 60.0);
+    spec.param("path_spacing", 0.1,
+               "the paths for viewers keep at most one pose per this many s (doubled whenever a path reaches "
+               "2000 poses)")
+        .between(0.0, 60.0);
     spec.param("panorama_period", 20.0, "a panorama snapshot (PNG) every this many s of sim time; 0: none")
         .between(0.0, 1e6);
     spec.param("panorama_max_range", 40.0, "range shown darkest in the snapshots, m (the Mid-360's: 40)")
@@ -309,9 +312,21 @@ class EvaluatorComponent : public Component {
     next_panorama_ = evaluator::firstGridPointAfter(next_panorama_, t, panorama_period_);
   }
 
+  // Ground truth streams in at the encoder rate; only the poses that pending estimates and scans
+  // may still ask for are kept (the files hold the paired poses), so that a long run's memory stays
+  // flat. kGroundTruthKept: a margin for estimates that arrive late; the LO's lag is one frame.
+  static constexpr double kGroundTruthKept = 10.0;  // s
+  void forgetOldGroundTruth() {
+    double needed = ground_truth_.endTime();
+    if (!pending_estimates_.empty()) needed = std::min(needed, pending_estimates_.front().time);
+    if (!pending_scans_.empty()) needed = std::min(needed, pending_scans_.front().start);
+    ground_truth_.dropBefore(needed - kGroundTruthKept);
+  }
+
   // Pairs estimates and places raw scans once ground truth (and encoder states) cover them.
   void flush() {
     if (ground_truth_.empty()) return;
+    forgetOldGroundTruth();
     const double covered = ground_truth_.endTime();
     while (!pending_estimates_.empty() && pending_estimates_.front().time <= covered) {
       trajectory_.addEstimate(pending_estimates_.front().time, pending_estimates_.front().pose);

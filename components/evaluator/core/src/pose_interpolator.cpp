@@ -48,6 +48,15 @@ bool PoseInterpolator::add(const TimedPose& pose) {
   return true;
 }
 
+void PoseInterpolator::dropBefore(double time, std::size_t batch) {
+  const auto after = std::upper_bound(poses_.begin(), poses_.end(), time,
+                                      [](double t, const TimedPose& p) { return t < p.time; });
+  if (after == poses_.begin()) return;
+  const auto keep_from = std::prev(after);  // the last pose at or before `time`: lookups at `time` need it
+  if (static_cast<std::size_t>(keep_from - poses_.begin()) < batch) return;
+  poses_.erase(poses_.begin(), keep_from);
+}
+
 std::optional<Eigen::Isometry3d> PoseInterpolator::operator()(double time) const {
   if (poses_.empty() || !(time >= poses_.front().time) || !(time <= poses_.back().time)) {
     return std::nullopt;  // also for NaN

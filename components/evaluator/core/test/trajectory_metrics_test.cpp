@@ -144,6 +144,24 @@ TEST(PoseInterpolator, SortsDropsDuplicatesAndNonFiniteTimes) {
   EXPECT_DOUBLE_EQ(truth.endTime(), 3.0);
 }
 
+// A long run's ground truth is kept as a window: dropping what lies before a time leaves every
+// lookup from that time on as it was, and erases in batches only.
+TEST(PoseInterpolator, DropBeforeKeepsEveryLookupFromThatTimeOn) {
+  PoseInterpolator truth;
+  for (int i = 0; i <= 100; ++i) truth.add({i * 0.1, poseOf({i * 1.0, 0, 0}, 0)});
+  const double at = 5.05;  // between the poses at 5.0 and 5.1
+  const Eigen::Vector3d before = truth(at)->translation();
+  truth.dropBefore(at, 100);  // 50 poses could go: fewer than a batch, nothing is erased
+  EXPECT_EQ(truth.size(), 101u);
+  truth.dropBefore(at, 10);
+  EXPECT_EQ(truth.size(), 51u);  // from the pose at 5.0 on
+  EXPECT_DOUBLE_EQ(truth.startTime(), 5.0);
+  EXPECT_EQ(truth(at)->translation(), before);
+  EXPECT_FALSE(truth(4.9).has_value());
+  truth.dropBefore(-1.0, 1);  // before every pose: nothing to drop
+  EXPECT_EQ(truth.size(), 51u);
+}
+
 // Ground truth at 10 Hz moving at 10 m/s along x; an estimate stamped between two samples is
 // compared with the truth at its own time. Nearest-neighbour association within 0.1 s would
 // compare it with the sample 0.05 s away, 0.5 m off.

@@ -26,6 +26,11 @@ class PoseInterpolator {
   // inserted at its place. Returns false (and counts it) when it is dropped as above.
   bool add(const TimedPose& pose);
 
+  // Forgets the poses no lookup at `time` or later needs (all before the last pose at or before
+  // `time`), so that streamed ground truth over a long run stays a bounded window. Erases only
+  // when at least `batch` poses can go, so that the cost per pose stays constant.
+  void dropBefore(double time, std::size_t batch = 4096);
+
   // The pose at time, or nothing outside [startTime(), endTime()] (no extrapolation).
   std::optional<Eigen::Isometry3d> operator()(double time) const;
 
