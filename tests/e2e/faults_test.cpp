@@ -1,5 +1,6 @@
 // Faults a run survives (docs/user/faults.md): the launcher killed, a process group killed or
-// stopped, two runs on one DDS domain, an output directory that cannot be written or disappears.
+// stopped, two runs on one DDS domain, an output directory that cannot be written or disappears,
+// a disk that fills up, a component that fails while shutting down.
 // Each is detected and named, nothing hangs, and what was written stays valid.
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -17,6 +18,7 @@
 
 #include "background_launch.hpp"
 #include "command_runner.hpp"
+#include "full_disk.hpp"
 #include "test_domains.hpp"
 #include "uampc/run_files/csv.hpp"
 #include "uampc/run_files/run_directory.hpp"
@@ -224,6 +226,42 @@ TEST(Faults, RecordRefusesAnExistingFileUnlessOverwriteIsGiven) {
                      std::to_string(testDomain(DomainBlock::kFaults, 8)))
                 .exit_code,
             0);
+}
+
+// The disk fills up during the run (full_disk.hpp: files limited to 32 KB; motor.csv reaches it
+// after about 3.5 of the 30 simulated seconds, the run's other files stay below it). The run stops
+// there with the file and the reason named, and leaves no metrics.json: with its time series cut,
+// the run is not complete (docs/decisions/run-files-whole-or-absent.md). Before, it ran to the end
+// and wrote a metrics.json of the whole 30 s beside a motor.csv cut short.
+TEST(Faults, AFullDiskStopsTheRunNamingTheFileAndLeavesNoMetrics) {
+  const std::string dir = freshDirectory("faults_full_disk");
+  const std::string out = dir + "/out";
+  const CommandResult r = runShell(withFileSizeLimit(
+      32 * 1024, "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " + binaryPath("bin/uampc") +
+                     " launch " + sourcePath("tests/scenes/motor_evaluator.yaml") + " --out " + out +
+                     domainOverride(DomainBlock::kFaults, 7)));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("component 'evaluator' failed in input 'motor_state'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cannot write " + out + "/motor.csv: File too large"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out + "/" + run_files::kMetricsFile));
+  for (const auto& entry : fs::directory_iterator(out)) EXPECT_NE(entry.path().extension(), ".partial") << entry.path();
+  const auto rows = run_files::readCsv(out + "/motor.csv").rows;  // what reached the disk reads back
+  ASSERT_FALSE(rows.empty());
+  EXPECT_LT(rows.back()[0], 30.0);  // cut where the disk filled: the run did not go on
+}
+
+// A component that fails while shutting down (as the evaluator does when its last write finds the
+// disk full) fails the run, and the components after it still shut down and write their files.
+// Before, the first failure skipped the others: the evaluator here wrote no metrics.json.
+TEST(Faults, AComponentFailingAtShutdownLetsTheOthersWriteTheirFiles) {
+  const std::string dir = freshDirectory("faults_shutdown_failure");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/shutdown_failure.yaml") + " --out " + dir +
+                                   "/out" + domainOverride(DomainBlock::kFaults, 8));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("component 'fault' failed while shutting down: injected failure at shutdown"),
+            std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::is_regular_file(dir + "/out/" + run_files::kMetricsFile)) << r.output;
 }
 
 }  // namespace

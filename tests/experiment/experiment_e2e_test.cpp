@@ -1,6 +1,7 @@
 // A real 2 x 2 experiment (two scene entries x ua_mpc and zero, one seed, 3 s each, two at a
 // time): results and report are written, and a second invocation runs nothing; a run whose done
-// marker is gone is run again, and only that one.
+// marker is gone is run again, and only that one. An output directory that cannot be written is
+// named with the reason, without an abort.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
@@ -8,6 +9,7 @@
 #include <fstream>
 
 #include "../e2e/command_runner.hpp"
+#include "../e2e/full_disk.hpp"
 #include "../e2e/test_domains.hpp"
 
 namespace uampc::test {
@@ -92,6 +94,70 @@ TEST(ExperimentEndToEnd, HelpPrintsTheUsageAndRunsNothing) {
   const CommandResult r = runUampc("experiment --help");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("usage: uampc experiment EXPERIMENT.yaml --out DIR"), std::string::npos) << r.output;
+}
+
+// One short run of a test scene (the evaluator with a test publisher, 2 s), one at a time.
+std::string smallExperiment(const std::string& dir) {
+  std::ofstream(dir + "/experiment.yaml") << "name: small\nseeds: [1]\nscenes:\n  - {name: panorama, scene: " +
+                                                 sourcePath("tests/scenes/evaluator_bad_panorama.yaml") +
+                                                 "}\ncontrollers:\n  - {name: none, overrides: []}\n";
+  return "experiment " + dir + "/experiment.yaml --jobs 1 --domain-base " +
+         std::to_string(testDomain(DomainBlock::kExperimentE2e, 2));
+}
+
+// --out that cannot be made, as `uampc launch --out` reports it (docs/user/faults.md): the path
+// and the system's reason, exit code 1, nothing run. As root, a read-only directory cannot be
+// made by chmod; a path under a regular file is refused the same way, with "Not a directory".
+// Before, both aborted (exit code 134, "terminate called after throwing ...").
+TEST(ExperimentEndToEnd, AnOutputDirectoryThatCannotBeMadeIsNamedWithTheReason) {
+  const std::string dir = freshDirectory("experiment_e2e_out_unwritable");
+  const std::string command = smallExperiment(dir);
+  std::ofstream(dir + "/a_file") << "not a directory";
+  const CommandResult under_a_file = runUampc(command + " --out " + dir + "/a_file/out");
+  EXPECT_EQ(under_a_file.exit_code, 1) << under_a_file.output;
+  EXPECT_NE(under_a_file.output.find("cannot create the output directory " + dir + "/a_file/out: Not a directory"),
+            std::string::npos)
+      << under_a_file.output;
+  const std::string long_name = dir + "/" + std::string(300, 'n');
+  const CommandResult too_long = runUampc(command + " --out " + long_name);
+  EXPECT_EQ(too_long.exit_code, 1) << too_long.output;
+  EXPECT_NE(too_long.output.find(long_name + ": File name too long; nothing was run"), std::string::npos)
+      << too_long.output;
+}
+
+// A full disk (full_disk.hpp: every file limited to 1 KB, EFBIG where a disk gives ENOSPC). At
+// 512 bytes the plan itself cannot be written: named, exit code 1, no file left. At 1 KB the plan
+// is written and the run starts, but its evaluator cannot write metrics.json (the run fails, and
+// its failed marker is written) and the experiment cannot write results.json: named, exit code 1,
+// and neither file is left half-written. Before, the experiment aborted at the first of them.
+TEST(ExperimentEndToEnd, AFullDiskIsNamedWithTheFileAndLeavesNothingHalfWritten) {
+  const std::string dir = freshDirectory("experiment_e2e_full_disk");
+  const std::string out = dir + "/out";
+  const std::string command = "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
+                              binaryPath("bin/uampc") + " " + smallExperiment(dir) + " --out " + out;
+  const CommandResult no_plan = runShell(withFileSizeLimit(512, command));
+  EXPECT_EQ(no_plan.exit_code, 1) << no_plan.output;
+  EXPECT_NE(no_plan.output.find("uampc experiment: cannot write " + out + "/experiment.json: File too large"),
+            std::string::npos)
+      << no_plan.output;
+  EXPECT_FALSE(fs::exists(out + "/experiment.json"));
+  EXPECT_FALSE(fs::exists(out + "/experiment.json.partial"));
+
+  const CommandResult no_results = runShell(withFileSizeLimit(1024, command));
+  EXPECT_EQ(no_results.exit_code, 1) << no_results.output;
+  EXPECT_NE(no_results.output.find("runs/panorama/none/seed1 failed (exit code 1)"), std::string::npos)
+      << no_results.output;
+  EXPECT_NE(no_results.output.find("uampc experiment: cannot write " + out + "/results.json: File too large"),
+            std::string::npos)
+      << no_results.output;
+  const std::string run = out + "/runs/panorama/none/seed1";
+  EXPECT_FALSE(fs::exists(run + "/metrics.json"));
+  EXPECT_FALSE(fs::exists(run + "/done"));
+  EXPECT_EQ(readFile(run + "/failed"), "exit code 1\n");
+  EXPECT_FALSE(fs::exists(out + "/results.json"));
+  for (const std::string& d : {out, run}) {
+    for (const auto& entry : fs::directory_iterator(d)) EXPECT_NE(entry.path().extension(), ".partial") << entry.path();
+  }
 }
 
 }  // namespace

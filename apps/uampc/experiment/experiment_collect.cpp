@@ -7,6 +7,7 @@
 #include "report/report_page.hpp"
 #include "report/results_table.hpp"
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/text_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -38,7 +39,7 @@ int writeExperimentOutputs(const Experiment& experiment, const std::vector<RunRe
   const fs::path out(output_directory);
   writeResultsJson((out / "results.json").string(), experiment, results);
   const std::string markdown = renderMarkdown(experiment, table, results);
-  std::ofstream((out / "results.md").string()) << markdown;
+  run_files::writeTextFile((out / "results.md").string(), markdown);
   const ReportSummary report = writeReport(experiment, results, table, output_directory);
 
   std::size_t failed = 0, not_run = 0;

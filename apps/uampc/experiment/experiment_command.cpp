@@ -17,6 +17,7 @@
 #include "experiment/experiment_snapshot.hpp"
 #include "experiment/experiment_task.hpp"
 #include "experiment/run_results.hpp"
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/scene.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
@@ -141,7 +142,13 @@ BackendOutcome runLocally(const ExperimentSnapshot& snapshot, const ExperimentOp
   runner.jobs = options.jobs;
   runner.domain_base = options.domain_base;
   runner.interrupted = &stopFlag();
-  BackendOutcome outcome{runAll(experiment, snapshot.plan, runner)};
+  RunnerOutcome ran = runAll(experiment, snapshot.plan, runner);
+  if (!ran.error.empty()) {
+    std::cerr << "uampc experiment: stopped: " << ran.error << "; no results written (run the same command again "
+              << "to resume once the directory can be written)\n";
+    return BackendOutcome{std::nullopt, 1, false};
+  }
+  BackendOutcome outcome{std::move(ran.results)};
   outcome.interrupted = stopRequested();
   return outcome;
 }
@@ -153,9 +160,16 @@ int writeOutcome(const Experiment& experiment, const BackendOutcome& outcome, co
   return outcome.interrupted ? 130 : code;
 }
 
-}  // namespace
+// The output directory, made if missing; "" or why it cannot be (the reason as the system gives it:
+// a read-only file system, a name too long, a file in the way).
+std::string createOutputDirectory(const std::string& directory) {
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (!error && !isDirectory(directory)) error = std::make_error_code(std::errc::not_a_directory);
+  return error ? "cannot create the output directory " + directory + ": " + error.message() : "";
+}
 
-int experimentCommand(const ExperimentOptions& options) {
+int runExperiment(const ExperimentOptions& options) {
   if (!options.collect_directory.empty()) return collectCommand(options.collect_directory);
   if (options.run_task >= 0)
     return experimentTaskCommand(options.output_directory, options.run_task, options.domain_base);
@@ -182,7 +196,10 @@ int experimentCommand(const ExperimentOptions& options) {
     std::cerr << "uampc experiment: " << snapshot.plan.size() << " runs valid; nothing run (--dry-run)\n";
     return 0;
   }
-  fs::create_directories(options.output_directory);
+  if (const std::string problem = createOutputDirectory(options.output_directory); !problem.empty()) {
+    std::cerr << "uampc experiment: " << problem << "; nothing was run\n";
+    return 1;
+  }
   if (options.backend == "local" && !options.plan_only) {
     return writeOutcome(snapshot.experiment, runLocally(snapshot, options), options.output_directory);
   }
@@ -191,6 +208,20 @@ int experimentCommand(const ExperimentOptions& options) {
   snapshot = withHostOnlyDds(std::move(snapshot), scenes_with_profile, out);
   if (options.plan_only) return writePlanOnly(snapshot, out);
   return writeOutcome(snapshot.experiment, submitToSlurm(snapshot, out, options), out);
+}
+
+}  // namespace
+
+int experimentCommand(const ExperimentOptions& options) {
+  // A file the experiment cannot write (its plan, results, report, a Slurm script; run_files'
+  // writers name the file and the reason and leave no half of it) ends it with that message and
+  // exit code 1, as `uampc launch --out` does; the runs' own files are the runner's (halt()).
+  try {
+    return runExperiment(options);
+  } catch (const std::runtime_error& e) {
+    std::cerr << "uampc experiment: " << e.what() << "\n";
+    return 1;
+  }
 }
 
 void addExperimentCommand(CommandSet& commands) {

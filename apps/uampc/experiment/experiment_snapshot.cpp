@@ -75,16 +75,8 @@ void writeExperimentSnapshot(const std::string& output_directory, const Experime
   json plan = json::array();
   for (const auto& run : snapshot.plan) plan.push_back(toJson(run));
   const json j = {{"version", kSnapshotVersion}, {"experiment", toJson(snapshot.experiment)}, {"plan", plan}};
-  const fs::path path = fs::path(output_directory) / kExperimentSnapshotFile;
-  const fs::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial);
-    out << j.dump(2) << "\n";
-    if (!out.flush()) throw std::runtime_error(partial.string() + ": cannot write");
-  }
-  std::error_code error;
-  fs::rename(partial, path, error);
-  if (error) throw std::runtime_error(path.string() + ": cannot write: " + error.message());
+  // Whole or not at all, the file and the reason named on failure (text_file.hpp).
+  run_files::writeTextFile((fs::path(output_directory) / kExperimentSnapshotFile).string(), j.dump(2) + "\n");
 }
 
 ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory) {

@@ -112,9 +112,14 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
   }
   const int status = waitForRun(children);
   RunResult result;
-  recordRunEnd(directory, status, std::chrono::duration<double>(Clock::now() - start).count(), stopRequested(), result);
+  const std::string error = recordRunEnd(directory, status, std::chrono::duration<double>(Clock::now() - start).count(),
+                                         stopRequested(), result);
   std::cerr << prefix << run.directory << " " << statusName(result.status)
             << (result.failure.empty() ? "" : " (" + result.failure + ")") << "\n";
+  if (!error.empty()) {
+    std::cerr << prefix << error << "\n";
+    return 1;
+  }
   if (result.status == RunStatus::kNotRun) return 130;
   return result.status == RunStatus::kOk ? 0 : 1;
 }

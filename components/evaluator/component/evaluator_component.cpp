@@ -163,15 +163,17 @@ class EvaluatorComponent : public Component {
       const double omega = m.velocity().empty() ? 0.0 : m.velocity()[0];
       motor_.add({t, m.position()[0], omega});
       motor_activity_.add(t, omega, command_);
-      if (motor_csv_) motor_csv_->add({t, m.position()[0], omega, command_});
+      if (motor_csv_) writeOutput([&] { motor_csv_->add({t, m.position()[0], omega, command_}); });
       flush();
     });
     ctx.subscribe<msg::MotorCommand>("command", [this](const msg::MotorCommand& m) { command_ = m.velocity(); });
     ctx.subscribe<msg::UncertaintyProfile>("profile", [this](const msg::UncertaintyProfile& m) {
       if (!uncertainty_ || m.samples().empty()) return;
       try {
-        uncertainty_->add({fromMsg(m.header().stamp()).seconds(), m.theta_start(), m.delta_theta(), m.command(),
-                           std::vector<double>(m.samples().begin(), m.samples().end())});
+        writeOutput([&] {
+          uncertainty_->add({fromMsg(m.header().stamp()).seconds(), m.theta_start(), m.delta_theta(), m.command(),
+                             std::vector<double>(m.samples().begin(), m.samples().end())});
+        });
       } catch (const std::invalid_argument& e) {
         // A controller that changed its sample count: the file's columns cannot hold the row.
         bad_profile_log_.warn(ctx_.log(), "profiles on ", ctx_.topicOf("profile"), ": ", e.what(), " (said once)");
@@ -179,8 +181,10 @@ class EvaluatorComponent : public Component {
     });
     auto onMetrics = [this](const msg::Metrics& m) {
       if (!timings_) return;
-      for (const auto& v : m.values())
-        timings_->add({fromMsg(m.header().stamp()).seconds(), m.source(), v.name(), v.value()});
+      writeOutput([&] {
+        for (const auto& v : m.values())
+          timings_->add({fromMsg(m.header().stamp()).seconds(), m.source(), v.name(), v.value()});
+      });
     };
     ctx.subscribe<msg::Metrics>("lo_metrics", [this, onMetrics](const msg::Metrics& m) {
       onMetrics(m);
@@ -193,7 +197,7 @@ class EvaluatorComponent : public Component {
     const bool save_panoramas = !out.empty() && panorama_period_ > 0.0;
     // Subscribed even when no snapshot is wanted: every declared port must be opened.
     ctx.subscribe<sensor_msgs::msg::Image>("panorama", [this, save_panoramas](const sensor_msgs::msg::Image& m) {
-      if (save_panoramas) onPanorama(m);
+      if (save_panoramas) writeOutput([&] { onPanorama(m); });
     });
     ctx.timer(ctx.paramDouble("report_period"), [this] { publishRunning(); });
     ctx.timer(ctx.paramDouble("path_period"), [this] { publishPaths(); });
@@ -209,7 +213,56 @@ class EvaluatorComponent : public Component {
                     cmplt_gt.mean_voxels_per_window, " with ground truth)");
     const std::string& out = ctx_.outputDirectory();
     if (out.empty()) return;
+    if (!output_failure_.empty()) {
+      // The run already failed with the file named; a metrics.json would pass it for complete.
+      ctx_.log().warn("no ", run_files::kMetricsFile, " for this run: its outputs are incomplete (", output_failure_,
+                      ")");
+      return;
+    }
+    closeTimeSeries();
+    writeEndOfRunFiles(out, trajectory, cmplt, cmplt_gt);
+    // Last, and only when everything before it was written whole: a run directory with a
+    // metrics.json holds the run's complete outputs (docs/decisions/run-files-whole-or-absent.md).
+    run_files::writeMetricsFile(run_files::inDirectory(out, run_files::kMetricsFile),
+                                metricsDocument(trajectory, cmplt, cmplt_gt));
+  }
+
+ private:
+  // Runs a write of the run directory's files. A failure is kept, so that shutdown writes no
+  // metrics.json for a run whose outputs were cut, and thrown on: the runtime stops the run with
+  // the component and the file named (docs/user/faults.md).
+  template <class Write>
+  void writeOutput(Write&& write) {
+    try {
+      write();
+    } catch (const std::runtime_error& e) {
+      if (output_failure_.empty()) output_failure_ = e.what();
+      throw;
+    }
+  }
+
+  // The files written through the run, flushed and closed: their last rows may fail only here.
+  void closeTimeSeries() {
+    if (motor_csv_) motor_csv_->close();
+    if (timings_) timings_->close();
+    if (uncertainty_) uncertainty_->close();
+  }
+
+  void writeEndOfRunFiles(const std::string& out, const evaluator::TrajectoryReport& trajectory,
+                          const evaluator::CompletenessReport& cmplt, const evaluator::CompletenessReport& cmplt_gt) {
     using run_files::inDirectory;
+    evaluator::writeTumTrajectory(inDirectory(out, run_files::kEstimateFile), trajectory_.pairedEstimates());
+    evaluator::writeTumTrajectory(inDirectory(out, run_files::kGroundTruthFile), trajectory_.pairedGroundTruth());
+    evaluator::writeAteSeriesCsv(inDirectory(out, run_files::kAteFile), trajectory.ate.series);
+    evaluator::writeCompletenessWindowsCsv(inDirectory(out, run_files::kCompletenessWindowsFile), cmplt.windows);
+    evaluator::writeCompletenessWindowsCsv(inDirectory(out, run_files::kGroundTruthCompletenessWindowsFile),
+                                           cmplt_gt.windows);
+    cmplt_gt_.saveOctree(inDirectory(out, run_files::kScannedVoxelsFile));
+  }
+
+  run_files::MetricsDocument metricsDocument(const evaluator::TrajectoryReport& trajectory,
+                                             const evaluator::CompletenessReport& cmplt,
+                                             const evaluator::CompletenessReport& cmplt_gt) const {
     run_files::MetricsDocument metrics;
     metrics.sim_time = ctx_.now().seconds();
     metrics.trajectory = evaluator::toSummary(trajectory);
@@ -226,18 +279,9 @@ class EvaluatorComponent : public Component {
     metrics.lo.frames = lo_frames_;
     metrics.lo.degenerate_frames = degenerate_frames_;
     metrics.run = run_info_;
-    run_files::writeMetricsFile(inDirectory(out, run_files::kMetricsFile), metrics);
-    evaluator::writeTumTrajectory(inDirectory(out, run_files::kEstimateFile), trajectory_.pairedEstimates());
-    evaluator::writeTumTrajectory(inDirectory(out, run_files::kGroundTruthFile), trajectory_.pairedGroundTruth());
-    evaluator::writeAteSeriesCsv(inDirectory(out, run_files::kAteFile), trajectory.ate.series);
-    evaluator::writeCompletenessWindowsCsv(inDirectory(out, run_files::kCompletenessWindowsFile), cmplt.windows);
-    evaluator::writeCompletenessWindowsCsv(inDirectory(out, run_files::kGroundTruthCompletenessWindowsFile),
-                                           cmplt_gt.windows);
-    cmplt_gt_.saveOctree(inDirectory(out, run_files::kScannedVoxelsFile));
-    if (motor_csv_) motor_csv_->close();
+    return metrics;
   }
 
- private:
   // The parameters that set CMPLT's config: declared from the core's defaults, read into them.
   static void bindCompletenessParameters(ParameterBinding& b, evaluator::CompletenessConfig& c) {
     b.bind("voxel_size", c.voxel_size, "CMPLT voxel size, m (the paper: 0.5)").between(0.01, 100.0);
@@ -412,6 +456,7 @@ class EvaluatorComponent : public Component {
   RateLimitedLog bad_panorama_log_ = RateLimitedLog::once();
   RateLimitedLog bad_profile_log_ = RateLimitedLog::once();
   std::optional<run_files::RunInfo> run_info_;
+  std::string output_failure_;  // the first write of the run directory that failed; empty: none
   evaluator::MotorActivity motor_activity_{0.1};
 };
 

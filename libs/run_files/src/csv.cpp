@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 
 #include "uampc/run_files/number_format.hpp"
@@ -24,26 +25,23 @@ std::vector<std::string> splitCells(const std::string& line) {
 }  // namespace
 
 CsvWriter::CsvWriter(const std::string& path, const std::vector<std::string>& columns)
-    : path_(path), columns_(columns.size()), out_(path) {
-  if (!out_) throw std::runtime_error("cannot open CSV file " + path + " for writing");
-  for (std::size_t i = 0; i < columns.size(); ++i) out_ << (i ? "," : "") << columns[i];
-  out_ << '\n';
+    : columns_(columns.size()), out_(path) {
+  std::string header;
+  for (std::size_t i = 0; i < columns.size(); ++i) header += (i ? "," : "") + columns[i];
+  out_.write(header + '\n');
 }
 
 void CsvWriter::addRow(const std::vector<double>& values) {
   if (values.size() != columns_) {
-    throw std::invalid_argument("CSV file " + path_ + ": row of " + std::to_string(values.size()) + " values for " +
-                                std::to_string(columns_) + " columns");
+    throw std::invalid_argument("CSV file " + out_.path() + ": row of " + std::to_string(values.size()) +
+                                " values for " + std::to_string(columns_) + " columns");
   }
-  for (std::size_t i = 0; i < values.size(); ++i) out_ << (i ? "," : "") << formatDouble(values[i]);
-  out_ << '\n';
+  std::string line;
+  for (std::size_t i = 0; i < values.size(); ++i) line += (i ? "," : "") + formatDouble(values[i]);
+  out_.write(line + '\n');
 }
 
-void CsvWriter::close() {
-  out_.flush();
-  if (!out_) throw std::runtime_error("error writing CSV file " + path_);
-  out_.close();
-}
+void CsvWriter::close() { out_.close(); }
 
 int CsvTable::column(const std::string& name) const {
   for (std::size_t i = 0; i < columns.size(); ++i) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "uampc/run_files/number_format.hpp"
+#include "uampc/run_files/text_file.hpp"
 
 namespace uampc::run_files {
 
@@ -57,13 +58,7 @@ std::string dumpJson(const Json& value, int indent) {
   return out;
 }
 
-void writeJsonFile(const std::string& path, const Json& value) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot open JSON file " + path + " for writing");
-  out << dumpJson(value) << '\n';
-  out.flush();
-  if (!out) throw std::runtime_error("error writing JSON file " + path);
-}
+void writeJsonFile(const std::string& path, const Json& value) { writeTextFile(path, dumpJson(value) + "\n"); }
 
 Json readJsonFile(const std::string& path) {
   std::ifstream in(path);

@@ -24,11 +24,7 @@ void eachProgressField(S& p, Visit&& visit) {
 void writeRunProgress(const std::string& path, const RunProgress& progress) {
   Json json = Json::object();
   eachProgressField(progress, [&json](const char* key, const auto& value) { json[key] = value; });
-  const std::string partial = path + ".partial";
-  writeJsonFile(partial, json);
-  std::error_code error;
-  std::filesystem::rename(partial, path, error);
-  if (error) throw std::runtime_error("cannot write " + path + ": " + error.message());
+  writeJsonFile(path, json);  // whole or not at all: a reader never sees half a file
 }
 
 std::optional<RunProgress> readRunProgress(const std::string& path) {

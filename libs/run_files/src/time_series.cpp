@@ -1,5 +1,6 @@
 #include "uampc/run_files/time_series.hpp"
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -16,8 +17,6 @@ constexpr const char* kUncertaintyColumns[] = {"time", "theta_start", "delta_the
 constexpr char kLegacySamplesColumn[] = "samples...";
 constexpr const char* kTimingsColumns[] = {"time", "source", "name", "value"};
 
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
 template <std::size_t N>
 std::string headerLine(const char* const (&columns)[N]) {
   std::string line;
@@ -25,10 +24,17 @@ std::string headerLine(const char* const (&columns)[N]) {
   return line;
 }
 
-File openForWriting(const std::string& path) {
-  File file(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!file) throw std::runtime_error("cannot write " + path);
-  return file;
+// snprintf into a string: a field of the two files above, in their precision.
+template <class... Values>
+std::string printed(const char* format, Values... values) {
+  char buffer[64];
+  const int n = std::snprintf(buffer, sizeof buffer, format, values...);
+  if (n < 0) throw std::logic_error(std::string("cannot format ") + format);
+  if (static_cast<std::size_t>(n) < sizeof buffer) return std::string(buffer, static_cast<std::size_t>(n));
+  std::string text(static_cast<std::size_t>(n) + 1, '\0');
+  std::snprintf(text.data(), text.size(), format, values...);
+  text.pop_back();
+  return text;
 }
 
 std::string uncertaintyHeader(std::size_t samples) {
@@ -67,32 +73,42 @@ std::string uncertaintySampleColumn(std::size_t k) {
   return name;
 }
 
-UncertaintyWriter::UncertaintyWriter(const std::string& path) : path_(path), file_(openForWriting(path)) {}
+UncertaintyWriter::UncertaintyWriter(const std::string& path) : file_(path) {}
 
 UncertaintyWriter::~UncertaintyWriter() {
-  if (file_ && !samples_) std::fputs((uncertaintyHeader(0) + "\n").c_str(), file_.get());
+  try {
+    close();
+  } catch (const std::exception&) {
+    // Said by close() to whoever calls it; a destructor has no one to tell.
+  }
+}
+
+void UncertaintyWriter::close() {
+  if (!samples_) {
+    samples_ = 0;
+    file_.write(uncertaintyHeader(0) + "\n");
+  }
+  file_.close();
 }
 
 void UncertaintyWriter::add(const UncertaintyRow& row) {
   if (!samples_) {
     samples_ = row.samples.size();
-    std::fputs((uncertaintyHeader(*samples_) + "\n").c_str(), file_.get());
+    file_.write(uncertaintyHeader(*samples_) + "\n");
   } else if (row.samples.size() != *samples_) {
-    throw std::invalid_argument(path_ + ": a row of " + std::to_string(row.samples.size()) +
+    throw std::invalid_argument(file_.path() + ": a row of " + std::to_string(row.samples.size()) +
                                 " U samples, but the file's columns hold " + std::to_string(*samples_) +
                                 " (its first row's); row left out");
   }
-  std::fprintf(file_.get(), "%.9f,%.17g,%.17g,%.17g", row.time, row.theta_start, row.delta_theta, row.command);
-  for (double u : row.samples) std::fprintf(file_.get(), ",%.9g", u);
-  std::fputc('\n', file_.get());
+  std::string line = printed("%.9f,%.17g,%.17g,%.17g", row.time, row.theta_start, row.delta_theta, row.command);
+  for (double u : row.samples) line += printed(",%.9g", u);
+  file_.write(line + "\n");
 }
 
-TimingsWriter::TimingsWriter(const std::string& path) : file_(openForWriting(path)) {
-  std::fputs((headerLine(kTimingsColumns) + "\n").c_str(), file_.get());
-}
+TimingsWriter::TimingsWriter(const std::string& path) : file_(path) { file_.write(headerLine(kTimingsColumns) + "\n"); }
 
 void TimingsWriter::add(const TimingRow& row) {
-  std::fprintf(file_.get(), "%.9f,%s,%s,%.9g\n", row.time, row.source.c_str(), row.name.c_str(), row.value);
+  file_.write(printed("%.9f,", row.time) + row.source + "," + row.name + printed(",%.9g\n", row.value));
 }
 
 std::vector<UncertaintyRow> readUncertainty(const std::string& path) {

@@ -10,11 +10,13 @@
 #include <functional>
 #include <sstream>
 
+#include "full_disk.hpp"
 #include "uampc/run_files/json_text.hpp"
 #include "uampc/run_files/metrics_file.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/run_info.hpp"
 #include "uampc/run_files/run_progress.hpp"
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/run_files/time_series.hpp"
 
 namespace uampc::run_files {
@@ -422,6 +424,77 @@ TEST(RunProgress, ReadsBackWhatItWrote) {
   EXPECT_FALSE(fs::exists(path + ".partial"));
   writeText(path, "{\"sim_s\": 3");  // not this writer's (it renames whole files into place)
   EXPECT_FALSE(readRunProgress(path));
+}
+
+// What a full disk does to the files written whole (docs/decisions/run-files-whole-or-absent.md):
+// the write fails with the file and the reason named, and leaves the file as it was, or absent,
+// never cut (a cut metrics.json or done marker would pass for a complete one). The disk is full
+// beyond 100 bytes here (test::ScopedFileSizeLimit, full_disk.hpp: EFBIG where a disk gives ENOSPC).
+TEST(WholeFiles, AFileThatCannotBeWrittenWholeIsLeftAsItWas) {
+  const std::string dir = freshDirectory("whole_files");
+  const std::string path = inDirectory(dir, "report.txt"), existing = inDirectory(dir, "existing.txt");
+  writeTextFile(existing, "before\n");
+  MetricsDocument metrics;
+  metrics.sim_time = 30.0;
+  {
+    test::ScopedFileSizeLimit full_disk(100);
+    for (const std::string& target : {path, existing}) {
+      try {
+        writeTextFile(target, std::string(1000, 'x'));
+        ADD_FAILURE() << "1000 bytes written under a 100-byte limit";
+      } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()), "cannot write " + target + ": File too large");
+      }
+    }
+    EXPECT_THROW(writeMetricsFile(inDirectory(dir, kMetricsFile), metrics), std::runtime_error);
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_EQ(contentOf(existing), "before\n");
+  EXPECT_FALSE(fs::exists(inDirectory(dir, kMetricsFile)));
+  for (const auto& entry : fs::directory_iterator(dir)) EXPECT_NE(entry.path().extension(), ".partial") << entry.path();
+  {
+    test::ScopedFileSizeLimit full_disk(0);
+    EXPECT_THROW(writeDoneMarker(dir, 4.5), std::runtime_error);
+  }
+  EXPECT_FALSE(readDoneMarker(dir));
+}
+
+// The files written through a run, on a full disk: /dev/full fails every write with ENOSPC, as a
+// disk that has filled up does. The failure shows at the row that overflows the writer's buffer
+// (or at close), names the file and the reason, and every row after it fails the same way: a cut
+// file does not go on after a gap.
+void expectEveryWriteFailsOnceOneHas(const std::function<void()>& add_row, const std::string& what) {
+  const std::string wanted = "cannot write /dev/full: No space left on device";
+  bool failed = false;
+  for (int row = 0; row < 100000 && !failed; ++row) {
+    try {
+      add_row();
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), wanted) << what;
+      failed = true;
+    }
+  }
+  ASSERT_TRUE(failed) << what << ": 100000 rows written to /dev/full without an error";
+  try {
+    add_row();
+    ADD_FAILURE() << what << ": a row after a failed one was taken";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), wanted) << what;
+  }
+}
+
+TEST(TimeSeries, AFullDiskFailsEveryWriterNamingTheFile) {
+  RowWriter<MotorRow> motor("/dev/full");
+  expectEveryWriteFailsOnceOneHas([&] { motor.add({1.0, 2.0, 3.0, 3.6}); }, "motor.csv");
+  TimingsWriter timings("/dev/full");
+  expectEveryWriteFailsOnceOneHas([&] { timings.add({2.5, "lo", "registration_ms", 1.25}); }, "timings.csv");
+  UncertaintyWriter uncertainty("/dev/full");
+  expectEveryWriteFailsOnceOneHas([&] { uncertainty.add({0.1, 0.0, 0.5, 3.6, std::vector<double>(72, 0.5)}); },
+                                  "uncertainty.csv");
+  // Rows that fit the buffer fail at close, where they would reach the disk.
+  RowWriter<MotorRow> short_file("/dev/full");
+  short_file.add({1.0, 2.0, 3.0, 3.6});
+  EXPECT_THROW(short_file.close(), std::runtime_error);
 }
 
 }  // namespace

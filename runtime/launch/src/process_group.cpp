@@ -380,18 +380,26 @@ class ProcessRunner {
     if (!createComponents()) return 1;
     const int code = state_.lockstep ? runLockstep(stop) : runRealtime(stop);
     if (code != 0) deliverFailure();
+    return shutDownComponents() ? code : 1;
+  }
+
+ private:
+  // Every component's shutdown, even after one has failed: each writes its own outputs (a
+  // recorder's file is whole only once it is closed), and one component's full disk is no reason
+  // to lose another's files. False when any failed.
+  bool shutDownComponents() {
+    bool ok = true;
     for (auto& [name, component] : components_) {
       try {
         component->shutdown();
       } catch (const std::exception& e) {
         log_.error("component '", name, "' failed while shutting down: ", e.what());
-        return 1;
+        ok = false;
       }
     }
-    return code;
+    return ok;
   }
 
- private:
   bool createComponents() {
     // The participant of serialized ports (a recorder's) is made before any component, beside the
     // process's main participant, so that the two announce themselves to each other at the same

@@ -3,12 +3,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <ctime>
-#include <fstream>
 #include <stdexcept>
 #include <type_traits>
 
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/run_info.hpp"
+#include "uampc/run_files/text_file.hpp"
 
 namespace uampc {
 
@@ -144,10 +144,7 @@ std::string resolvedSceneYaml(const Scene& scene) {
 void writeRunRecord(const Scene& scene, const LaunchOptions& options) {
   const std::string& directory = options.output_directory;
   const std::string copy = run_files::inDirectory(directory, run_files::kSceneCopyFile);
-  std::ofstream file(copy);
-  file << resolvedSceneYaml(scene);
-  file.flush();
-  if (!file) throw std::runtime_error("cannot write " + copy);
+  run_files::writeTextFile(copy, resolvedSceneYaml(scene));  // whole or absent, the reason named
 
   run_files::RunInfo info;
   info.scene_copy = run_files::kSceneCopyFile;

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -186,23 +187,45 @@ pid_t startRun(ChildProcesses& children, const std::string& executable, const Pl
   return children.start(runCommand(executable, args, directory));
 }
 
-void recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
-                  RunResult& result) {
+namespace {
+
+// Writes a marker; "" or why it could not (the marker is then absent: text_file.hpp).
+std::string tryToWrite(const std::function<void()>& write_marker) {
+  try {
+    write_marker();
+    return "";
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+}
+
+}  // namespace
+
+std::string recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
+                         RunResult& result) {
   result.exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
   if (result.exit_code == 0 && readRunMetrics(directory)) {
-    run_files::writeDoneMarker(directory, wall_time_s);
-    result.status = RunStatus::kOk;
-    readRunOutputs(directory, result);
-  } else if (interrupted) {
+    const std::string error = tryToWrite([&] { run_files::writeDoneMarker(directory, wall_time_s); });
+    if (error.empty()) {
+      result.status = RunStatus::kOk;
+      readRunOutputs(directory, result);
+      return "";
+    }
+    // Not done until its marker says so: the next invocation runs it again.
+    result.status = RunStatus::kFailed;
+    result.failure = "finished, but its done marker could not be written (" + error + ")";
+    result.wall_time_s = wall_time_s;
+    return error;
+  }
+  if (interrupted) {
     result.status = RunStatus::kNotRun;  // stopped by Ctrl-C: not a failure of the run
     result.failure = "interrupted";
-    run_files::writeFailedMarker(directory, result.failure);
   } else {
     result.status = RunStatus::kFailed;
     result.failure = result.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(wait_status);
     result.wall_time_s = wall_time_s;
-    run_files::writeFailedMarker(directory, result.failure);
   }
+  return tryToWrite([&] { run_files::writeFailedMarker(directory, result.failure); });
 }
 
 namespace {
@@ -220,7 +243,7 @@ class Scheduler {
         results_(plan.size()),
         slot_busy_(static_cast<std::size_t>(std::max(options.jobs, 1)), false) {}
 
-  std::vector<RunResult> run() {
+  RunnerOutcome run() {
     reuseCompleteRuns();
     Progress progress(plan_.size(), plan_.size() - pending_.size());
     progress_ = &progress;
@@ -244,7 +267,7 @@ class Scheduler {
       report(true);
     }
     progress.finish();
-    return results_;
+    return {results_, error_};
   }
 
  private:
@@ -282,6 +305,17 @@ class Scheduler {
     children_.signalAll(SIGINT);  // the launcher stops its run cleanly
   }
 
+  // A file of the experiment's own could not be written (a run directory, a marker): every run
+  // after it would go unrecorded, so the experiment stops as on Ctrl-C, and says why.
+  void halt(const std::string& error) {
+    if (!error_.empty()) return;  // the first says it; the others follow from it
+    error_ = error;
+    progress_->say("experiment: " + error + "; the experiment stops" +
+                   (running_.empty() ? "" : ", and with it " + std::to_string(running_.size()) + " run(s)"));
+    stopping_ = true;
+    children_.signalAll(SIGINT);
+  }
+
   int freeSlot() const {
     for (std::size_t k = 0; k < slot_busy_.size(); ++k) {
       if (!slot_busy_[k]) return static_cast<int>(k);
@@ -298,6 +332,11 @@ class Scheduler {
       pid_t pid = -1;
       try {
         pid = startRun(children_, options_.executable, plan_[i], directoryOf(i).string(), options_.domain_base + slot);
+      } catch (const fs::filesystem_error& e) {
+        results_[i].status = RunStatus::kNotRun;
+        results_[i].failure = "cannot create its directory " + e.path1().string() + ": " + e.code().message();
+        halt(results_[i].failure);
+        return;
       } catch (const std::system_error& e) {
         results_[i].status = RunStatus::kFailed;
         results_[i].failure = "cannot start a process: " + e.code().message();
@@ -318,7 +357,7 @@ class Scheduler {
     const fs::path dir = directoryOf(done.run);
     const double wall = secondsSince(done.start);
     finished_work_.push_back({progressOf(done.run), wall});
-    recordRunEnd(dir.string(), status, wall, stopping_, r);
+    if (const std::string error = recordRunEnd(dir.string(), status, wall, stopping_, r); !error.empty()) halt(error);
     if (r.status != RunStatus::kFailed) return;
     ++failed_;
     const std::string last = lastLine(run_files::readTextFile(dir / run_files::kRunLog));
@@ -361,12 +400,12 @@ class Scheduler {
   std::vector<StartedRun> finished_work_;  // for the ETA: the runs finished in this invocation
   Progress* progress_ = nullptr;
   bool stopping_ = false;
+  std::string error_;  // why the experiment stopped early (halt); empty: it did not
 };
 
 }  // namespace
 
-std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,
-                              const RunnerOptions& options) {
+RunnerOutcome runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan, const RunnerOptions& options) {
   return Scheduler(experiment, plan, options).run();
 }
 

@@ -47,6 +47,7 @@ RunResult plannedResult(const Experiment& experiment, const PlannedRun& run);
 
 // Starts one run as `executable launch ... --out directory --set domain_id=D`, its stdout and
 // stderr into the directory's run.log, after emptying the directory. Returns its pid; throws
+// std::filesystem::error naming the directory when it cannot be emptied or created, and
 // std::system_error when no process can be started.
 pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
                const std::string& directory, int domain_id);
@@ -54,11 +55,21 @@ pid_t startRun(ChildProcesses& children, const std::string& executable, const Pl
 // A run's process ended with `wait_status` after `wall_time_s`: writes its done marker (exit 0 and
 // a readable metrics.json) or its failed marker, and fills result's status, exit code, failure and
 // figures. `interrupted`: the user stopped it (not a failure of the run).
-void recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
-                  RunResult& result);
+// Returns "" or, when the marker could not be written, why ("cannot write PATH: REASON"): the
+// marker is then absent (markers are written whole or not at all), and a run whose done marker
+// is missing counts as failed, to be run again (docs/decisions/run-files-whole-or-absent.md).
+std::string recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
+                         RunResult& result);
 
-// Runs what is not complete yet and returns one result per planned run, in plan order.
-std::vector<RunResult> runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan,
-                              const RunnerOptions& options);
+struct RunnerOutcome {
+  std::vector<RunResult> results;  // one per planned run, in plan order
+  // Empty, or why the experiment stopped early: a file of its own (a run directory, a marker)
+  // that could not be written, e.g. on a full disk. The runs then running were stopped as on
+  // Ctrl-C, and none was started after.
+  std::string error;
+};
+
+// Runs what is not complete yet.
+RunnerOutcome runAll(const Experiment& experiment, const std::vector<PlannedRun>& plan, const RunnerOptions& options);
 
 }  // namespace uampc::app

@@ -2,8 +2,9 @@
 
 #include <zlib.h>
 
-#include <fstream>
 #include <stdexcept>
+
+#include "uampc/run_files/text_file.hpp"
 
 namespace uampc::evaluator {
 
@@ -65,9 +66,8 @@ std::vector<std::uint8_t> encodePng(const RgbImage& image) {
 
 void writePng(const std::string& path, const RgbImage& image) {
   const std::vector<std::uint8_t> bytes = encodePng(image);
-  std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("cannot write " + path);
+  // Whole or absent: a snapshot cut by a full disk is not left looking like one.
+  run_files::writeTextFile(path, std::string(bytes.begin(), bytes.end()));
 }
 
 }  // namespace uampc::evaluator

@@ -6,12 +6,12 @@
 #include <stdexcept>
 
 #include "uampc/run_files/number_format.hpp"
+#include "uampc/run_files/text_file.hpp"
 
 namespace uampc::evaluator {
 
 void writeTumTrajectory(const std::string& path, const std::vector<TimedPose>& poses) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot open TUM trajectory file " + path + " for writing");
+  std::ostringstream out;
   out << "# t x y z qx qy qz qw\n";
   for (const TimedPose& p : poses) {
     Eigen::Quaterniond q(p.pose.rotation());
@@ -23,8 +23,7 @@ void writeTumTrajectory(const std::string& path, const std::vector<TimedPose>& p
         << run_files::formatDouble(q.x()) << ' ' << run_files::formatDouble(q.y()) << ' '
         << run_files::formatDouble(q.z()) << ' ' << run_files::formatDouble(q.w()) << '\n';
   }
-  out.flush();
-  if (!out) throw std::runtime_error("error writing TUM trajectory file " + path);
+  run_files::writeTextFile(path, out.str());  // whole or absent, the reason named on failure
 }
 
 std::vector<TimedPose> readTumTrajectory(const std::string& path) {

@@ -2,7 +2,10 @@
 
 #include <octomap/OcTree.h>
 
+#include <sstream>
 #include <stdexcept>
+
+#include "uampc/run_files/text_file.hpp"
 
 namespace uampc::evaluator {
 
@@ -29,10 +32,12 @@ std::size_t writeVoxelOctree(const std::string& path, const std::vector<Eigen::V
     ++written;
   }
   tree.updateInnerOccupancy();
-  // writeBinary converts to maximum likelihood and prunes before writing.
-  if (!tree.writeBinary(path)) {
-    throw std::runtime_error("cannot write octree file " + path);
-  }
+  // writeBinary converts to maximum likelihood and prunes before writing. Into memory first:
+  // OctoMap's file overload answers true whatever its stream's state, so a full disk would pass
+  // unseen; writeTextFile checks every byte and leaves the file whole or absent.
+  std::ostringstream bytes(std::ios::binary);
+  if (!tree.writeBinary(bytes)) throw std::runtime_error("cannot encode octree file " + path);
+  run_files::writeTextFile(path, bytes.str());
   return written;
 }
 

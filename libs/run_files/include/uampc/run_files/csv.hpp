@@ -3,29 +3,30 @@
 #pragma once
 
 #include <cstddef>
-#include <fstream>
 #include <string>
 #include <type_traits>
 #include <vector>
+
+#include "uampc/run_files/streamed_file.hpp"
 
 namespace uampc::run_files {
 
 class CsvWriter {
  public:
-  // Creates path and writes the header line; throws std::runtime_error naming path on failure.
+  // Creates path and writes the header line. A write that fails throws std::runtime_error
+  // "cannot write PATH: REASON", here, in addRow or in close (streamed_file.hpp).
   CsvWriter(const std::string& path, const std::vector<std::string>& columns);
 
   // One row, as many values as columns (else std::invalid_argument). Doubles shortest
   // round-trip; NaN written as "nan", infinities as "inf" / "-inf".
   void addRow(const std::vector<double>& values);
 
-  // Flushes; throws std::runtime_error naming path if anything failed to write.
+  // Flushes and closes; throws as above if anything failed to write.
   void close();
 
  private:
-  std::string path_;
   std::size_t columns_;
-  std::ofstream out_;
+  StreamedFile out_;
 };
 
 // A CSV file read back: the header's names and numeric rows. Rows may differ in length (as in

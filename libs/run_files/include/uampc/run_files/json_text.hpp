@@ -15,7 +15,8 @@ using Json = nlohmann::ordered_json;
 // lists of plain values on one line ("[1, 2]"), lists holding objects or lists one element a line.
 std::string dumpJson(const Json& value, int indent = 2);
 
-// dumpJson(value) and a newline. Throws std::runtime_error naming path on failure.
+// dumpJson(value) and a newline, whole or not at all (writeTextFile, text_file.hpp); throws
+// std::runtime_error naming path and the reason on failure.
 void writeJsonFile(const std::string& path, const Json& value);
 
 // Throws std::runtime_error naming path when it cannot be read or is not JSON.

@@ -1,13 +1,12 @@
 // The CSV files of a run (names in run_directory.hpp): one row type each, its columns named once.
 #pragma once
 
-#include <cstdio>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "uampc/run_files/csv.hpp"
+#include "uampc/run_files/streamed_file.hpp"
 
 namespace uampc::run_files {
 
@@ -80,30 +79,33 @@ struct TimingRow {
 };
 
 // The two files written line by line through a run in their own precision (times to the
-// nanosecond, U samples to 9 digits), as fprintf prints them.
+// nanosecond, U samples to 9 digits), as fprintf prints them. Every write is checked
+// (streamed_file.hpp): a failed one throws std::runtime_error "cannot write PATH: REASON", from
+// the constructor, add() or close().
 // The header is written with the first row (whose sample count names the columns), or without
 // sample columns when the writer ends having had none; until then the file is empty.
 class UncertaintyWriter {
  public:
-  explicit UncertaintyWriter(const std::string& path);  // throws naming path
-  ~UncertaintyWriter();
+  explicit UncertaintyWriter(const std::string& path);
+  ~UncertaintyWriter();  // close() without a word about failures
   // Throws std::invalid_argument naming the file when the row's sample count differs from the
   // first row's (the columns are fixed by then); nothing is written then.
   void add(const UncertaintyRow& row);
+  void close();
 
  private:
-  std::string path_;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+  StreamedFile file_;
   std::optional<std::size_t> samples_;  // set by the first row
 };
 
 class TimingsWriter {
  public:
-  explicit TimingsWriter(const std::string& path);  // throws naming path
+  explicit TimingsWriter(const std::string& path);
   void add(const TimingRow& row);
+  void close() { file_.close(); }
 
  private:
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file_;
+  StreamedFile file_;
 };
 
 // The name of sample k's column: "u_" and k, zero-padded to 3 digits ("u_007").
