@@ -170,30 +170,79 @@ void LocalMap::removeFarFrom(const Eigen::Vector3d& origin_W) {
   }
 }
 
-std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
-                              std::vector<Eigen::Vector3f>* views) const {
-  neighbours.clear();
-  if (views != nullptr) views->clear();
-  if (k == 0) return 0;
-  // The k best so far, sorted by squared distance (k is small: insertion beats sorting).
-  constexpr std::size_t kMaxK = 16;
+namespace {
+
+// The k best candidates so far, sorted by squared distance (k is small: insertion beats sorting).
+// Block and View are LocalMap's, passed in so that this step stays a plain type of this file.
+template <class Block, class View>
+class KNearest {
+ public:
+  static constexpr std::size_t kMaxK = 16;
+  explicit KNearest(std::size_t k) : k_(std::min(k, kMaxK)) {}
+
+  // Squared distance of the k-th best so far: a block farther than this holds nothing better.
+  float worst() const { return worst_; }
+
+  // The block's points nearer than the k-th best go through the insertion. The 8 squared distances
+  // are computed together (SIMD); after the first block or two, only a few of the ~20 candidates
+  // pass, and the test itself does not branch.
+  void offer(const Block& block, const Eigen::Vector3f& q) {
+    using Array8f = Eigen::Array<float, 8, 1>;
+    const Array8f d2 = (Eigen::Map<const Array8f>(block.x.data()) - q.x()).square() +
+                       (Eigen::Map<const Array8f>(block.y.data()) - q.y()).square() +
+                       (Eigen::Map<const Array8f>(block.z.data()) - q.z()).square();
+    unsigned nearer = 0;
+    for (int j = 0; j < 8; ++j) nearer |= static_cast<unsigned>(d2[j] < worst_) << j;
+    for (unsigned bits = nearer & block.occupied; bits != 0; bits &= bits - 1) {
+      const int j = __builtin_ctz(bits);
+      if (d2[j] >= worst_) continue;  // worst shrank since
+      insert({d2[j], block.point(j), &block.views[j]});
+    }
+  }
+
+  std::size_t copyOut(std::vector<Eigen::Vector3d>& neighbours, std::vector<Eigen::Vector3f>* views) const {
+    for (std::size_t i = 0; i < n_; ++i) neighbours.push_back(best_[i].point.template cast<double>());
+    if (views != nullptr) {
+      for (std::size_t i = 0; i < n_; ++i) {
+        const View& v = *best_[i].view;
+        views->push_back(Eigen::Vector3f(v[0], v[1], v[2]) / 127.0f);
+      }
+    }
+    return n_;
+  }
+
+ private:
   struct Candidate {
     float d2;
     Eigen::Vector3f point;
     const View* view;
   };
-  std::array<Candidate, kMaxK> best;
-  k = std::min(k, kMaxK);
-  std::size_t n = 0;
-  float worst = std::numeric_limits<float>::infinity();  // k-th best squared distance
-  const Eigen::Vector3f qf = q.cast<float>();
+  void insert(const Candidate& c) {
+    std::size_t i = (n_ < k_) ? n_++ : k_ - 1;
+    while (i > 0 && best_[i - 1].d2 > c.d2) {
+      best_[i] = best_[i - 1];
+      --i;
+    }
+    best_[i] = c;
+    if (n_ == k_) worst_ = best_[k_ - 1].d2;
+  }
+
+  std::size_t k_;
+  std::size_t n_ = 0;
+  float worst_ = std::numeric_limits<float>::infinity();
+  std::array<Candidate, kMaxK> best_;
+};
+
+}  // namespace
+
+// Voxels center-1 .. center+1 span exactly two blocks along each axis, one of which holds q. A
+// block's squared distance to q (0 for q's own block) bounds its points' from below, so a block is
+// skipped once k points nearer than it are known: the same k points as an exhaustive search of the
+// 8 blocks. Visiting them roughly nearest first (q's block, then across the nearest faces) makes
+// the skips frequent. The bound is loosened by 1 mm so that float rounding of the stored points
+// cannot skip one the search would take.
+LocalMap::NearbyBlocks LocalMap::nearbyBlocks(const Eigen::Vector3d& q) const {
   const Voxel center = voxelOf(q, inverse_voxel_size_);
-  // Voxels center-1 .. center+1 span exactly two blocks along each axis, one of which holds q.
-  // A block's squared distance to q (0 for q's own block) bounds its points' from below, so a
-  // block is skipped once k points nearer than it are known: the same k points as an exhaustive
-  // search of the 8 blocks. Visiting them roughly nearest first (q's
-  // block, then across the nearest faces) makes the skips frequent. The bound is loosened by
-  // 1 mm so that float rounding of the stored points cannot skip one the search would take.
   const double block_size = 2.0 * voxel_size_;
   // Per axis, the key bits and the squared distance from q of q's own block (0) and of the other
   // one. Whether the other lies below or above is the parity of q's voxel; the distances of the
@@ -219,57 +268,45 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vect
   const int a0 = 1 << axis[0], a1 = 1 << axis[1], a2 = 1 << axis[2];
   // Which axes each visited block lies across from q's block, roughly nearest first.
   const std::array<int, 8> across = {0, a0, a1, a2, a0 | a1, a0 | a2, a1 | a2, 7};
-  std::array<std::uint64_t, 8> keys;
-  std::array<float, 8> box2;  // squared distance from q to block c, a lower bound for its points
+  NearbyBlocks nearby;
   for (int c = 0; c < 8; ++c) {
     const int x = across[c] & 1, y = (across[c] >> 1) & 1, z = across[c] >> 2;
-    keys[c] = key_part[0][x] | key_part[1][y] | key_part[2][z];
-    box2[c] = gap2[0][x] + gap2[1][y] + gap2[2][z];
-    __builtin_prefetch(&slots_[home(keys[c])]);
+    nearby.keys[c] = key_part[0][x] | key_part[1][y] | key_part[2][z];
+    nearby.box2[c] = gap2[0][x] + gap2[1][y] + gap2[2][z];
+    __builtin_prefetch(&slots_[home(nearby.keys[c])]);
   }
-  // All 8 blocks are looked up before any is searched, so that their cache misses overlap
-  // instead of following one another; the search skips blocks, not look-ups.
+  return nearby;
+}
+
+// All 8 blocks are looked up before any is searched, so that their cache misses overlap instead
+// of following one another; the search skips blocks, not look-ups.
+std::array<const LocalMap::Block*, 8> LocalMap::lookUp(const NearbyBlocks& nearby) const {
   std::array<const Block*, 8> blocks;
   for (int c = 0; c < 8; ++c) {
-    const std::size_t slot = slotOf(keys[c]);
+    const std::size_t slot = slotOf(nearby.keys[c]);
     blocks[c] = slot == kNoSlot ? nullptr : &pool_[slots_[slot].block];
     if (blocks[c] != nullptr) {
       __builtin_prefetch(blocks[c]);
       __builtin_prefetch(reinterpret_cast<const char*>(blocks[c]) + sizeof(Block) - 1);
     }
   }
+  return blocks;
+}
+
+std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
+                              std::vector<Eigen::Vector3f>* views) const {
+  neighbours.clear();
+  if (views != nullptr) views->clear();
+  if (k == 0) return 0;
+  const NearbyBlocks nearby = nearbyBlocks(q);
+  const std::array<const Block*, 8> blocks = lookUp(nearby);
+  KNearest<Block, View> best(k);
+  const Eigen::Vector3f qf = q.cast<float>();
   for (int c = 0; c < 8; ++c) {
-    if (box2[c] > worst || blocks[c] == nullptr) continue;
-    const Block& block = *blocks[c];
-    // The 8 squared distances together (SIMD); only points nearer than the k-th best go through
-    // the insertion: after the first block or two that is a few of the ~20 candidates, and the
-    // test itself does not branch.
-    using Array8f = Eigen::Array<float, 8, 1>;
-    const Array8f d2 = (Eigen::Map<const Array8f>(block.x.data()) - qf.x()).square() +
-                       (Eigen::Map<const Array8f>(block.y.data()) - qf.y()).square() +
-                       (Eigen::Map<const Array8f>(block.z.data()) - qf.z()).square();
-    unsigned nearer = 0;
-    for (int j = 0; j < 8; ++j) nearer |= static_cast<unsigned>(d2[j] < worst) << j;
-    for (unsigned bits = nearer & block.occupied; bits != 0; bits &= bits - 1) {
-      const int j = __builtin_ctz(bits);
-      if (d2[j] >= worst) continue;  // worst shrank since
-      std::size_t i = (n < k) ? n++ : k - 1;
-      while (i > 0 && best[i - 1].d2 > d2[j]) {
-        best[i] = best[i - 1];
-        --i;
-      }
-      best[i] = {d2[j], block.point(j), &block.views[j]};
-      if (n == k) worst = best[k - 1].d2;
-    }
+    if (nearby.box2[c] > best.worst() || blocks[c] == nullptr) continue;
+    best.offer(*blocks[c], qf);
   }
-  for (std::size_t i = 0; i < n; ++i) neighbours.push_back(best[i].point.cast<double>());
-  if (views != nullptr) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const View& v = *best[i].view;
-      views->push_back(Eigen::Vector3f(v[0], v[1], v[2]) / 127.0f);
-    }
-  }
-  return n;
+  return best.copyOut(neighbours, views);
 }
 
 // The block pool is walked in memory order: freed blocks hold no occupied voxel, so they add

@@ -115,6 +115,14 @@ class LocalMap {
     }
   }
   void placeKey(std::uint64_t key, std::uint32_t block);
+  // nearest(), in its steps: the 8 blocks around q and a lower bound for each one's points'
+  // squared distance to q, then the blocks themselves (nullptr where none is stored).
+  struct NearbyBlocks {
+    std::array<std::uint64_t, 8> keys;
+    std::array<float, 8> box2;  // m^2
+  };
+  NearbyBlocks nearbyBlocks(const Eigen::Vector3d& q) const;
+  std::array<const Block*, 8> lookUp(const NearbyBlocks& nearby) const;
   // visit(point, observation time) for every occupied voxel observed at or after observed_since.
   template <class Visit>
   void forEachPointSince(double observed_since, Visit&& visit) const;
