@@ -149,7 +149,8 @@ TEST(PcdAndPcl, WeReadTheFilesPclWritesAsPclReadsThem) {
 }
 
 // PCL converts the first ASCII value through a stream and the rest with atof (pcd_reader.cpp,
-// PclAsciiNumbers); files whose first values take that path differently give PCL's points.
+// PclAsciiNumbers); files whose first values take that path differently give PCL's points, and so
+// does a header without VERSION and COUNT (as PCD 0.6 wrote them).
 TEST(PcdAndPcl, AsciiValuesAreConvertedAsPclConvertsThem) {
   TempDir dir;
   const std::string halfway = "1.00000005960464477550";  // strtof and atof-then-float differ
@@ -167,6 +168,7 @@ TEST(PcdAndPcl, AsciiValuesAreConvertedAsPclConvertsThem) {
       "VERSION 0.7\nFIELDS _ x y z\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\n"
       "DATA ascii\n7 " + halfway + " " + halfway + " 1\n",             // padding is not converted
       xyz + "1e39 -1e39 1e-46\n1e-46 5 -0\n",                        // out of float's range: infinite
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6\n",  // 0.6: no COUNT
   };
   for (std::size_t i = 0; i < std::size(files); ++i) {
     const std::string path = dir.write("quirk" + std::to_string(i) + ".pcd", files[i]);
