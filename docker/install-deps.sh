@@ -9,7 +9,8 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config git
   # middleware: Fast DDS 2.9 and its code generator, tools (fastdds discovery, shm clean)
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
-  # algorithms
+  # algorithms (libpcl-dev only for pcd_pcl_test, which holds our PCD reader and writer to PCL's;
+  # nothing we ship links PCL: docs/decisions/pcd-own-reader.md)
   libeigen3-dev libpcl-dev libceres-dev liboctomap-dev libembree-dev
   # CRC-32 and deflate (MCAP checksums, PNG snapshots)
   zlib1g-dev

@@ -32,12 +32,49 @@ def pcd_header(fields, sizes, types, counts, n, data):
 
 
 def lzf_literals(raw):
-    """LZF as PCL reads it, with literal runs only (a control byte < 32: the next ctrl+1 bytes)."""
+    """LZF with literal runs only (a control byte < 32: the next ctrl+1 bytes)."""
     out_bytes = bytearray()
     for i in range(0, len(raw), 32):
         chunk = raw[i:i + 32]
         out_bytes.append(len(chunk) - 1)
         out_bytes += chunk
+    return bytes(out_bytes)
+
+
+def lzf_with_references(raw):
+    """LZF with back references (a control byte >= 32: length, then distance), greedy over the
+    last 8192 bytes, and literal runs between them."""
+    out_bytes, literals, i = bytearray(), bytearray(), 0
+
+    def flush():
+        for k in range(0, len(literals), 32):
+            chunk = literals[k:k + 32]
+            out_bytes.append(len(chunk) - 1)
+            out_bytes.extend(chunk)
+        literals.clear()
+
+    while i < len(raw):
+        best_len, best_dist = 0, 0
+        for start in range(max(0, i - 8192), i):
+            n = 0
+            while n < 264 and i + n < len(raw) and raw[start + n] == raw[i + n]:
+                n += 1
+            if n > best_len:
+                best_len, best_dist = n, i - start
+        if best_len < 3:
+            literals.append(raw[i])
+            i += 1
+            continue
+        flush()
+        length, distance = best_len - 2, best_dist - 1
+        if length < 7:
+            out_bytes.append((length << 5) | (distance >> 8))
+        else:
+            out_bytes.append((7 << 5) | (distance >> 8))
+            out_bytes.append(length - 7)
+        out_bytes.append(distance & 0xff)
+        i += best_len
+    flush()
     return bytes(out_bytes)
 
 
@@ -61,6 +98,16 @@ def write_pcd():
     out("pcd", "binary_double_rgb_count2.pcd",
         pcd_header(["x", "y", "z", "rgb", "normal"], [8, 8, 8, 4, 4], ["F", "F", "F", "U", "F"], [1, 1, 1, 1, 2], n,
                    "binary").encode() + body)
+    # binary_compressed with back references, x, y, z of SIZE 8 among other fields (an unsigned
+    # ring first, an intensity between): the compressed layout's field offsets and LZF's references.
+    fields = [("ring", 2, "U", "<%dH", lambda k, p: k % 4), ("x", 8, "F", "<%dd", lambda k, p: p[0]),
+              ("intensity", 4, "F", "<%df", lambda k, p: 0.25), ("y", 8, "F", "<%dd", lambda k, p: p[1]),
+              ("z", 8, "F", "<%dd", lambda k, p: p[2])]
+    soa = b"".join(struct.pack(fmt % n, *[value(k, p) for k, p in enumerate(pts)]) for _, _, _, fmt, value in fields)
+    compressed = lzf_with_references(soa)
+    out("pcd", "compressed_double_fields_references.pcd",
+        pcd_header([f[0] for f in fields], [f[1] for f in fields], [f[2] for f in fields], [1] * len(fields), n,
+                   "binary_compressed").encode() + struct.pack("<II", len(compressed), len(soa)) + compressed)
     nan_body = "nan nan nan\n1 2 3\ninf 0 0\n"
     out("pcd", "ascii_non_finite.pcd", pcd_header(["x", "y", "z"], [4] * 3, ["F"] * 3, [1] * 3, 3, "ascii") + nan_body)
 

@@ -1,6 +1,7 @@
 // PCD maps as the map_provider loads them (world: file, map_file: *.pcd): loadMap() checks the
-// header and data against the file before PCL decodes it, then skips non-finite points and
-// downsamples. Bad input must end in std::runtime_error naming the file.
+// header and declared sizes, our reader decodes the data (ascii, binary, LZF binary_compressed;
+// docs/decisions/pcd-own-reader.md), then non-finite points are skipped and the map downsampled.
+// Bad input must end in std::runtime_error naming the file.
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>

@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <limits>
 
+#include "../src/lzf.hpp"
 #include "temp_dir.hpp"
 #include "uampc/world/seeded_random.hpp"
 
@@ -175,6 +179,202 @@ TEST(MapIo, BinaryDataThatReadsAsAHeaderLineIsRefused) {
   expectLoadError(dir.write("blank_line.pcd", "\r \r\n" + header + std::string(24, '\0')),
                   "header line 1 is blank before DATA");
   EXPECT_EQ(loadMap(dir.write("empty_line.pcd", "\n" + header + std::string(24, '\0')), {}).points.size(), 2u);
+}
+
+// A PCD field as a test writes it.
+struct TestField {
+  std::string name;
+  char type;  // I, U, F
+  int size, count;
+};
+
+// A PCD file of `fields` whose points are `rows` (every value of a point, field after field),
+// written byte by byte in `data` (ascii, binary, binary_compressed).
+std::string testPcd(const std::vector<TestField>& fields, const std::vector<std::vector<double>>& rows,
+                    const std::string& data) {
+  std::string names, sizes, types, counts;
+  for (const auto& f : fields) {
+    names += " " + f.name;
+    sizes += " " + std::to_string(f.size);
+    types += std::string(" ") + f.type;
+    counts += " " + std::to_string(f.count);
+  }
+  const std::string n = std::to_string(rows.size());
+  std::string out = "# .PCD v0.7\nVERSION 0.7\nFIELDS" + names + "\nSIZE" + sizes + "\nTYPE" + types + "\nCOUNT" + counts +
+                    "\nWIDTH " + n + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + n + "\nDATA " + data + "\n";
+  if (data == "ascii") {
+    for (const auto& row : rows) {
+      for (double v : row) {
+        char text[40];
+        std::snprintf(text, sizeof text, "%.17g ", v);
+        out += text;
+      }
+      out += "\n";
+    }
+    return out;
+  }
+  auto encode = [](const TestField& f, double v) {
+    char bytes[8];
+    if (f.type == 'F' && f.size == 4) {
+      const float x = static_cast<float>(v);
+      std::memcpy(bytes, &x, 4);
+    } else if (f.type == 'F') {
+      std::memcpy(bytes, &v, 8);
+    } else {
+      const auto i = static_cast<std::int64_t>(v);
+      std::memcpy(bytes, &i, 8);  // little-endian: the low f.size bytes are the value
+    }
+    return std::string(bytes, static_cast<std::size_t>(f.size));
+  };
+  // Each field's values for each point: [field][point] (binary_compressed stores them so).
+  std::vector<std::vector<std::string>> columns(fields.size(), std::vector<std::string>(rows.size()));
+  for (std::size_t p = 0; p < rows.size(); ++p) {
+    std::size_t v = 0;
+    for (std::size_t f = 0; f < fields.size(); ++f) {
+      for (int c = 0; c < fields[f].count; ++c) columns[f][p] += encode(fields[f], rows[p][v++]);
+    }
+  }
+  std::string plain;
+  if (data == "binary") {
+    for (std::size_t p = 0; p < rows.size(); ++p) {
+      for (std::size_t f = 0; f < fields.size(); ++f) plain += columns[f][p];
+    }
+    return out + plain;
+  }
+  for (const auto& column : columns) {
+    for (const auto& value : column) plain += value;
+  }
+  const std::string compressed = lzfCompress(plain);
+  const std::uint32_t sizes_word[2] = {static_cast<std::uint32_t>(compressed.size()),
+                                       static_cast<std::uint32_t>(plain.size())};
+  return out + std::string(reinterpret_cast<const char*>(sizes_word), 8) + compressed;
+}
+
+const char* const kPcdData[] = {"ascii", "binary", "binary_compressed"};
+
+// x, y, z anywhere among other fields (integers, floats, COUNT 3), of SIZE 4 or 8: the other
+// fields are skipped by their size, x, y, z read in every encoding.
+TEST(MapIo, PcdReadsXyzAmongOtherFieldsOfAnyOrderAndSize) {
+  TempDir dir;
+  const std::vector<TestField> fields = {{"rgb", 'U', 4, 1}, {"z", 'F', 8, 1},     {"normal", 'F', 4, 3},
+                                         {"x", 'F', 4, 1},   {"ring", 'U', 1, 2},  {"y", 'F', 8, 1},
+                                         {"t", 'I', 8, 1},   {"_", 'U', 1, 1}};
+  std::vector<std::vector<double>> rows;
+  std::vector<Eigen::Vector3f> want;
+  for (int i = 0; i < 200; ++i) {
+    const double x = 0.25 * i, y = 0.1 * i - 7, z = 1e-3 * i * i;
+    rows.push_back({255.0 * i, z, 0.5, -0.5, 1.0, x, 3, 200, y, -12345678901.0 * i, 7});
+    want.emplace_back(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z));
+  }
+  for (const char* data : {"ascii", "binary"}) {
+    EXPECT_EQ(loadMap(dir.write(std::string(data) + ".pcd", testPcd(fields, rows, data))).points, want) << data;
+  }
+  // binary_compressed without the padding field (it is refused there, below).
+  std::vector<TestField> no_padding = fields;
+  no_padding.pop_back();
+  for (auto& row : rows) row.pop_back();
+  EXPECT_EQ(loadMap(dir.write("compressed.pcd", testPcd(no_padding, rows, "binary_compressed"))).points, want);
+}
+
+// PCL 1.13 read x, y, z only as floats of SIZE 4 and COUNT 1, and left a coordinate 0 without one;
+// an x of another type is now refused, and of two fields named x the float one is read, as PCL did.
+TEST(MapIo, PcdCoordinatesThatAreNotFloatsAreRefused) {
+  TempDir dir;
+  for (const char* data : kPcdData) {
+    const std::string name = std::string(data) + ".pcd";
+    expectLoadError(dir.write("int_" + name, testPcd({{"x", 'I', 4, 1}, {"y", 'F', 4, 1}, {"z", 'F', 4, 1}},
+                                                     {{1, 2, 3}}, data)),
+                    "field x is not a float of COUNT 1");
+    expectLoadError(dir.write("count_" + name, testPcd({{"x", 'F', 4, 1}, {"y", 'F', 4, 1}, {"z", 'F', 8, 2}},
+                                                       {{1, 2, 3, 4}}, data)),
+                    "field z is not a float of COUNT 1");
+    expectLoadError(dir.write("noxyz_" + name, testPcd({{"x", 'F', 4, 1}, {"y", 'F', 4, 1}}, {{1, 2}}, data)),
+                    "has no x, y, z fields");
+    const LoadedMap two_x = loadMap(dir.write(
+        "two_x_" + name,
+        testPcd({{"x", 'I', 2, 1}, {"x", 'F', 4, 1}, {"y", 'F', 4, 1}, {"z", 'F', 4, 1}}, {{9, 1, 2, 3}}, data)));
+    EXPECT_EQ(two_x.points, std::vector<Eigen::Vector3f>{Eigen::Vector3f(1, 2, 3)}) << data;
+  }
+}
+
+// binary_compressed is bounded: corrupt LZF data, or padding fields whose layout PCL gets wrong,
+// stop the load naming the file; a double beyond float's range is refused, not made infinite.
+TEST(MapIo, PcdCompressedDataAndDoublesAreCheckedWithTheFileNamed) {
+  TempDir dir;
+  const std::vector<TestField> xyz = {{"x", 'F', 4, 1}, {"y", 'F', 4, 1}, {"z", 'F', 4, 1}};
+  std::string c = testPcd(xyz, {{1, 2, 3}, {4, 5, 6}}, "binary_compressed");
+  const std::size_t data = c.find("DATA binary_compressed\n") + 23;
+  // 24 bytes declared; a literal byte, then a reference 6 bytes back.
+  const std::string before_start = c.substr(0, data) + std::string("\x04\0\0\0\x18\0\0\0", 8) +
+                                   std::string("\x00\x01\x20\x05", 4);
+  expectLoadError(dir.write("before_start.pcd", before_start),
+                  "before_start.pcd: not a valid PCD file: a back reference points before the start of the data");
+  const std::string short_data = c.substr(0, data) + std::string("\x02\0\0\0\x18\0\0\0", 8) +
+                                 std::string("\x00\x01", 2);
+  expectLoadError(dir.write("short.pcd", short_data), "compressed data expands to 1 bytes, not the declared 24");
+  expectLoadError(dir.write("padding.pcd", testPcd({{"x", 'F', 4, 1}, {"_", 'U', 4, 1}, {"y", 'F', 4, 1},
+                                                    {"z", 'F', 4, 1}},
+                                                   {{1, 0, 2, 3}}, "binary_compressed")),
+                  "padding field '_'");
+  const std::vector<TestField> doubles = {{"x", 'F', 8, 1}, {"y", 'F', 8, 1}, {"z", 'F', 8, 1}};
+  for (const char* kind : {"binary", "binary_compressed"}) {
+    expectLoadError(dir.write(std::string("huge_") + kind + ".pcd", testPcd(doubles, {{1, 2, 3}, {0, 1e100, 0}}, kind)),
+                    "point 1 (counted from 0) is 1e+100 m from the origin");
+  }
+  expectLoadError(dir.write("huge_ascii.pcd", testPcd(doubles, {{1, 2, 3}, {0, 1e100, 0}}, "ascii")),
+                  "huge_ascii.pcd:13: point is 1e+100 m from the origin");
+}
+
+// Rows are what the row check reads: lines of blanks skipped, values split at any blank (PCL 1.13
+// took a line of blanks for a point at the origin, and a vertical tab for part of a value).
+TEST(MapIo, PcdAsciiRowsAreSplitAtBlanksAndBlankLinesSkipped) {
+  TempDir dir;
+  const std::string path = dir.write("blanks.pcd", std::string(kAsciiPcdHeader) +
+                                                       "WIDTH 3\nHEIGHT 1\nPOINTS 3\nDATA ascii\n1 2 3\n \t \n"
+                                                       "4\v5\f6\r\n\r\n  7\t8 9  \n");
+  const std::vector<Eigen::Vector3f> want = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+  EXPECT_EQ(loadMap(path).points, want);
+}
+
+// ASCII values become the floats PCL 1.13 makes of them: the first through a stream (strtof,
+// rounded once), every later one atof's double rounded to float. The two differ for a decimal just
+// above halfway between 1 and the next float.
+TEST(MapIo, PcdAsciiValuesAreRoundedAsPclRoundsThem) {
+  TempDir dir;
+  const std::string halfway = "1.00000005960464477550";
+  const std::string path = dir.write("halfway.pcd", std::string(kAsciiPcdHeader) +
+                                                        "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n" + halfway + " " +
+                                                        halfway + " 0\n" + halfway + " 0 0\n");
+  const std::vector<Eigen::Vector3f> points = loadMap(path).points;
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[0].x(), std::nextafter(1.0f, 2.0f));
+  EXPECT_EQ(points[0].y(), 1.0f);
+  EXPECT_EQ(points[1].x(), 1.0f);
+}
+
+// What savePointsPcd writes reads back bit for bit in every encoding, whatever the magnitude (a
+// zero's sign aside: loadMap adds the map's offset, and -0 + 0 is 0).
+TEST(MapIo, PcdWrittenPointsReadBackExactly) {
+  TempDir dir;
+  SeededRandom random(5);
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < 3000; ++i) {
+    const double scale = std::pow(10.0, random.integer(-40, 5));
+    points.emplace_back(static_cast<float>(scale * random.uniform(-1, 1)), static_cast<float>(scale * random.uniform(-1, 1)),
+                        static_cast<float>(random.uniform(-1e5, 1e5)));
+  }
+  points.emplace_back(0.0f, std::numeric_limits<float>::denorm_min(), 999999.94f);
+  for (int i = 0; i < 500; ++i) points.push_back(points[i % 7]);  // repeats, for LZF's back references
+  for (auto encoding : {PcdEncoding::kAscii, PcdEncoding::kBinary, PcdEncoding::kBinaryCompressed}) {
+    savePointsPcd(dir.file("points.pcd"), points, encoding);
+    const std::vector<Eigen::Vector3f> read = loadMap(dir.file("points.pcd")).points;
+    ASSERT_EQ(read.size(), points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      ASSERT_EQ(std::memcmp(read[i].data(), points[i].data(), sizeof(points[i])), 0)
+          << "encoding " << static_cast<int>(encoding) << ", point " << i << ": " << read[i].transpose() << " read, "
+          << points[i].transpose() << " written";
+    }
+  }
 }
 
 // A binary little-endian PLY of a mesh, written byte by byte (float xyz, uchar count, int index).

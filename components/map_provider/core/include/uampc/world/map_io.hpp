@@ -1,8 +1,8 @@
 // Loading maps from PCD and PLY files.
 //
-//   .pcd             -> a point map (fields x, y, z needed; others ignored). Decoded by PCL I/O
-//                       (kept out of this header) after the whole file has been checked here,
-//                       since pcl::PCDReader 1.13 crashes on some corrupt files.
+//   .pcd             -> a point map (fields x, y, z of TYPE F, SIZE 4 or 8, COUNT 1; others
+//                       skipped). DATA ascii, binary or binary_compressed, read by our own reader
+//                       after the whole file has been checked (docs/decisions/pcd-own-reader.md).
 //   .ply with faces  -> a triangle mesh (polygons are split into triangle fans).
 //   .ply, no faces   -> a point map.
 //                       PLY (ascii, binary either endianness) is read by our own defensive
@@ -40,7 +40,8 @@ struct LoadedMap {
 
 LoadedMap loadMap(const std::string& path, const MapLoadOptions& options = {});
 
-// Writers, for tools and tests: PCD of points (binary by default), ASCII PLY of a mesh.
+// Writers, for tools and tests: PCD of points (binary by default; fields x, y, z as float, read
+// back exactly by our reader and PCL's), ASCII PLY of a mesh.
 enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
 void savePointsPcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
                    PcdEncoding encoding = PcdEncoding::kBinary);
