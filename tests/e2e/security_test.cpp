@@ -353,7 +353,7 @@ TEST(Security, MissingExpiredAndMismatchedFilesAreRefusedByNameAtTheSceneLine) {
 TEST(Security, TheViewerOfASecuredRunJoinsWithTheObserverIdentity) {
   const int port = 18760 + domain(9);
   const std::string out = freshDirectory("security_viewer");
-  const std::string log = out + ".log";
+  const std::string log = freshDirectory("security_viewer_log") + "/launch.log";  // no stale log
   const pid_t run = startLaunch(sourcePath(kScene) + " --out " + out + securedBy(keys()) + " --set domain_id=" +
                                     std::to_string(domain(9)) +
                                     " --set clock.duration=8 --set clock.real_time_factor=1 --view --view-port " +

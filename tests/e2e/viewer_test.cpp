@@ -84,7 +84,9 @@ TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
   ASSERT_EQ(reference.exit_code, 0) << reference.output;
 
   const std::string viewed = freshDirectory("viewer_viewed");
-  const std::string log = viewed + ".log";
+  // Logs live in fresh directories: a stale log from an earlier run would say "serving" before this
+  // run's viewer does.
+  const std::string log = freshDirectory("viewer_viewed_log") + "/launch.log";
   const pid_t run = startLaunch(defaultScene(1, 8) + viewOptions(1) + " --out " + viewed, log);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   // Every topic, until the run ends and its viewer closes the connection.
@@ -131,7 +133,7 @@ TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
 }
 
 TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
-  const std::string log = freshDirectory("viewer_lazy") + ".log";
+  const std::string log = freshDirectory("viewer_lazy") + "/run.log";
   const pid_t run = startLaunch(defaultScene(2, 16) + viewOptions(2), log);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const json seen =
@@ -148,7 +150,7 @@ TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
 }
 
 TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
-  const std::string log = freshDirectory("viewer_bad_clients") + ".log";
+  const std::string log = freshDirectory("viewer_bad_clients") + "/run.log";
   const pid_t view = startUampc("view --domain " + std::to_string(domain(3)) + " --port " + std::to_string(port(3)), log);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
 
@@ -174,7 +176,7 @@ TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
 }
 
 TEST(Viewer, APortInUseIsAClearErrorBeforeAnythingStarts) {
-  const std::string log = freshDirectory("viewer_port") + ".log";
+  const std::string log = freshDirectory("viewer_port") + "/run.log";
   const pid_t view = startUampc("view --domain " + std::to_string(domain(4)) + " --port " + std::to_string(port(4)), log);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const std::string where = "cannot serve on 127.0.0.1:" + std::to_string(port(4));
@@ -213,7 +215,7 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
   }
   ASSERT_FALSE(file.empty());
 
-  const std::string log = freshDirectory("viewer_play") + ".log";
+  const std::string log = freshDirectory("viewer_play") + "/run.log";
   const pid_t play = startUampc(
       "play " + file + " --rate 2 --domain " + std::to_string(domain(5)) + viewOptions(5), log);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
