@@ -1,9 +1,6 @@
 #include "experiment/experiment_task.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/file.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -14,6 +11,7 @@
 #include "experiment/experiment_command.hpp"
 #include "experiment/backends/experiment_runner.hpp"
 #include "experiment/experiment_snapshot.hpp"
+#include "uampc/runtime/domain_run_lock.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
 namespace fs = std::filesystem;
@@ -23,35 +21,24 @@ namespace uampc::app {
 
 namespace {
 
-// A DDS domain of this node held by an exclusive lock on a file in /tmp; released on destruction
-// (or by the kernel when the process dies).
+// A DDS domain of this node held by an exclusive lock on a file in /tmp (the launcher's lock,
+// domain_run_lock.hpp, on a file of its own); released on destruction or when the process dies.
 class DomainClaim {
  public:
   // The first domain from `first` to kHighestDomainId nobody on this node holds; nullopt if none.
   static std::optional<DomainClaim> takeFirstFree(int first) {
     for (int domain = first; domain <= kHighestDomainId; ++domain) {
-      const std::string path = "/tmp/uampc-dds-domain-" + std::to_string(domain) + ".lock";
-      const int fd = open(path.c_str(), O_RDONLY | O_CREAT | O_CLOEXEC, 0666);
-      if (fd < 0) continue;
-      fchmod(fd, 0666);  // tasks of other users on the node lock the same file (fails harmlessly if not ours)
-      if (flock(fd, LOCK_EX | LOCK_NB) == 0) return DomainClaim(domain, fd);
-      close(fd);
+      auto lock = DomainRunLock::takeFile("/tmp/uampc-dds-domain-" + std::to_string(domain) + ".lock", "", nullptr);
+      if (lock) return DomainClaim(domain, std::move(*lock));
     }
     return std::nullopt;
-  }
-  DomainClaim(DomainClaim&& other) noexcept : domain_(other.domain_), fd_(other.fd_) { other.fd_ = -1; }
-  DomainClaim(const DomainClaim&) = delete;
-  DomainClaim& operator=(const DomainClaim&) = delete;
-  DomainClaim& operator=(DomainClaim&&) = delete;
-  ~DomainClaim() {
-    if (fd_ >= 0) close(fd_);
   }
   int domain() const { return domain_; }
 
  private:
-  DomainClaim(int domain, int fd) : domain_(domain), fd_(fd) {}
+  DomainClaim(int domain, DomainRunLock lock) : domain_(domain), lock_(std::move(lock)) {}
   int domain_;
-  int fd_;
+  DomainRunLock lock_;
 };
 
 std::string hostName() {

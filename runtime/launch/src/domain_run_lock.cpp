@@ -29,7 +29,11 @@ std::string DomainRunLock::pathFor(int domain_id) {
 }
 
 std::optional<DomainRunLock> DomainRunLock::take(int domain_id, const std::string& description, std::string* holder) {
-  const std::string path = pathFor(domain_id);
+  return takeFile(pathFor(domain_id), description, holder);
+}
+
+std::optional<DomainRunLock> DomainRunLock::takeFile(const std::string& path, const std::string& description,
+                                                     std::string* holder) {
   // Read-write to leave a description; read-only when another user made the file (flock works on
   // either). CLOEXEC: the run's processes must not hold the lock past the launcher.
   int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
@@ -42,7 +46,7 @@ std::optional<DomainRunLock> DomainRunLock::take(int domain_id, const std::strin
     close(fd);
     return std::nullopt;
   }
-  if (writable && ftruncate(fd, 0) == 0) {
+  if (writable && !description.empty() && ftruncate(fd, 0) == 0) {
     const std::string text = description + "\n";
     (void)!pwrite(fd, text.data(), text.size(), 0);
   }

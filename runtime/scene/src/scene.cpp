@@ -42,7 +42,11 @@ static std::vector<std::string> printable(std::vector<std::string> messages) {
 }
 
 SceneError::SceneError(std::vector<std::string> messages)
-    : std::runtime_error(joinLines(printable(messages))), messages_(printable(std::move(messages))) {}
+    : std::runtime_error(""), messages_(printable(std::move(messages))) {
+  text_ = joinLines(messages_);
+}
+
+const char* SceneError::what() const noexcept { return text_.c_str(); }
 
 std::vector<std::string> Scene::processes() const {
   std::vector<std::string> out;

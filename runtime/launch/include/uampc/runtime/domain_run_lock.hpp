@@ -16,6 +16,9 @@ class DomainRunLock {
   // Takes the domain's lock and writes `description` (what this run is) into its file. When
   // another run holds it: nullopt, and `holder` says what that run wrote.
   static std::optional<DomainRunLock> take(int domain_id, const std::string& description, std::string* holder);
+  // The same on any lock file of the host (the experiment's tasks claim their domains with one).
+  static std::optional<DomainRunLock> takeFile(const std::string& path, const std::string& description,
+                                               std::string* holder);
 
   DomainRunLock(DomainRunLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
   DomainRunLock(const DomainRunLock&) = delete;

@@ -28,9 +28,11 @@ class SceneError : public std::runtime_error {
  public:
   explicit SceneError(std::vector<std::string> messages);
   const std::vector<std::string>& messages() const { return messages_; }
+  const char* what() const noexcept override;  // the messages, one per line
 
  private:
-  std::vector<std::string> messages_;
+  std::vector<std::string> messages_;  // with control bytes escaped (logger.hpp, printableText)
+  std::string text_;
 };
 
 enum class ClockMode { kLockstep, kRealtime };
