@@ -219,9 +219,13 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
   const pid_t play = startUampc(
       "play " + file + " --rate 2 --domain " + std::to_string(domain(5)) + viewOptions(5), log);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
-  const json seen = watch(url(5) + " --topics /lidar/points,/lo/odometry --until-closed");
+  const json seen = watch(url(5) + " --topics /lidar/points,/lo/odometry --until-closed --duplicate-subscription");
   ASSERT_EQ(exitCodeOf(play), 0) << readFile(log);
   EXPECT_TRUE(seen["decode_errors"].empty());
+  // A subscription id used twice: the second is refused with a status error, the first served.
+  int refused = 0;
+  for (const auto& s : seen["statuses"]) refused += s["message"] == "subscribe: subscription id 77 is in use";
+  EXPECT_EQ(refused, 1) << seen.dump();
   // From the start: play waited for the subscription, so every scan of the 3 s (10 Hz) arrives.
   EXPECT_GE(seen["topics"]["/lidar/points"]["decoded"].get<int>(), 25) << seen.dump();
   EXPECT_GT(seen["topics"]["/lo/odometry"]["decoded"].get<int>(), 0);

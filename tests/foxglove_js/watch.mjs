@@ -4,13 +4,14 @@
 // @foxglove/rosmsg2-serialization from the schema the server advertised.
 //
 //   node watch.mjs URL --topics /a,/b|all [--seconds S] [--until-closed] [--lazy-client]
-//                      [--bad-requests N] [--huge-frame] [--churn N]
+//                      [--bad-requests N] [--huge-frame] [--duplicate-subscription] [--churn N]
 //
 // --topics      what to subscribe to (all: every channel advertised, also those advertised later)
 // --seconds     how long to watch (default 10); --until-closed: until the server closes instead
 // --lazy-client a second client that subscribes to the same and never reads its socket
 // --bad-requests N first send N malformed or unsupported requests (a cycle of six kinds)
 // --huge-frame  send a 2 MiB text message (more than the server takes)
+// --duplicate-subscription  subscribe to the first wanted channel twice under id 77 in one request
 // --churn N     first connect and drop N clients (every other one mid-subscription, abruptly)
 //
 // Prints one JSON object: per topic the messages received and decoded and a digest of the first
@@ -24,7 +25,7 @@ import WebSocket from "ws";
 const { FoxgloveClient } = wsProtocol;
 
 function options(argv) {
-  const o = { url: argv[0], topics: "all", seconds: 10, untilClosed: false, lazy: false, bad: 0, huge: false, churn: 0 };
+  const o = { url: argv[0], topics: "all", seconds: 10, untilClosed: false, lazy: false, bad: 0, huge: false, duplicate: false, churn: 0 };
   for (let i = 1; i < argv.length; ++i) {
     const a = argv[i];
     if (a === "--topics") o.topics = argv[++i];
@@ -33,6 +34,7 @@ function options(argv) {
     else if (a === "--lazy-client") o.lazy = true;
     else if (a === "--bad-requests") o.bad = Number(argv[++i]);
     else if (a === "--huge-frame") o.huge = true;
+    else if (a === "--duplicate-subscription") o.duplicate = true;
     else if (a === "--churn") o.churn = Number(argv[++i]);
     else throw new Error(`unknown argument ${a}`);
   }
@@ -105,6 +107,7 @@ async function main() {
   const client = new FoxgloveClient({ ws });
   let closed = false;
   let failed = null;
+  let duplicated = false;
 
   client.on("error", (e) => { failed = failed ?? String(e?.message ?? e); });
   client.on("close", () => { closed = true; result.closed_by_server = true; });
@@ -122,6 +125,12 @@ async function main() {
         continue;
       }
       bySubscription.set(client.subscribe(c.id), c.id);
+      if (opts.duplicate && !duplicated) {
+        // The first of the two is taken, the second refused: its id is in use.
+        duplicated = true;
+        ws.send(JSON.stringify({ op: "subscribe", subscriptions: [{ id: 77, channelId: c.id }, { id: 77, channelId: c.id }] }));
+        bySubscription.set(77, c.id);
+      }
     }
   });
   client.on("message", ({ subscriptionId, timestamp, data }) => {
