@@ -48,6 +48,10 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
   b.bind("max_angular_acceleration", c.max_angular_acceleration,
          "an update needing more is rejected and counted, rad/s^2")
       .between(0.0, 1e6);
+  b.bind("initial_map_time", c.initial_map_time,
+         "the first map over this long, s: scans are placed by the initial state and not registered (for a rig "
+         "that stands still at the start, map_provider's start_hold; 0: the first scan alone)")
+      .between(0.0, 60.0);
   b.bind("lost_after", c.lost_after, "lost: no registration accepted for longer than this, s").between(0.0, 3600.0);
   b.bind("use_imu", c.use_imu,
          "LiDAR-inertial mode: the IMU on the imu port replaces the constant-velocity prediction (beyond the "

@@ -106,6 +106,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
     return result;
   }
   predict(end_time, dt, motor, result);
+  if (end_time <= first_time_ + config_.initial_map_time) return extendInitialMap(derotated, end_time, result);
   const IteratedEkf predicted = *filter_;
 
   std::vector<TimedPoint> keypoints = voxelDownsample(derotated.points, config_.scan_voxel_size);
@@ -166,11 +167,31 @@ OdometryResult MotorizedLidarOdometry::initialise(const DerotatedScan& derotated
   x.r_WB = config_.initial_pose.translation();
   x.v_W = config_.initial_velocity_W;
   x.w_B = config_.initial_angular_velocity_B;
+  filter_.emplace(x, initialCovariance());
+  first_time_ = last_time_ = last_accepted_time_ = derotated.end_time;
+  return addToInitialMap(derotated, std::move(result));
+}
+
+Matrix12d MotorizedLidarOdometry::initialCovariance() const {
   Matrix12d P = Matrix12d::Zero();
   P.diagonal().head<6>().setConstant(1e-8);
   P.diagonal().tail<6>().setConstant(config_.initial_velocity_variance);
-  filter_.emplace(x, P);
-  last_time_ = last_accepted_time_ = derotated.end_time;
+  return P;
+}
+
+// Within initial_map_time of the first scan the rig moves as its initial state says (it stands
+// still, in the scenes that use it): the prediction places the scan, and the state stays as sure
+// as at the start, since nothing was learnt that could make it less so.
+OdometryResult MotorizedLidarOdometry::extendInitialMap(const DerotatedScan& derotated, double end_time,
+                                                        OdometryResult result) {
+  filter_.emplace(filter_->state(), initialCovariance());
+  last_accepted_time_ = end_time;
+  return addToInitialMap(derotated, std::move(result));
+}
+
+// The scan, deskewed with the filter's state, into the map; reported as part of the initial map.
+OdometryResult MotorizedLidarOdometry::addToInitialMap(const DerotatedScan& derotated, OdometryResult result) {
+  const BaseState& x = filter_->state();
   const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
   map_.insert(points_W, last_time_, x.r_WB);
   map_.removeFarFrom(x.r_WB);

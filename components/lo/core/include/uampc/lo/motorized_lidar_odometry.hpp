@@ -81,6 +81,15 @@ struct OdometryConfig {
   std::size_t min_correspondences = 30;
 
   double initial_velocity_variance = 1.0;  // (m/s)^2 and (rad/s)^2 at the first scan
+  // The first map over this long (s; 0: the first scan alone): until the first scan's end plus
+  // this, every scan is placed with the predicted state (the initial velocity, or the IMU) and
+  // added to the map without registering, and the initial covariance is kept. The first
+  // registration then meets the map the motor swept (one turn at 3.6 rad/s takes 1.75 s) instead of
+  // one frame's, which in narrow fields of view and point maps slid along a weak direction and
+  // threw the velocity off by metres per second with the rig at rest. Only for a rig known to move
+  // as its initial state says over that time: one that stands still at the start (map_provider's
+  // start_hold) (docs/decisions/lo-initial-map.md).
+  double initial_map_time = 0.0;  // s
   // Degeneracy (degeneracy.hpp): a direction whose scaled information eigenvalue (an effective
   // number of points) is below degeneracy_threshold is degenerate. It is always analysed and
   // reported; with degeneracy_aware the scan does not move the estimate along the degenerate
@@ -128,7 +137,8 @@ struct OdometryConfig {
 };
 
 enum class OdometryStatus {
-  kInitialised,    // first usable scan: the map starts at initial_pose
+  kInitialised,    // first usable scan, or one within initial_map_time of it: added to the map
+                   // at initial_pose (or its prediction), not registered
   kTracking,       // registered
   kDegenerate,     // registered, but some direction is poorly constrained (see warning)
   kPredictedOnly,  // no update (no usable points, too few correspondences, or an implausible
@@ -204,6 +214,10 @@ class MotorizedLidarOdometry {
   // The steps of registerScan, in order.
   DerotatedScan derotateScan(const Scan& scan, const frames::MotorAngleTrack& motor, OdometryResult& result) const;
   OdometryResult initialise(const DerotatedScan& derotated, OdometryResult result);
+  // A scan within initial_map_time of the first: into the map at the predicted state.
+  OdometryResult extendInitialMap(const DerotatedScan& derotated, double end_time, OdometryResult result);
+  Matrix12d initialCovariance() const;
+  OdometryResult addToInitialMap(const DerotatedScan& derotated, OdometryResult result);
   void predict(double end_time, double dt, const frames::MotorAngleTrack& motor, OdometryResult& result);
   // sampled_fraction: the share of the downsampled scan that keypoints are (below 1 with a budget).
   UpdateSummary correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
@@ -218,6 +232,7 @@ class MotorizedLidarOdometry {
   LocalMap map_;
   std::optional<IteratedEkf> filter_;
   double last_time_ = 0.0;
+  double first_time_ = 0.0;          // s, the end of the first scan (the map's start)
   double last_accepted_time_ = 0.0;  // s, the end of the last scan whose registration was accepted
   // The last registered frame's smallest pose information eigenvalue (effective points of the whole
   // scan); 0 after a frame that registered nothing.
