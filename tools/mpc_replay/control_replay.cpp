@@ -60,7 +60,8 @@ ReplayStats replayControl(const std::vector<ControlRecord>& records, const Repla
       strided.push_back(samples[s]);
     }
     const mpc::UncertaintySurrogate surrogate(r.theta_start, r.sample_step * options.sample_stride, strided);
-    const double command = mpc.solve(surrogate, r.theta_start).speeds.front();
+    const double previous = stats.commands.empty() ? mpc::MotorMpc::kNoPreviousCommand : stats.commands.back();
+    const double command = mpc.solve(surrogate, r.theta_start, previous).speeds.front();
     stats.commands.push_back(command);
     recorded.push_back(r.command);
     stats.max_difference = std::max(stats.max_difference, std::abs(command - r.command));

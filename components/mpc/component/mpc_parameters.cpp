@@ -14,6 +14,10 @@ void bindMpcParameters(ParameterBinding& b, mpc::UaMpcController::Config& c) {
   b.bind("alpha", c.mpc.alpha, "weight of the uncertainty term (used as is: cost = alpha * U'^2)").atLeast(0.0);
   b.bind("beta", c.mpc.beta, "weight of the preferred-speed term (cost = beta * (omega - omega_pre)^2)")
       .atLeast(0.0);
+  b.bind("rate_weight", c.mpc.rate_weight,
+         "beyond the paper: weight gamma of a rate term gamma * (omega_i - omega_(i-1))^2 over the horizon, the "
+         "first against the last command; 0: off, the paper's cost")
+      .between(0.0, 1e6);
   b.bind("omega_pre", c.mpc.omega_pre, "preferred speed and initial guess, rad/s").between(-100.0, 100.0);
   b.bind("omega_min", c.mpc.omega_min, "lower speed bound, rad/s").between(-100.0, 100.0);
   b.bind("omega_max", c.mpc.omega_max, "upper speed bound, rad/s").between(-100.0, 100.0);

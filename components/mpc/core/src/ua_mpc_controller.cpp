@@ -111,7 +111,7 @@ UaMpcController::Decision UaMpcController::stepWith(const Eigen::Isometry3d& T_W
       if (config_.mode == Mode::kUaMpc) {
         t = Clock::now();
         const UncertaintySurrogate surrogate(theta_now, decision.sample_step, decision.samples);
-        decision.plan = mpc_.solve(surrogate, theta_now);
+        decision.plan = mpc_.solve(surrogate, theta_now, last_command_);
         decision.omega = decision.plan.speeds.front();
         decision.timings.solve_ms = millisecondsSince(t);
       }
@@ -119,6 +119,7 @@ UaMpcController::Decision UaMpcController::stepWith(const Eigen::Isometry3d& T_W
   } else {
     decision.local_map_empty = local_map_W.empty();
   }
+  last_command_ = decision.omega;
   decision.timings.total_ms = millisecondsSince(start);
   return decision;
 }

@@ -67,9 +67,39 @@ TEST(MotorMpc, CostUsesTheWeightsAsTheyAre) {
   EXPECT_NEAR(mpc.cost(surrogate, 0.2, speeds), expected, 1e-9 * expected);
 }
 
+// rate_weight adds gamma (omega_i - omega_{i-1})^2, the first against the previous command, and
+// nothing when there is none.
+TEST(MotorMpc, RateTermTiesEachSpeedToTheOneBefore) {
+  MotorMpc::Config config;
+  config.horizon = 3;
+  const UncertaintySurrogate surrogate = cosineSurrogate(0.2, 1.0);
+  Eigen::VectorXd speeds(4);
+  speeds << 1.0, 2.0, 5.0, 0.5;
+  const double paper = MotorMpc(config).cost(surrogate, 0.2, speeds);
+  config.rate_weight = 0.7;
+  const MotorMpc mpc(config);
+  const double rates_after_first = 0.7 * (1.0 + 9.0 + 20.25);
+  EXPECT_NEAR(mpc.cost(surrogate, 0.2, speeds), paper + rates_after_first, 1e-9 * paper);
+  EXPECT_NEAR(mpc.cost(surrogate, 0.2, speeds, 4.0), paper + rates_after_first + 0.7 * 9.0, 1e-9 * paper);
+  EXPECT_EQ(mpc.residualCount(), 12);
+}
+
+// A strong rate term keeps the command near the last one where the paper's F jumps to the
+// surrogate's best angle; a weak one changes nothing much.
+TEST(MotorMpc, StrongRateWeightHoldsTheLastCommand) {
+  MotorMpc::Config config;
+  const UncertaintySurrogate surrogate = cosineSurrogate(0.0, 2.5, 2.0, 1.5);
+  const double paper = MotorMpc(config).solve(surrogate, 0.0, 3.6).speeds.front();
+  config.rate_weight = 1e4;
+  const double held = MotorMpc(config).solve(surrogate, 0.0, 3.6).speeds.front();
+  EXPECT_GT(std::abs(paper - 3.6), 0.5);  // the paper's F moves away from 3.6 here
+  EXPECT_LT(std::abs(held - 3.6), 0.1);
+}
+
 TEST(MotorMpc, AnalyticJacobianMatchesFiniteDifferences) {
   MotorMpc::Config config;
   config.horizon = 6;
+  config.rate_weight = 0.5;  // the rate rows too
   const MotorMpc mpc(config);
   const UncertaintySurrogate surrogate = cosineSurrogate(-1.0, 2.0, 3.0, 2.0);
   std::mt19937 rng(1);
@@ -78,7 +108,7 @@ TEST(MotorMpc, AnalyticJacobianMatchesFiniteDifferences) {
     Eigen::VectorXd speeds(mpc.variableCount());
     for (int i = 0; i < speeds.size(); ++i) speeds[i] = uniform(rng);
     Eigen::MatrixXd jacobian;
-    mpc.residuals(surrogate, -1.0, speeds, &jacobian);
+    mpc.residuals(surrogate, -1.0, speeds, &jacobian, 2.0);
     const double h = 1e-7;
     for (int l = 0; l < speeds.size(); ++l) {
       Eigen::VectorXd plus = speeds;
@@ -86,7 +116,8 @@ TEST(MotorMpc, AnalyticJacobianMatchesFiniteDifferences) {
       plus[l] += h;
       minus[l] -= h;
       const Eigen::VectorXd fd =
-          (mpc.residuals(surrogate, -1.0, plus) - mpc.residuals(surrogate, -1.0, minus)) / (2 * h);
+          (mpc.residuals(surrogate, -1.0, plus, nullptr, 2.0) - mpc.residuals(surrogate, -1.0, minus, nullptr, 2.0)) /
+          (2 * h);
       // A kink of the surrogate inside +-h makes one row differ; allow for that, not for more.
       int wrong_rows = 0;
       for (int r = 0; r < fd.size(); ++r) {

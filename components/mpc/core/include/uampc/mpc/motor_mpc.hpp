@@ -19,6 +19,12 @@
 // published reference code multiplies its residuals by the weights, which squares them: its
 // alpha = 1000 is our alpha = 1e6.)
 //
+// Beyond the paper, off by default: a rate term gamma * sum_{i=j}^{j+M} (omega_i - omega_{i-1})^2,
+// omega_{j-1} the previous command, ties each speed to the one before it. Nothing in the paper's F
+// does, so with the piecewise-linear U' the minimum jumps between kinks and bounds from one step to
+// the next (docs/results/point-map-regime.md, "The chatter"). Its residuals are
+// sqrt(gamma) (omega_i - omega_{i-1}); without a previous command the first is left out.
+//
 // The Jacobian is analytic through the surrogate's slope (Eq. 10): d theta_i / d omega_l = dt for
 // l < i, so d r_i / d omega_l = sqrt(alpha) dU'/dtheta(theta_i) dt. The solve starts at omega_pre
 // (clamped into the bounds), the bounds are Ceres parameter bounds, and only the first speed is
@@ -26,6 +32,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "uampc/mpc/uncertainty_surrogate.hpp"
@@ -39,6 +46,7 @@ class MotorMpc {
     double dt = 0.1;            // s, one control step
     double alpha = 1000.0;      // weight of the uncertainty term (used as is, see above)
     double beta = 1.0;          // weight of the preferred-speed term (used as is)
+    double rate_weight = 0.0;   // gamma, weight of the rate term (used as is); 0: the paper's F
     double omega_pre = 3.6;     // rad/s, preferred speed and initial guess
     double omega_min = 0.0;     // rad/s, lower speed bound
     double omega_max = 7.2;     // rad/s, upper speed bound
@@ -59,17 +67,22 @@ class MotorMpc {
   MotorMpc();  // default Config
   explicit MotorMpc(const Config& config);
 
-  Plan solve(const UncertaintySurrogate& surrogate, double theta_now) const;
+  // previous_command: omega_{j-1}, the rate term's first reference (NaN: none, as at the start).
+  static constexpr double kNoPreviousCommand = std::numeric_limits<double>::quiet_NaN();
+  Plan solve(const UncertaintySurrogate& surrogate, double theta_now,
+             double previous_command = kNoPreviousCommand) const;
 
   // F for given future speeds (size horizon + 1), as minimised by solve().
-  double cost(const UncertaintySurrogate& surrogate, double theta_now,
-              const Eigen::VectorXd& speeds) const;
+  double cost(const UncertaintySurrogate& surrogate, double theta_now, const Eigen::VectorXd& speeds,
+              double previous_command = kNoPreviousCommand) const;
 
-  // The residual vector [sqrt(alpha) U'(theta_{j+1..j+M+1}); sqrt(beta) (omega - omega_pre)]
-  // and, if jacobian is not null, its analytic Jacobian with respect to the speeds.
+  // The residual vector [sqrt(alpha) U'(theta_{j+1..j+M+1}); sqrt(beta) (omega - omega_pre)],
+  // followed by [sqrt(gamma) (omega_i - omega_{i-1})] when rate_weight > 0, and, if jacobian is
+  // not null, its analytic Jacobian with respect to the speeds.
   Eigen::VectorXd residuals(const UncertaintySurrogate& surrogate, double theta_now,
-                            const Eigen::VectorXd& speeds,
-                            Eigen::MatrixXd* jacobian = nullptr) const;
+                            const Eigen::VectorXd& speeds, Eigen::MatrixXd* jacobian = nullptr,
+                            double previous_command = kNoPreviousCommand) const;
+  int residualCount() const;
 
   int variableCount() const { return config_.horizon + 1; }
   const Config& config() const { return config_; }

@@ -94,6 +94,7 @@ class UaMpcController {
   UncertaintyModel uncertainty_;
   UncertaintyFilter filter_;
   MotorMpc mpc_;
+  double last_command_ = MotorMpc::kNoPreviousCommand;  // rad/s, the rate term's reference
 };
 
 }  // namespace uampc::mpc
