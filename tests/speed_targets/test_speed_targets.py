@@ -69,9 +69,11 @@ class Parsers(unittest.TestCase):
     def test_ctest_summary(self):
         output = ("...\n100% tests passed, 0 tests failed out of 70\n\nLabel Time Summary:\ne2e    = 512.33 sec*proc\n\n"
                   "Total Test time (real) = 245.12 sec\n")
-        self.assertEqual(speed_targets.ctest_summary(output), (70, 70, 245.12))
-        failed = "97% tests passed, 2 tests failed out of 70\n\nTotal Test time (real) = 301.50 sec\n"
-        self.assertEqual(speed_targets.ctest_summary(failed), (68, 70, 301.5))
+        self.assertEqual(speed_targets.ctest_summary(output), (70, 70, 245.12, []))
+        failed = ("97% tests passed, 2 tests failed out of 70\n\nTotal Test time (real) = 301.50 sec\n\n"
+                  "The following tests FAILED:\n\t 55 - scene_validation_test (Failed)\n"
+                  "\t 81 - security_test (Timeout)\nErrors while running CTest\n")
+        self.assertEqual(speed_targets.ctest_summary(failed), (68, 70, 301.5, ["scene_validation_test", "security_test"]))
         self.assertEqual(speed_targets.minutes_and_seconds(783.4), "13 min 03 s")
 
 

@@ -103,14 +103,19 @@ def one_way_ms(output):
 
 
 def ctest_summary(output):
-    """(tests passed, tests run, CTest's own wall seconds) from the end of a `ctest` run's output:
-    '97% tests passed, 2 tests failed out of 70' and 'Total Test time (real) = 245.12 sec'."""
+    """(tests passed, tests run, CTest's own wall seconds, the names of the tests that failed) from the
+    end of a `ctest` run's output: '97% tests passed, 2 tests failed out of 70', 'Total Test time
+    (real) = 245.12 sec' and the list under 'The following tests FAILED:'."""
     summary = re.search(r"\d+% tests passed, (\d+) tests? failed out of (\d+)", output)
     total = re.search(r"Total Test time \(real\) = +%s sec" % NUMBER, output)
     if not summary or not total:
         raise ValueError("no 'tests passed' and 'Total Test time' lines in the test step's output")
     failed, run_count = int(summary.group(1)), int(summary.group(2))
-    return run_count - failed, run_count, float(total.group(1))
+    names = []
+    if "The following tests FAILED:" in output:
+        listing = output.split("The following tests FAILED:", 1)[1]
+        names = re.findall(r"^\s*\d+ - (\S+) \(", listing, re.M)
+    return run_count - failed, run_count, float(total.group(1)), names
 
 
 def minutes_and_seconds(seconds):
@@ -129,6 +134,7 @@ class FreshCloneTimes:
     def __init__(self):
         self.build_s = self.tests_s = None
         self.passed = self.run_count = None
+        self.failed = []  # the names of the tests that failed
 
     def measure(self):
         if self.build_s is not None:
@@ -147,12 +153,18 @@ class FreshCloneTimes:
                                     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             wall_s = time.monotonic() - start
             try:
-                self.passed, self.run_count, self.tests_s = ctest_summary(result.stdout)
+                self.passed, self.run_count, self.tests_s, self.failed = ctest_summary(result.stdout)
             except ValueError:  # the build failed: no test ran
                 tail = "\n".join(result.stdout.splitlines()[-20:])
                 raise BenchmarkFailed("cmake --workflow --preset test failed (exit %d) in a clone of %s:\n%s"
                                       % (result.returncode, head[:7], tail))
             self.build_s = wall_s - self.tests_s
+            if self.failed:  # the clone goes; what the failed tests said stays
+                with tempfile.NamedTemporaryFile("w", prefix="uampc_build_times_", suffix=".log",
+                                                 delete=False) as log:
+                    log.write(result.stdout)
+                print("speed_targets: %s failed in the clone; the workflow's output is in %s"
+                      % (", ".join(self.failed), log.name), file=sys.stderr)
         finally:
             shutil.rmtree(work, ignore_errors=True)
 
@@ -242,8 +254,9 @@ class Targets:
 
     def measure_tests(self):
         self.clone.measure()
-        return ("%s, %d of %d passed" % (minutes_and_seconds(self.clone.tests_s), self.clone.passed,
-                                         self.clone.run_count),
+        failed = " (failed: %s)" % ", ".join(self.clone.failed) if self.clone.failed else ""
+        return ("%s, %d of %d passed%s" % (minutes_and_seconds(self.clone.tests_s), self.clone.passed,
+                                           self.clone.run_count, failed),
                 self.clone.passed == self.clone.run_count)
 
 

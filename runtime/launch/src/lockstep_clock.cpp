@@ -359,8 +359,8 @@ class ClockRun {
     while (!stop_ && (last < 0 || slowestStep() < last)) {
       result_.error = acks_.take(follow);
       if (result_.error.empty() && (last < 0 || slowestStep() < last))
-        result_.error = waitProblem(deadline, [this] { return slowestProcesses(); }, "acknowledgement of a step",
-                                    follow_timeout);
+        result_.error = waitProblem(
+            deadline, [this] { return slowestProcesses(); }, "acknowledgement of a step", follow_timeout);
       if (!result_.error.empty()) {
         result_.ok = false;
         break;

@@ -562,8 +562,8 @@ std::string unmatchedPorts(const Scene& scene, const ProcessState& state) {
     r->reader->get_subscription_matched_status(s);
     const int want = scene.writersOf(r->topic);
     if (s.current_count < want) {
-      missing += "\n  reader on " + r->topic + ": " + std::to_string(s.current_count) + " of " +
-                 std::to_string(want) + " writers";
+      missing += "\n  reader on " + r->topic + ": " + std::to_string(s.current_count) + " of " + std::to_string(want) +
+                 " writers";
     }
   }
   return missing;
@@ -584,9 +584,9 @@ class LockstepProtocol {
       clock_writer_ = dds_.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
                                         &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
     } else if (!own_clock_) {
-      clock_reader_ = std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                                       &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
-                                                       &state_.wakeup);
+      clock_reader_ =
+          std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                           &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, &state_.wakeup);
     }
     // Every process reads every acknowledgement: they say how many samples to wait for. A process
     // alone in its scene knows what it wrote: its acknowledgements go to the clock only (a delivery
@@ -732,11 +732,11 @@ class LockstepProtocol {
 
  private:
   std::unique_ptr<DdsWriter> stepAckWriter(const char* topic) {
-    return std::make_unique<DdsWriter>(dds_,
-                                       dds_.createWriter(topic, MessageType<uampc::msg::StepAck>::kRosName,
-                                                         &detail::makeTypeSupport<uampc::msg::StepAck>,
-                                                         QosPreset::kControl),
-                                       topic, QosPreset::kControl, state_);
+    return std::make_unique<DdsWriter>(
+        dds_,
+        dds_.createWriter(topic, MessageType<uampc::msg::StepAck>::kRosName,
+                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
+        topic, QosPreset::kControl, state_);
   }
 
   // The counts an acknowledgement of `step` carries. The ready message (step -1) counts nothing:
@@ -828,9 +828,9 @@ class LockstepProtocol {
   ProcessState& state_;
   const Logger& log_;
   std::unique_ptr<ProtocolReader> clock_reader_;  // ticks of the launcher's clock
-  DataWriter* clock_writer_ = nullptr;           // or this process's own (own_clock_)
-  std::unique_ptr<DdsWriter> ack_writer_;       // to the launcher's clock and the other processes
-  std::unique_ptr<DdsWriter> progress_writer_;  // to the launcher, when the process steps itself
+  DataWriter* clock_writer_ = nullptr;            // or this process's own (own_clock_)
+  std::unique_ptr<DdsWriter> ack_writer_;         // to the launcher's clock and the other processes
+  std::unique_ptr<DdsWriter> progress_writer_;    // to the launcher, when the process steps itself
   std::unique_ptr<ProtocolReader> ack_reader_;
   // Acknowledged sample counts: process -> step -> counts per topic.
   std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;
@@ -848,8 +848,8 @@ class ProcessRunner {
         dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_,
              securityIdentity(scene.security_directory, process_)),
         log_(process_, [this] { return state_.now.seconds(); }),
-        components_(scene_, process_, output_directory_, dds_, [this]() -> DdsNode& { return serializedDds(); },
-                    state_, log_),
+        components_(
+            scene_, process_, output_directory_, dds_, [this]() -> DdsNode& { return serializedDds(); }, state_, log_),
         delivery_(scene_, state_, log_) {
     state_.lockstep = scene.clock.mode == ClockMode::kLockstep;
     state_.step = scene.clock.step;
@@ -1023,7 +1023,7 @@ class ProcessRunner {
   ComponentGroup components_;
   StepDelivery delivery_;
   std::unique_ptr<LockstepProtocol> protocol_;  // in lockstep, once the components are built
-  SteadyClock::time_point next_progress_;        // runOwnClock: when to tell the launcher again
+  SteadyClock::time_point next_progress_;       // runOwnClock: when to tell the launcher again
 };
 
 }  // namespace

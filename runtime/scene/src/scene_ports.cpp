@@ -145,9 +145,9 @@ void checkUnusedInputs(const Scene& scene, const std::map<std::string, std::vect
                                   "unused_inputs: " + topic + " is written by " + portList(writers) +
                                       " in this scene; an input that is fed is not unused"));
     } else if (listed(scene.external_topics, topic)) {
-      errors.push_back(diagnostic(where, "error",
-                                  "unused_inputs: " + topic + " is in external_topics too; a topic published "
-                                                              "beside the scene is not unused"));
+      errors.push_back(diagnostic(
+          where, "error",
+          "unused_inputs: " + topic + " is in external_topics too; a topic published beside the scene is not unused"));
     }
   }
 }
