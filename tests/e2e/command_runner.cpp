@@ -47,4 +47,15 @@ std::string readFile(const std::string& path) {
   return s.str();
 }
 
+std::string startWarnings(const std::string& output) {
+  std::istringstream lines(output);
+  std::string warnings;
+  for (std::string line; std::getline(lines, line);) {
+    const bool scene = line.find(": warning: ") != std::string::npos;
+    const bool at_start = line.rfind("[   0.000000] [", 0) == 0 && line.find("] WARN ") != std::string::npos;
+    if (scene || at_start) warnings += line + "\n";
+  }
+  return warnings;
+}
+
 }  // namespace uampc::test

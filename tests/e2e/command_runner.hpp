@@ -20,5 +20,8 @@ std::string binaryPath(const std::string& relative);  // inside the build tree
 // A fresh empty directory under the build tree's test output folder.
 std::string freshDirectory(const std::string& name);
 std::string readFile(const std::string& path);
+// The warnings a run printed as it started, one per line: the scene's ("file:line:column: warning:")
+// and its components' while sim time was 0 (constructing, the first step).
+std::string startWarnings(const std::string& output);
 
 }  // namespace uampc::test

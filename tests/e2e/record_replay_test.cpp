@@ -100,6 +100,11 @@ TEST_F(RecordReplay, ReplayingTheRecordingIntoTheLoGivesTheRecordedOdometry) {
 }
 
 TEST_F(RecordReplay, ARecordingWithoutTheTopicsAsceneNeedsIsRefusedByName) {
+  // With a recording that has them, the shipped scene is valid and says no warning.
+  const CommandResult valid =
+      runUampc("validate " + sourcePath("config/scenes/replay_lo.yaml") + " --set player.file=" + recording());
+  EXPECT_EQ(valid.exit_code, 0) << valid.output;
+  EXPECT_EQ(startWarnings(valid.output), "") << valid.output;
   const CommandResult missing = runUampc("validate " + sourcePath("config/scenes/replay_lo.yaml") +
                                          " --set player.file=" + recording() + " --set player.topics=[/lidar/pointz]");
   EXPECT_EQ(missing.exit_code, 2) << missing.output;

@@ -88,6 +88,7 @@ TEST(DynamixelBridge, TheRigSceneRunsOnARecordedLidarAndTheEmulatedServo) {
   ASSERT_EQ(exitCodeOf(rig), 0) << readFile(dir + "/rig.log");
   const std::string log = readFile(dir + "/rig.log");
   EXPECT_EQ(log.find("ERROR"), std::string::npos) << log;
+  EXPECT_EQ(startWarnings(log), "");                             // its unfed and external inputs are declared
   EXPECT_EQ(log.find("s rejected:"), std::string::npos) << log;  // no scan refused: its times were understood
 
   const auto heard = arrivals(dir + "/rig/recording.mcap");

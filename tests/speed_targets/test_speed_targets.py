@@ -7,6 +7,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 import unittest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -62,6 +63,18 @@ class Parsers(unittest.TestCase):
             speed_targets.real_time_factor("uampc: scene failed")
         with self.assertRaisesRegex(ValueError, "one way"):
             speed_targets.one_way_ms("round trip only")
+        with self.assertRaisesRegex(ValueError, "tests passed"):
+            speed_targets.ctest_summary("FAILED: uampc\nninja: build stopped: subcommand failed.")
+
+    def test_ctest_summary(self):
+        output = ("...\n100% tests passed, 0 tests failed out of 70\n\nLabel Time Summary:\ne2e    = 512.33 sec*proc\n\n"
+                  "Total Test time (real) = 245.12 sec\n")
+        self.assertEqual(speed_targets.ctest_summary(output), (70, 70, 245.12, []))
+        failed = ("97% tests passed, 2 tests failed out of 70\n\nTotal Test time (real) = 301.50 sec\n\n"
+                  "The following tests FAILED:\n\t 55 - scene_validation_test (Failed)\n"
+                  "\t 81 - security_test (Timeout)\nErrors while running CTest\n")
+        self.assertEqual(speed_targets.ctest_summary(failed), (68, 70, 301.5, ["scene_validation_test", "security_test"]))
+        self.assertEqual(speed_targets.minutes_and_seconds(783.4), "13 min 03 s")
 
 
 class Defaults(unittest.TestCase):
@@ -72,35 +85,88 @@ class Defaults(unittest.TestCase):
 
 
 class MarkdownFile(unittest.TestCase):
-    """--write-markdown's file: the printed table under a header that says how to regenerate it."""
+    """--write-markdown's file: the printed table under a header that says how to regenerate it, merged
+    with the rows the file already has."""
 
-    ROWS = [("max RSS of a 900 s default run", "217 MB", "< 300 MB", True),
-            ("LO frame (`lo_bench /300/1/0/0`)", "20.9 ms", "<= 5 ms", False)]
+    PATH = os.path.join(ROOT, "docs", "results", "performance.md")
+    ROWS = [speed_targets.Row("memory", "max RSS of a 900 s default run", "217 MB", "< 300 MB", True, "2026-11-28"),
+            speed_targets.Row("lo", "LO frame (`lo_bench /300/1/0/0`)", "20.9 ms", "<= 5 ms", False, "2026-11-28")]
 
-    def document(self, **options):
-        args = argparse.Namespace(core=0, memory=True, only=None, write_markdown=os.path.join(
-            ROOT, "docs", "results", "performance.md"))
-        for key, value in options.items():
-            setattr(args, key, value)
-        return speed_targets.markdown_document(["memory", "lo"], self.ROWS, args, today="2026-11-28")
+    def row(self, name, value, met, day):
+        figure, target = speed_targets.FIGURES[name]
+        return speed_targets.Row(name, figure, value, target, met, day)
 
     def test_header_table_and_command(self):
-        text = self.document()
+        text = speed_targets.markdown_document(self.ROWS, self.PATH, 0)
         self.assertTrue(text.startswith("# Performance\n"))
         self.assertIn("`tools/speed_targets/speed_targets.py --write-markdown docs/results/performance.md "
                       "--memory`", text)
-        self.assertIn("Measured on 2026-11-28", text)
+        generated_by = text.split("\n\n")[1]
+        self.assertNotIn("--build-times`", generated_by)  # no build rows: the build times' command is not named
         self.assertIn("- `lo`: `lo_bench BM_RegisterScan20k/300/1/0/0`", text)
         self.assertIn("\n".join(speed_targets.table_lines(self.ROWS)), text)
+        self.assertIn("| 20.9 ms | <= 5 ms | **missed** | 2026-11-28 |", text)
         self.assertTrue(all(len(line) <= 100 for line in text.splitlines() if not line.startswith("|")))
 
-    def test_the_regenerating_command_keeps_the_options(self):
-        text = self.document(memory=False, only="lo")
-        self.assertIn("--write-markdown docs/results/performance.md --only lo`", text)
-        self.assertNotIn("performance.md --memory", text)
+    def test_the_regenerating_commands_cover_every_row(self):
+        rows = [self.row("lo", "20.9 ms", False, "2026-11-28"), self.row("build", "9 min", True, "2026-11-29")]
+        text = speed_targets.markdown_document(rows, self.PATH, 0)
+        self.assertIn("`tools/speed_targets/speed_targets.py --write-markdown docs/results/performance.md` and "
+                      "`tools/speed_targets/speed_targets.py --write-markdown docs/results/performance.md "
+                      "--build-times`", text.replace("\n", " "))
+
+    def test_a_document_reads_back_as_its_rows(self):
+        rows = self.ROWS + [self.row("tests", "4 min 05 s, 70 of 70 passed", True, "2026-11-29")]
+        kept, unknown = speed_targets.rows_of_document(speed_targets.markdown_document(rows, self.PATH, 0))
+        self.assertEqual(kept, rows)
+        self.assertEqual(unknown, [])
+
+    def test_the_older_layout_reads_with_the_documents_day(self):
+        text = ("Measured on 2026-11-28 on an x86_64 machine.\n\n| figure (one core) | value | target | |\n"
+                "|---|---|---|---|\n| max RSS of a 900 s default run | 217 MB | < 300 MB | met |\n"
+                "| a figure since renamed | 1 ms | <= 2 ms | met |\n")
+        kept, unknown = speed_targets.rows_of_document(text)
+        self.assertEqual(kept, self.ROWS[:1])
+        self.assertEqual(unknown, ["a figure since renamed"])
+
+    def test_a_merge_replaces_the_rows_measured_and_keeps_the_others_in_table_order(self):
+        build = self.row("build", "9 min 58 s (build + tests 13 min 03 s)", True, "2026-11-29")
+        lo = self.row("lo", "19.0 ms", False, "2026-11-29")
+        merged = speed_targets.merged_rows(self.ROWS, [build, lo])
+        self.assertEqual(merged, [self.ROWS[0], lo, build])  # memory kept, lo replaced, build added
+
+    def test_writing_merges_into_the_file(self):
+        with tempfile.TemporaryDirectory() as directory:
+            path = os.path.join(directory, "performance.md")
+            speed_targets.write_markdown(path, self.ROWS, 0)
+            tests = self.row("tests", "4 min 05 s, 70 of 70 passed", True, "2026-11-29")
+            speed_targets.write_markdown(path, [tests], 0)
+            with open(path) as written:
+                kept, _ = speed_targets.rows_of_document(written.read())
+        self.assertEqual(kept, self.ROWS + [tests])
 
     def test_every_target_is_described(self):
         self.assertEqual(sorted(speed_targets.DESCRIPTIONS), sorted(speed_targets.NAMES))
+        self.assertEqual(sorted(speed_targets.FIGURES), sorted(speed_targets.NAMES))
+
+
+class Choice(unittest.TestCase):
+    """Which rows a run measures: --build-times alone measures only its own."""
+
+    def names(self, *argv):
+        parser = argparse.ArgumentParser()
+        args = argparse.Namespace(only=None, memory=False, build_times=False)
+        for option in argv:
+            key, _, value = option.partition("=")
+            setattr(args, key, value or True)
+        return speed_targets.chosen_names(args, parser)
+
+    def test_choices(self):
+        self.assertEqual(self.names(), ["loop", "lo", "mpc", "raycaster", "lockstep", "pointcloud", "split"])
+        self.assertEqual(self.names("memory")[0], "memory")
+        self.assertEqual(self.names("build_times"), ["build", "tests"])
+        self.assertEqual(self.names("build_times", "memory"), ["memory", "build", "tests"])
+        self.assertEqual(self.names("only=lo", "build_times"), ["lo", "build", "tests"])
 
 
 class TodaysOutputs(unittest.TestCase):

@@ -324,6 +324,15 @@ class ClockRun {
     return step;
   }
 
+  // The processes at the slowest step, comma-separated: those a stuck run waits for.
+  std::string slowestProcesses() const {
+    std::string late;
+    for (const auto& [p, step] : process_step_) {
+      if (step == slowestStep()) late += (late.empty() ? "" : ", ") + p;
+    }
+    return late;
+  }
+
   // The processes step themselves and report their progress every 0.1 s of wall time and at their
   // last step. Each report that moves a process on resets the deadline, so that a hung component
   // is named after clock.ack_timeout as with the clock here. The run has reached the step of the
@@ -346,18 +355,12 @@ class ClockRun {
       deadline = SteadyClock::now() + follow_timeout;
       progress_made();
     };
-    auto slowest_processes = [&] {
-      std::string late;
-      for (const auto& [p, step] : process_step_) {
-        if (step == slowestStep()) late += (late.empty() ? "" : ", ") + p;
-      }
-      return late;
-    };
     progress_made();  // a process may have run on while the others were read ready
     while (!stop_ && (last < 0 || slowestStep() < last)) {
       result_.error = acks_.take(follow);
       if (result_.error.empty() && (last < 0 || slowestStep() < last))
-        result_.error = waitProblem(deadline, slowest_processes, "acknowledgement of a step", follow_timeout);
+        result_.error = waitProblem(
+            deadline, [this] { return slowestProcesses(); }, "acknowledgement of a step", follow_timeout);
       if (!result_.error.empty()) {
         result_.ok = false;
         break;
@@ -388,11 +391,6 @@ class ClockRun {
 
 }  // namespace
 
-static ClockResult runClockUnguarded(const Scene& scene, const std::atomic<bool>& stop,
-                                     const std::function<std::string()>& check_processes, ClockHost host) {
-  return ClockRun(scene, stop, check_processes, host).run();
-}
-
 std::string anotherRunOnTheDomain(int domain_id, const std::string& evidence) {
   return "another lockstep run is on DDS domain " + std::to_string(domain_id) + ": " + evidence +
          "; two runs on one domain hear each other's clock and topics, so give each run its own domain_id "
@@ -406,7 +404,7 @@ void stayUntilTheOtherRunNotices() { std::this_thread::sleep_for(std::chrono::mi
 ClockResult runLockstepClock(const Scene& scene, const std::atomic<bool>& stop,
                              const std::function<std::string()>& check_processes, ClockHost host) {
   try {
-    return runClockUnguarded(scene, stop, check_processes, host);
+    return ClockRun(scene, stop, check_processes, host).run();
   } catch (const std::exception& e) {
     ClockResult result;
     result.ok = false;

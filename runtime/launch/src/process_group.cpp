@@ -108,7 +108,10 @@ struct TimerEntry {
   std::function<void()> callback;
 };
 
-// State shared by the contexts of one process: the clock and the list of ports and timers.
+class DdsWriter;
+
+// State shared by the contexts of one process: the clock, the list of ports and timers, and why
+// the process failed.
 struct ProcessState {
   bool lockstep = false;
   bool started = false;  // false while components are being constructed
@@ -118,7 +121,9 @@ struct ProcessState {
   std::vector<std::unique_ptr<ReaderPort>> readers;  // in the order components opened them
   std::vector<std::unique_ptr<SharedReader>> dds_readers;
   std::map<std::pair<std::string, QosPreset>, SharedReader*> typed_readers;  // by topic and QoS
+  std::vector<std::shared_ptr<DdsWriter>> writers;  // the components' outputs, in the order opened
   std::vector<TimerEntry> timers;
+  std::string failure;  // why the process failed, told in its acknowledgements; empty: it has not
 };
 
 class DdsWriter : public detail::Writer {
@@ -167,15 +172,13 @@ class ContextImpl : public Context {
  public:
   // serialized_dds: the participant of the process's serialized ports, made on first use.
   ContextImpl(const Scene& scene, const ComponentInstance& instance, const std::string& output_directory, DdsNode& dds,
-              std::function<DdsNode&()> serialized_dds, ProcessState& state,
-              std::vector<std::shared_ptr<DdsWriter>>& writers)
+              std::function<DdsNode&()> serialized_dds, ProcessState& state)
       : scene_(scene),
         instance_(instance),
         output_directory_(output_directory),
         dds_(dds),
         serialized_dds_(std::move(serialized_dds)),
         state_(state),
-        writers_(writers),
         logger_(instance.name, [&state] { return state.now.seconds(); }) {}
 
   const std::string& name() const override { return instance_.name; }
@@ -282,7 +285,7 @@ class ContextImpl : public Context {
     const std::string topic = topicOf(port);
     auto writer = std::make_shared<DdsWriter>(node, node.createWriter(topic, spec.type_name, type_support, spec.qos),
                                               topic, spec.qos, state_);
-    writers_.push_back(writer);
+    state_.writers.push_back(writer);
     return writer;
   }
 
@@ -342,52 +345,53 @@ class ContextImpl : public Context {
   DdsNode& dds_;
   std::function<DdsNode&()> serialized_dds_;
   ProcessState& state_;
-  std::vector<std::shared_ptr<DdsWriter>>& writers_;
   std::set<std::string> opened_ports_;
   Logger logger_;
 };
 
-// Drives the components of one process.
-class ProcessRunner {
+// Samples written on each topic, by this process or summed over the processes' acknowledgements.
+using TopicCounts = std::map<std::string, std::uint64_t>;
+
+// How one step ended for the process.
+enum class StepOutcome { kDone, kStopped, kFailed };
+
+int exitCodeOf(StepOutcome outcome) { return outcome == StepOutcome::kFailed ? 1 : 0; }
+
+// The components of one process: constructed in the scene's order, each with its context, and at
+// the end each shut down, even after another has failed.
+class ComponentGroup {
  public:
-  ProcessRunner(const Scene& scene, std::string process, std::string output_directory, bool own_clock)
+  // serialized_dds: the participant of the process's serialized ports, made on first use.
+  ComponentGroup(const Scene& scene, const std::string& process, const std::string& output_directory, DdsNode& dds,
+                 std::function<DdsNode&()> serialized_dds, ProcessState& state, const Logger& log)
       : scene_(scene),
-        process_(std::move(process)),
-        output_directory_(std::move(output_directory)),
-        own_clock_(own_clock),
-        dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_,
-             securityIdentity(scene.security_directory, process_)),
-        log_(process_, [this] { return state_.now.seconds(); }) {
-    state_.lockstep = scene.clock.mode == ClockMode::kLockstep;
-    state_.step = scene.clock.step;
-    state_.now = state_.lockstep ? Time{0} : wallNow();
-    state_.started = !state_.lockstep;
+        process_(process),
+        output_directory_(output_directory),
+        dds_(dds),
+        serialized_dds_(std::move(serialized_dds)),
+        state_(state),
+        log_(log) {}
+
+  // False (said in the log) when a component could not start or left a declared port unopened.
+  bool create() {
+    // The participant of serialized ports (a recorder's) is made before any component, beside the
+    // process's main participant, so that the two announce themselves to each other at the same
+    // time. Made on first use, in the middle of the components' constructors, it missed the main
+    // participant about every second run of config/scenes/record_default.yaml on one core, and the
+    // start then waited for Fast DDS's next periodic announcement, 3 s later
+    // (docs/results/recording-cost.md).
+    if (hasSerializedPorts()) serialized_dds_();
+    for (const auto& instance : scene_.components) {
+      if (instance.process != process_) continue;
+      if (!construct(instance)) return false;
+    }
+    return true;
   }
 
-  ~ProcessRunner() {
-    components_.clear();
-    for (auto& r : state_.dds_readers) r->node->deleteReader(r->reader);
-    writers_.clear();  // each deletes its DDS writer
-    clock_reader_.reset();
-    if (clock_writer_) dds_.deleteWriter(clock_writer_);
-    ack_writer_.reset();
-    progress_writer_.reset();
-    ack_reader_.reset();
-  }
-
-  int run(const std::atomic<bool>& stop) {
-    stop_ = &stop;
-    if (!createComponents()) return 1;
-    const int code = state_.lockstep ? runLockstep(stop) : runRealtime(stop);
-    if (code != 0) deliverFailure();
-    return shutDownComponents() ? code : 1;
-  }
-
- private:
   // Every component's shutdown, even after one has failed: each writes its own outputs (a
   // recorder's file is whole only once it is closed), and one component's full disk is no reason
   // to lose another's files. False when any failed.
-  bool shutDownComponents() {
+  bool shutDown() {
     bool ok = true;
     for (auto& [name, component] : components_) {
       try {
@@ -400,31 +404,24 @@ class ProcessRunner {
     return ok;
   }
 
-  bool createComponents() {
-    // The participant of serialized ports (a recorder's) is made before any component, beside the
-    // process's main participant, so that the two announce themselves to each other at the same
-    // time. Made on first use, in the middle of the components' constructors, it missed the main
-    // participant about every second run of config/scenes/record_default.yaml on one core, and the
-    // start then waited for Fast DDS's next periodic announcement, 3 s later
-    // (docs/results/recording-cost.md).
-    if (hasSerializedPorts()) serializedDds();
-    for (const auto& instance : scene_.components) {
-      if (instance.process != process_) continue;
-      contexts_.push_back(std::make_unique<ContextImpl>(
-          scene_, instance, output_directory_, dds_, [this]() -> DdsNode& { return serializedDds(); }, state_,
-          writers_));
-      try {
-        components_.emplace_back(instance.name, instance.library->create(*contexts_.back()));
-      } catch (const std::exception& e) {
-        log_.error("component '", instance.name, "' (", instance.type, ") could not start: ", e.what());
-        return false;
-      }
-      for (const std::string& port : contexts_.back()->unopenedPorts()) {
-        log_.error("component '", instance.name, "' (", instance.type, ") declares port '", port,
-                   "' but did not open it in its constructor: every declared port must get a publisher or a "
-                   "subscription (ignore the samples if they are not needed), or the run waits for it forever");
-        return false;
-      }
+  // The components themselves, before the readers and writers their callbacks use.
+  void destroy() { components_.clear(); }
+
+ private:
+  bool construct(const ComponentInstance& instance) {
+    contexts_.push_back(
+        std::make_unique<ContextImpl>(scene_, instance, output_directory_, dds_, serialized_dds_, state_));
+    try {
+      components_.emplace_back(instance.name, instance.library->create(*contexts_.back()));
+    } catch (const std::exception& e) {
+      log_.error("component '", instance.name, "' (", instance.type, ") could not start: ", e.what());
+      return false;
+    }
+    for (const std::string& port : contexts_.back()->unopenedPorts()) {
+      log_.error("component '", instance.name, "' (", instance.type, ") declares port '", port,
+                 "' but did not open it in its constructor: every declared port must get a publisher or a "
+                 "subscription (ignore the samples if they are not needed), or the run waits for it forever");
+      return false;
     }
     return true;
   }
@@ -438,24 +435,39 @@ class ProcessRunner {
     return false;
   }
 
-  DdsNode& serializedDds() {
-    if (!serialized_dds_) {
-      serialized_dds_ = std::make_unique<DdsNode>(scene_.domain_id, scene_.dds_profile, state_.lockstep,
-                                                  "uampc/" + process_ + "/serialized",
-                                                  securityIdentity(scene_.security_directory, process_));
-    }
-    return *serialized_dds_;
+  const Scene& scene_;
+  const std::string& process_;
+  const std::string& output_directory_;
+  DdsNode& dds_;
+  std::function<DdsNode&()> serialized_dds_;
+  ProcessState& state_;
+  const Logger& log_;
+  std::vector<std::unique_ptr<ContextImpl>> contexts_;
+  std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
+};
+
+// What a step hands the components: the samples due on every input, then the timers due. Each
+// call is guarded: an exception becomes the process's failure, naming the component.
+class StepDelivery {
+ public:
+  StepDelivery(const Scene& scene, ProcessState& state, const Logger& log) : scene_(scene), state_(state), log_(log) {}
+
+  // The inputs, then (if they went well) the timers. In lockstep, `expected` holds the samples
+  // written on each topic before this step; `give_up` says whether to stop waiting for them.
+  bool deliver(const TopicCounts* expected, const std::function<bool()>& give_up) {
+    return deliverInputs(expected, give_up) && fireTimers();
   }
 
+ private:
   // Calls `work` and turns an exception into a failure that names the component.
   bool guarded(const std::string& component, const char* what, const std::function<void()>& work) {
     try {
       work();
       return true;
     } catch (const std::exception& e) {
-      failure_ = "component '" + component + "' failed in " + what + " at t=" + std::to_string(state_.now.seconds()) +
-                 " s: " + e.what();
-      log_.error(failure_);
+      state_.failure = "component '" + component + "' failed in " + what +
+                       " at t=" + std::to_string(state_.now.seconds()) + " s: " + e.what();
+      log_.error(state_.failure);
       return false;
     }
   }
@@ -467,13 +479,13 @@ class ProcessRunner {
   // samples of the current step (source time >= now) wait for the next one. Every hop between
   // components therefore takes exactly one step, in one process or in several, which is what
   // makes runs deterministic.
-  bool deliverInputs(const std::map<std::string, std::uint64_t>* expected) {
+  bool deliverInputs(const TopicCounts* expected, const std::function<bool()>& give_up) {
     for (auto& reader : state_.dds_readers) reader->poll();  // once per reader, not per port
     for (auto& r : state_.readers) {
       std::deque<Sample> samples;
       samples.swap(r->deferred);
       r->drainInbox(samples);
-      if (expected && !awaitSamples(*r, samples, *expected)) return false;
+      if (expected && !awaitSamples(*r, samples, *expected, give_up)) return false;
       for (auto& s : samples) {
         if (state_.lockstep && s.source_time >= state_.now) {
           r->deferred.push_back(std::move(s));
@@ -490,7 +502,8 @@ class ProcessRunner {
   }
 
   // Lockstep: takes samples until the reader holds every sample written before now on its topic.
-  bool awaitSamples(ReaderPort& r, std::deque<Sample>& samples, const std::map<std::string, std::uint64_t>& expected) {
+  bool awaitSamples(ReaderPort& r, std::deque<Sample>& samples, const TopicCounts& expected,
+                    const std::function<bool()>& give_up) {
     auto it = expected.find(r.topic);
     const std::uint64_t want = it == expected.end() ? 0 : it->second;
     const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.ack_timeout_s);
@@ -499,12 +512,13 @@ class ProcessRunner {
       for (const auto& s : samples) have += s.source_time < state_.now ? 1 : 0;
       if (have >= want) return true;
       // Stopped (Ctrl-C, or the launcher died): the samples may never come; not a failure.
-      if (*stop_ || anotherRunStops()) return false;
+      if (give_up()) return false;
       if (SteadyClock::now() > deadline) {
-        failure_ = "input '" + r.port + "' of component '" + r.component + "' (" + r.topic + ") expected " +
-                   std::to_string(want) + " samples by t=" + std::to_string(state_.now.seconds()) + " s but got " +
-                   std::to_string(have) + " within " + std::to_string(scene_.clock.ack_timeout_s) + " s";
-        log_.error(failure_);
+        state_.failure = "input '" + r.port + "' of component '" + r.component + "' (" + r.topic + ") expected " +
+                         std::to_string(want) + " samples by t=" + std::to_string(state_.now.seconds()) +
+                         " s but got " + std::to_string(have) + " within " +
+                         std::to_string(scene_.clock.ack_timeout_s) + " s";
+        log_.error(state_.failure);
         return false;
       }
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(10));
@@ -525,75 +539,204 @@ class ProcessRunner {
     return true;
   }
 
-  bool waitForMatches(const std::atomic<bool>& stop) {
-    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.startupTimeout());
-    // A start that takes long says what it waits for (a component on another host, a process that
-    // failed to start), every few seconds.
-    auto next_report = SteadyClock::now() + std::chrono::seconds(2);
-    for (;;) {
-      std::string missing;
-      for (const auto& w : writers_) {
-        PublicationMatchedStatus s;
-        w->dds()->get_publication_matched_status(s);
-        const int want = scene_.readersOf(w->topic());
-        if (s.current_count < want) {
-          missing += "\n  writer on " + w->topic() + ": " + std::to_string(s.current_count) + " of " +
-                     std::to_string(want) + " readers";
-        }
-      }
-      for (const auto& r : state_.dds_readers) {
-        SubscriptionMatchedStatus s;
-        r->reader->get_subscription_matched_status(s);
-        const int want = scene_.writersOf(r->topic);
-        if (s.current_count < want) {
-          missing += "\n  reader on " + r->topic + ": " + std::to_string(s.current_count) + " of " +
-                     std::to_string(want) + " writers";
-        }
-      }
-      if (clock_reader_) {
-        SubscriptionMatchedStatus clock_status;
-        clock_reader_->shared.reader->get_subscription_matched_status(clock_status);
-        if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
-      }
-      const int processes = static_cast<int>(scene_.processes().size());
-      // The launcher's clock reads the acknowledgements, or (processes that step themselves) the
-      // progress; the processes read each other's acknowledgements.
-      if (ack_writer_) {
-        PublicationMatchedStatus ack_status;
-        ack_writer_->dds()->get_publication_matched_status(ack_status);
-        if (ack_status.current_count < (own_clock_ ? 0 : 1) + (ack_reader_ ? processes : 0))
-          missing += "\n  the acknowledgement readers";
-      }
-      if (progress_writer_) {
-        PublicationMatchedStatus progress_status;
-        progress_writer_->dds()->get_publication_matched_status(progress_status);
-        if (progress_status.current_count < 1) missing += "\n  the launcher";
-      }
-      if (ack_reader_) {
-        SubscriptionMatchedStatus ack_reader_status;
-        ack_reader_->shared.reader->get_subscription_matched_status(ack_reader_status);
-        if (ack_reader_status.current_count < processes) missing += "\n  the other processes' acknowledgements";
-      }
-      if (missing.empty()) return true;
-      if (stop) return false;
-      if (SteadyClock::now() > deadline) {
-        log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(),
-                   " s; still missing:", missing);
-        return false;
-      }
-      if (SteadyClock::now() > next_report) {
-        log_.info("starting: waiting for", missing);
-        next_report = SteadyClock::now() + std::chrono::seconds(5);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const Scene& scene_;
+  ProcessState& state_;
+  const Logger& log_;
+};
+
+// The components' ports discovery has not matched yet: each writer's readers and each reader's
+// writers as the scene counts them. One line each, empty when all are matched.
+std::string unmatchedPorts(const Scene& scene, const ProcessState& state) {
+  std::string missing;
+  for (const auto& w : state.writers) {
+    PublicationMatchedStatus s;
+    w->dds()->get_publication_matched_status(s);
+    const int want = scene.readersOf(w->topic());
+    if (s.current_count < want) {
+      missing += "\n  writer on " + w->topic() + ": " + std::to_string(s.current_count) + " of " +
+                 std::to_string(want) + " readers";
+    }
+  }
+  for (const auto& r : state.dds_readers) {
+    SubscriptionMatchedStatus s;
+    r->reader->get_subscription_matched_status(s);
+    const int want = scene.writersOf(r->topic);
+    if (s.current_count < want) {
+      missing += "\n  reader on " + r->topic + ": " + std::to_string(s.current_count) + " of " + std::to_string(want) +
+                 " writers";
+    }
+  }
+  return missing;
+}
+
+// The lockstep protocol as one process speaks it (docs/dev/time-and-lockstep.md): the launcher's
+// ticks on /clock, or this process's own /clock when it steps itself; its acknowledgements of each
+// step with the samples it wrote, to the clock and the other processes; its progress, to the
+// launcher; the other processes' acknowledgements; and another run on the domain, noticed.
+class LockstepProtocol {
+ public:
+  // Opens the protocol's topics. They are reliable and keep every sample, like the loop's own.
+  LockstepProtocol(const Scene& scene, const std::string& process, bool own_clock, DdsNode& dds, ProcessState& state,
+                   const Logger& log)
+      : scene_(scene), process_(process), own_clock_(own_clock), dds_(dds), state_(state), log_(log) {
+    // Processes that step themselves: the first of the scene publishes /clock, for outside tools.
+    if (own_clock_ && scene_.processes().front() == process_) {
+      clock_writer_ = dds_.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                        &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
+    } else if (!own_clock_) {
+      clock_reader_ =
+          std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
+                                           &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, &state_.wakeup);
+    }
+    // Every process reads every acknowledgement: they say how many samples to wait for. A process
+    // alone in its scene knows what it wrote: its acknowledgements go to the clock only (a delivery
+    // to itself cost about as much as one to the clock, every step), and if it steps itself, to
+    // nobody: the launcher hears its progress.
+    const bool alone = scene_.processes().size() == 1;
+    if (!own_clock_ || !alone) ack_writer_ = stepAckWriter(kStepAckTopic);
+    if (own_clock_) progress_writer_ = stepAckWriter(kStepProgressTopic);
+    if (!alone)
+      ack_reader_ = std::make_unique<ProtocolReader>(dds_, kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
+                                                     &detail::makeTypeSupport<uampc::msg::StepAck>, &state_.wakeup);
+  }
+
+  ~LockstepProtocol() {
+    clock_reader_.reset();
+    if (clock_writer_) dds_.deleteWriter(clock_writer_);
+    ack_writer_.reset();
+    progress_writer_.reset();
+    ack_reader_.reset();
+  }
+
+  // Alone in its scene: no other process's acknowledgements to wait for.
+  bool alone() const { return !ack_reader_; }
+
+  // The protocol's endpoints discovery has not matched yet, one line each; empty when all are.
+  std::string unmatched() const {
+    std::string missing;
+    if (clock_reader_) {
+      SubscriptionMatchedStatus clock_status;
+      clock_reader_->shared.reader->get_subscription_matched_status(clock_status);
+      if (clock_status.current_count < 1) missing += "\n  the lockstep clock";
+    }
+    const int processes = static_cast<int>(scene_.processes().size());
+    // The launcher's clock reads the acknowledgements, or (processes that step themselves) the
+    // progress; the processes read each other's acknowledgements.
+    if (ack_writer_) {
+      PublicationMatchedStatus ack_status;
+      ack_writer_->dds()->get_publication_matched_status(ack_status);
+      if (ack_status.current_count < (own_clock_ ? 0 : 1) + (ack_reader_ ? processes : 0))
+        missing += "\n  the acknowledgement readers";
+    }
+    if (progress_writer_) {
+      PublicationMatchedStatus progress_status;
+      progress_writer_->dds()->get_publication_matched_status(progress_status);
+      if (progress_status.current_count < 1) missing += "\n  the launcher";
+    }
+    if (ack_reader_) {
+      SubscriptionMatchedStatus ack_reader_status;
+      ack_reader_->shared.reader->get_subscription_matched_status(ack_reader_status);
+      if (ack_reader_status.current_count < processes) missing += "\n  the other processes' acknowledgements";
+    }
+    return missing;
+  }
+
+  // The ready message (step -1), to whoever hears this process's acknowledgements and progress.
+  void sayReady() {
+    if (ack_writer_) sendAck(-1, Time{0});
+    if (progress_writer_) reportProgress(-1, Time{0});
+  }
+
+  // The times the launcher's clock has ticked since the last call.
+  std::vector<Time> takeTicks() {
+    std::deque<Sample> ticks;
+    clock_reader_->takeAll(ticks);
+    std::vector<Time> times;
+    for (const auto& tick : ticks)
+      times.push_back(fromMsg(static_cast<const rosgraph_msgs::msg::Clock*>(tick.data.get())->clock()));
+    return times;
+  }
+
+  // /clock for outside tools, if this process publishes it.
+  void publishClock(Time t) {
+    if (!clock_writer_) return;
+    rosgraph_msgs::msg::Clock tick;
+    tick.clock(toMsg(t));
+    clock_writer_->write(&tick);
+  }
+
+  // The acknowledgement of a step, to the launcher's clock and the other processes.
+  void sendAck(std::int64_t step, Time stamp) {
+    uampc::msg::StepAck ack = ackOf(step, stamp);
+    // Alone under the launcher's clock: what the others would have read (with the clock inside,
+    // runOwnClock keeps its counts itself).
+    if (!ack_reader_ && !own_clock_) acks_[process_][step] = ack.written();
+    ack_writer_->write(&ack);
+  }
+
+  // How far a process that steps itself is, to the launcher.
+  void reportProgress(std::int64_t step, Time stamp) {
+    uampc::msg::StepAck ack = ackOf(step, stamp);
+    progress_writer_->write(&ack);
+  }
+
+  // Before a failed lockstep process exits (run(), on any failure): its last acknowledgement, which
+  // says why, is in its readers' hands. Otherwise the launcher may see the exit first and report
+  // only "exited with status 1" (seen in CI). Bounded: a reader that is gone does not keep the
+  // process; without acknowledgement writers (a failure before they exist) a no-op.
+  void deliverFailure() {
+    const eprosima::fastrtps::Duration_t patience(1, 0);
+    for (DdsWriter* writer : {ack_writer_.get(), progress_writer_.get()}) {
+      if (writer) writer->dds()->wait_for_acknowledgments(patience);
     }
   }
 
+  // The acknowledgements of step `step` from every process, summed into the number of samples
+  // written on each topic; false on timeout or stop.
+  bool awaitAcks(std::int64_t step, TopicCounts& expected, const std::atomic<bool>& stop) {
+    // A little before the clock gives up: the clock then hears from this process which peer it
+    // waited for (a stopped process), instead of naming every process as late.
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(0.9 * scene_.clock.ack_timeout_s);
+    for (;;) {
+      takeAcks();
+      const std::string missing = notAcknowledged(step);
+      if (missing.empty()) break;
+      if (stop || anotherRunStops()) return false;
+      if (SteadyClock::now() > deadline) {
+        state_.failure = "acknowledgements of step " + std::to_string(step) + " from process(es) " + missing +
+                         " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s";
+        log_.error(state_.failure);
+        return false;
+      }
+      state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(10));
+    }
+    expected = countsOf(step);
+    return true;
+  }
+
+  // While waiting: another run on the domain is a failure, said once the other run may have noticed.
+  bool anotherRunStops() {
+    state_.failure = anotherRun();
+    if (state_.failure.empty()) return false;
+    log_.error(state_.failure);
+    stayUntilTheOtherRunNotices();
+    return true;
+  }
+
   // The samples this process has written on each topic so far.
-  std::map<std::string, std::uint64_t> writtenSoFar() const {
-    std::map<std::string, std::uint64_t> written;
-    for (const auto& w : writers_) written[w->topic()] += w->written();
+  TopicCounts writtenSoFar() const {
+    TopicCounts written;
+    for (const auto& w : state_.writers) written[w->topic()] += w->written();
     return written;
+  }
+
+ private:
+  std::unique_ptr<DdsWriter> stepAckWriter(const char* topic) {
+    return std::make_unique<DdsWriter>(
+        dds_,
+        dds_.createWriter(topic, MessageType<uampc::msg::StepAck>::kRosName,
+                          &detail::makeTypeSupport<uampc::msg::StepAck>, QosPreset::kControl),
+        topic, QosPreset::kControl, state_);
   }
 
   // The counts an acknowledgement of `step` carries. The ready message (step -1) counts nothing:
@@ -617,73 +760,41 @@ class ProcessRunner {
     ack.step(step);
     ack.stamp(toMsg(stamp));
     ack.written() = writtenBy(step);
-    ack.failed(!failure_.empty());
-    ack.message(failure_);
+    ack.failed(!state_.failure.empty());
+    ack.message(state_.failure);
     return ack;
   }
 
-  // The acknowledgement of a step, to the launcher's clock and the other processes.
-  void sendAck(std::int64_t step, Time stamp) {
-    uampc::msg::StepAck ack = ackOf(step, stamp);
-    // Alone under the launcher's clock: what the others would have read (with the clock inside,
-    // runOwnClock keeps its counts itself).
-    if (!ack_reader_ && !own_clock_) acks_[process_][step] = ack.written();
-    ack_writer_->write(&ack);
-  }
-
-  // How far a process that steps itself is, to the launcher.
-  void reportProgress(std::int64_t step, Time stamp) {
-    uampc::msg::StepAck ack = ackOf(step, stamp);
-    progress_writer_->write(&ack);
-  }
-
-  // Before a failed lockstep process exits (run(), on any failure): its last acknowledgement, which
-  // says why, is in its readers' hands. Otherwise the launcher may see the exit first and report
-  // only "exited with status 1" (seen in CI). Bounded: a reader that is gone does not keep the
-  // process; without acknowledgement writers (real time, or a failure before they exist) a no-op.
-  void deliverFailure() {
-    const eprosima::fastrtps::Duration_t patience(1, 0);
-    for (DdsWriter* writer : {ack_writer_.get(), progress_writer_.get()}) {
-      if (writer) writer->dds()->wait_for_acknowledgments(patience);
+  // Keeps every acknowledgement that arrived, by process and step.
+  void takeAcks() {
+    std::deque<Sample> acks;
+    if (ack_reader_) ack_reader_->takeAll(acks);
+    for (const auto& a : acks) {
+      const auto* ack = static_cast<const uampc::msg::StepAck*>(a.data.get());
+      acks_[ack->process()][ack->step()] = ack->written();
     }
   }
 
-  // Lockstep: the acknowledgements of step `step` from every process, summed into the number of
-  // samples written on each topic; false on timeout or stop.
-  bool awaitAcks(std::int64_t step, std::map<std::string, std::uint64_t>& expected, const std::atomic<bool>& stop) {
-    // A little before the clock gives up: the clock then hears from this process which peer it
-    // waited for (a stopped process), instead of naming every process as late.
-    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(0.9 * scene_.clock.ack_timeout_s);
-    for (;;) {
-      std::deque<Sample> acks;
-      if (ack_reader_) ack_reader_->takeAll(acks);
-      for (const auto& a : acks) {
-        const auto* ack = static_cast<const uampc::msg::StepAck*>(a.data.get());
-        acks_[ack->process()][ack->step()] = ack->written();
-      }
-      // A faster process may already have acknowledged later steps; the counts must be those of
-      // exactly this step.
-      std::string missing;
-      for (const auto& p : scene_.processes()) {
-        auto it = acks_.find(p);
-        if (it == acks_.end() || !it->second.count(step)) missing += (missing.empty() ? "" : ", ") + p;
-      }
-      if (missing.empty()) break;
-      if (stop || anotherRunStops()) return false;
-      if (SteadyClock::now() > deadline) {
-        failure_ = "acknowledgements of step " + std::to_string(step) + " from process(es) " + missing +
-                   " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s";
-        log_.error(failure_);
-        return false;
-      }
-      state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(10));
+  // The processes whose acknowledgement of `step` has not arrived, comma-separated. A faster process
+  // may already have acknowledged later steps; the counts must be those of exactly this step.
+  std::string notAcknowledged(std::int64_t step) const {
+    std::string missing;
+    for (const auto& p : scene_.processes()) {
+      auto it = acks_.find(p);
+      if (it == acks_.end() || !it->second.count(step)) missing += (missing.empty() ? "" : ", ") + p;
     }
-    expected.clear();
+    return missing;
+  }
+
+  // The samples every process wrote by the end of `step`, summed per topic; older steps are
+  // forgotten, as they are not needed again.
+  TopicCounts countsOf(std::int64_t step) {
+    TopicCounts expected;
     for (auto& [process, by_step] : acks_) {
       for (const auto& c : by_step.at(step)) expected[c.topic()] += c.count();
-      by_step.erase(by_step.begin(), by_step.find(step));  // older steps are not needed again
+      by_step.erase(by_step.begin(), by_step.find(step));
     }
-    return true;
+    return expected;
   }
 
   // Another lockstep run on this domain, whose ticks would drive this one or whose acknowledgements
@@ -710,69 +821,129 @@ class ProcessRunner {
     return {};
   }
 
-  // While waiting: another run on the domain is a failure, said once the other run may have noticed.
-  bool anotherRunStops() {
-    failure_ = anotherRun();
-    if (failure_.empty()) return false;
-    log_.error(failure_);
-    stayUntilTheOtherRunNotices();
-    return true;
+  const Scene& scene_;
+  const std::string& process_;
+  const bool own_clock_;
+  DdsNode& dds_;
+  ProcessState& state_;
+  const Logger& log_;
+  std::unique_ptr<ProtocolReader> clock_reader_;  // ticks of the launcher's clock
+  DataWriter* clock_writer_ = nullptr;            // or this process's own (own_clock_)
+  std::unique_ptr<DdsWriter> ack_writer_;         // to the launcher's clock and the other processes
+  std::unique_ptr<DdsWriter> progress_writer_;    // to the launcher, when the process steps itself
+  std::unique_ptr<ProtocolReader> ack_reader_;
+  // Acknowledged sample counts: process -> step -> counts per topic.
+  std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;
+};
+
+// Drives the components of one process: builds them, waits for discovery, then runs the steps in
+// lockstep (following the launcher's clock, or stepping itself) or in real time.
+class ProcessRunner {
+ public:
+  ProcessRunner(const Scene& scene, std::string process, std::string output_directory, bool own_clock)
+      : scene_(scene),
+        process_(std::move(process)),
+        output_directory_(std::move(output_directory)),
+        own_clock_(own_clock),
+        dds_(scene.domain_id, scene.dds_profile, scene.clock.mode == ClockMode::kLockstep, "uampc/" + process_,
+             securityIdentity(scene.security_directory, process_)),
+        log_(process_, [this] { return state_.now.seconds(); }),
+        components_(
+            scene_, process_, output_directory_, dds_, [this]() -> DdsNode& { return serializedDds(); }, state_, log_),
+        delivery_(scene_, state_, log_) {
+    state_.lockstep = scene.clock.mode == ClockMode::kLockstep;
+    state_.step = scene.clock.step;
+    state_.now = state_.lockstep ? Time{0} : wallNow();
+    state_.started = !state_.lockstep;
+  }
+
+  // Components first, then the DDS readers and writers their callbacks used, then the protocol's.
+  ~ProcessRunner() {
+    components_.destroy();
+    for (auto& r : state_.dds_readers) r->node->deleteReader(r->reader);
+    state_.writers.clear();  // each deletes its DDS writer
+    protocol_.reset();
+  }
+
+  int run(const std::atomic<bool>& stop) {
+    if (!components_.create()) return 1;
+    const int code = state_.lockstep ? runLockstep(stop) : runRealtime(stop);
+    if (code != 0 && protocol_) protocol_->deliverFailure();
+    return components_.shutDown() ? code : 1;
+  }
+
+ private:
+  DdsNode& serializedDds() {
+    if (!serialized_dds_) {
+      serialized_dds_ = std::make_unique<DdsNode>(scene_.domain_id, scene_.dds_profile, state_.lockstep,
+                                                  "uampc/" + process_ + "/serialized",
+                                                  securityIdentity(scene_.security_directory, process_));
+    }
+    return *serialized_dds_;
+  }
+
+  // Until every port and the protocol's endpoints are matched; false on timeout (said) or stop.
+  bool waitForMatches(const std::atomic<bool>& stop) {
+    const auto deadline = SteadyClock::now() + std::chrono::duration<double>(scene_.clock.startupTimeout());
+    // A start that takes long says what it waits for (a component on another host, a process that
+    // failed to start), every few seconds.
+    auto next_report = SteadyClock::now() + std::chrono::seconds(2);
+    for (;;) {
+      const std::string missing = unmatchedPorts(scene_, state_) + protocol_->unmatched();
+      if (missing.empty()) return true;
+      if (stop) return false;
+      if (SteadyClock::now() > deadline) {
+        log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(),
+                   " s; still missing:", missing);
+        return false;
+      }
+      if (SteadyClock::now() > next_report) {
+        log_.info("starting: waiting for", missing);
+        next_report = SteadyClock::now() + std::chrono::seconds(5);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+
+  // Waiting for samples gives up on a stop or another run on the domain.
+  std::function<bool()> giveUpOn(const std::atomic<bool>& stop) {
+    return [this, &stop] { return stop || protocol_->anotherRunStops(); };
   }
 
   int runLockstep(const std::atomic<bool>& stop) {
-    // The clock's protocol topics are reliable and keep every sample, like the loop's own.
-    // Processes that step themselves: the first of the scene publishes /clock, for outside tools.
-    if (own_clock_ && scene_.processes().front() == process_) {
-      clock_writer_ = dds_.createWriter(kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                        &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>, QosPreset::kControl);
-    } else if (!own_clock_) {
-      clock_reader_ = std::make_unique<ProtocolReader>(dds_, kClockTopic, MessageType<rosgraph_msgs::msg::Clock>::kRosName,
-                                                       &detail::makeTypeSupport<rosgraph_msgs::msg::Clock>,
-                                                       &state_.wakeup);
-    }
-    auto stepAckWriter = [&](const char* topic) {
-      return std::make_unique<DdsWriter>(dds_,
-                                         dds_.createWriter(topic, MessageType<uampc::msg::StepAck>::kRosName,
-                                                           &detail::makeTypeSupport<uampc::msg::StepAck>,
-                                                           QosPreset::kControl),
-                                         topic, QosPreset::kControl, state_);
-    };
-    // Every process reads every acknowledgement: they say how many samples to wait for. A process
-    // alone in its scene knows what it wrote: its acknowledgements go to the clock only (a delivery
-    // to itself cost about as much as one to the clock, every step), and if it steps itself, to
-    // nobody: the launcher hears its progress.
-    const bool alone = scene_.processes().size() == 1;
-    if (!own_clock_ || !alone) ack_writer_ = stepAckWriter(kStepAckTopic);
-    if (own_clock_) progress_writer_ = stepAckWriter(kStepProgressTopic);
-    if (!alone)
-      ack_reader_ = std::make_unique<ProtocolReader>(dds_, kStepAckTopic, MessageType<uampc::msg::StepAck>::kRosName,
-                                                   &detail::makeTypeSupport<uampc::msg::StepAck>, &state_.wakeup);
+    protocol_ = std::make_unique<LockstepProtocol>(scene_, process_, own_clock_, dds_, state_, log_);
     if (!waitForMatches(stop)) return stop ? 0 : 1;
     state_.started = true;
-    // Ready.
-    if (ack_writer_) sendAck(-1, Time{0});
-    if (progress_writer_) reportProgress(-1, Time{0});
-    if (own_clock_) return runOwnClock(stop);
+    protocol_->sayReady();
+    return own_clock_ ? runOwnClock(stop) : followLauncherClock(stop);
+  }
 
+  // The launcher's clock ticks each step once every process acknowledged the one before.
+  int followLauncherClock(const std::atomic<bool>& stop) {
     while (!stop) {
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
-      if (anotherRunStops()) return 1;
-      std::deque<Sample> ticks;
-      clock_reader_->takeAll(ticks);
-      for (const auto& tick : ticks) {
-        const Time t = fromMsg(static_cast<const rosgraph_msgs::msg::Clock*>(tick.data.get())->clock());
-        const std::int64_t step = t.ns / scene_.clock.step.ns;
-        state_.now = t;
-        std::map<std::string, std::uint64_t> expected;
-        if (!awaitAcks(step - 1, expected, stop)) return stop ? 0 : 1;
-        const bool ok = deliverInputs(&expected) && fireTimers();
-        if (!ok && stop) return 0;  // stopped while waiting for samples that will not come
-        sendAck(step, t);
-        if (!ok) return 1;
+      if (protocol_->anotherRunStops()) return 1;
+      for (const Time t : protocol_->takeTicks()) {
+        const StepOutcome outcome = tickedStep(t, stop);
+        if (outcome != StepOutcome::kDone) return exitCodeOf(outcome);
       }
       // Data may have arrived for later steps; the tick will come.
     }
     return 0;
+  }
+
+  // One step the launcher's clock ticked: the samples of the step before as every process counted
+  // them, the timers, then this process's acknowledgement (also when a component failed: it says
+  // why).
+  StepOutcome tickedStep(Time t, const std::atomic<bool>& stop) {
+    const std::int64_t step = t.ns / scene_.clock.step.ns;
+    state_.now = t;
+    TopicCounts expected;
+    if (!protocol_->awaitAcks(step - 1, expected, stop)) return stop ? StepOutcome::kStopped : StepOutcome::kFailed;
+    const bool ok = delivery_.deliver(&expected, giveUpOn(stop));
+    if (!ok && stop) return StepOutcome::kStopped;  // stopped while waiting for samples that will not come
+    protocol_->sendAck(step, t);
+    return ok ? StepOutcome::kDone : StepOutcome::kFailed;
   }
 
   // The process steps itself (Scene::processesStepThemselves()): the same steps as with the
@@ -788,36 +959,42 @@ class ProcessRunner {
   // launcher's clock, until the launcher stops it.
   int runOwnClock(const std::atomic<bool>& stop) {
     const std::int64_t last = lastStep(scene_.clock);
-    const bool alone = !ack_reader_;
     const auto wall_start = SteadyClock::now();
-    auto next_progress = wall_start;
-    std::map<std::string, std::uint64_t> expected;  // written by the end of the previous step
+    next_progress_ = wall_start;
+    TopicCounts expected;  // written by the end of the previous step
     for (std::int64_t step = 0; last < 0 || step <= last; ++step) {
       const Time t{step * scene_.clock.step.ns};
       if (!paceTo(wall_start, t, scene_.clock.real_time_factor, stop)) return 0;
-      if (clock_writer_) {
-        rosgraph_msgs::msg::Clock tick;
-        tick.clock(toMsg(t));
-        clock_writer_->write(&tick);
-      }
+      protocol_->publishClock(t);
       state_.now = t;
-      if (!alone && !awaitAcks(step - 1, expected, stop)) {
-        if (stop) return 0;
-        reportProgress(step, t);  // the failure, naming the processes this one waited for
-        return 1;
-      }
-      const bool ok = deliverInputs(&expected) && fireTimers();
-      if (!ok && stop) return 0;
-      if (!alone) sendAck(step, t);
-      if (!ok || step == last || SteadyClock::now() >= next_progress) {
-        reportProgress(step, t);
-        next_progress = SteadyClock::now() + std::chrono::milliseconds(100);
-      }
-      if (!ok) return 1;
-      if (alone) expected = writtenSoFar();
+      const StepOutcome outcome = ownStep(step, step == last, expected, stop);
+      if (outcome != StepOutcome::kDone) return exitCodeOf(outcome);
     }
     while (!stop) state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
     return 0;
+  }
+
+  // One step of a process that steps itself, at state_.now: the other processes' acknowledgements
+  // of the step before, the samples and timers, this process's acknowledgement and, now and then,
+  // its progress. `expected` holds the counts of the step before and, alone, becomes this step's.
+  StepOutcome ownStep(std::int64_t step, bool last_step, TopicCounts& expected, const std::atomic<bool>& stop) {
+    const Time t = state_.now;
+    const bool alone = protocol_->alone();
+    if (!alone && !protocol_->awaitAcks(step - 1, expected, stop)) {
+      if (stop) return StepOutcome::kStopped;
+      protocol_->reportProgress(step, t);  // the failure, naming the processes this one waited for
+      return StepOutcome::kFailed;
+    }
+    const bool ok = delivery_.deliver(&expected, giveUpOn(stop));
+    if (!ok && stop) return StepOutcome::kStopped;
+    if (!alone) protocol_->sendAck(step, t);
+    if (!ok || last_step || SteadyClock::now() >= next_progress_) {
+      protocol_->reportProgress(step, t);
+      next_progress_ = SteadyClock::now() + std::chrono::milliseconds(100);
+    }
+    if (!ok) return StepOutcome::kFailed;
+    if (alone) expected = protocol_->writtenSoFar();
+    return StepOutcome::kDone;
   }
 
   int runRealtime(const std::atomic<bool>& stop) {
@@ -830,7 +1007,7 @@ class ProcessRunner {
       if (next > state_.now)
         state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::nanoseconds((next - state_.now).ns));
       state_.now = wallNow();
-      if (!deliverInputs(nullptr) || !fireTimers()) return 1;
+      if (!delivery_.deliver(nullptr, [] { return false; })) return 1;
     }
     return 0;
   }
@@ -843,18 +1020,10 @@ class ProcessRunner {
   std::unique_ptr<DdsNode> serialized_dds_;  // declared after dds_: destroyed before it
   ProcessState state_;
   Logger log_;
-  std::vector<std::shared_ptr<DdsWriter>> writers_;
-  std::vector<std::unique_ptr<ContextImpl>> contexts_;
-  std::vector<std::pair<std::string, std::unique_ptr<Component>>> components_;
-  std::unique_ptr<ProtocolReader> clock_reader_;  // ticks of the launcher's clock
-  DataWriter* clock_writer_ = nullptr;           // or this process's own (own_clock_)
-  std::unique_ptr<DdsWriter> ack_writer_;       // to the launcher's clock and the other processes
-  std::unique_ptr<DdsWriter> progress_writer_;  // to the launcher, when the process steps itself
-  std::unique_ptr<ProtocolReader> ack_reader_;
-  // Acknowledged sample counts: process -> step -> counts per topic.
-  std::map<std::string, std::map<std::int64_t, std::vector<uampc::msg::TopicCount>>> acks_;
-  std::string failure_;
-  const std::atomic<bool>* stop_ = nullptr;  // run()'s
+  ComponentGroup components_;
+  StepDelivery delivery_;
+  std::unique_ptr<LockstepProtocol> protocol_;  // in lockstep, once the components are built
+  SteadyClock::time_point next_progress_;       // runOwnClock: when to tell the launcher again
 };
 
 }  // namespace

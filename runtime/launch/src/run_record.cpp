@@ -125,6 +125,8 @@ std::string resolvedSceneYaml(const Scene& scene) {
     out << YAML::Key << "external_topics" << YAML::Value << YAML::Flow << scene.external_topics;
   if (!scene.outputs_for_tools.empty())
     out << YAML::Key << "outputs_for_tools" << YAML::Value << YAML::Flow << scene.outputs_for_tools;
+  if (!scene.unused_inputs.empty())
+    out << YAML::Key << "unused_inputs" << YAML::Value << YAML::Flow << scene.unused_inputs;
   emitClock(out, scene.clock);
   if (!scene.rig.empty()) {
     out << YAML::Key << "rig" << YAML::Value << YAML::BeginMap;

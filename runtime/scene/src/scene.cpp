@@ -217,6 +217,7 @@ class SceneValidator {
   std::vector<PortReference> pending_;
   std::set<std::string> component_names_;  // of scene.components, for finding one defined twice
   std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
+  std::map<std::string, SourceLocation> unused_input_locations_;  // topic -> where unused_inputs: lists it
 
   // The rig (docs/dev/architecture.md section 5): parameters a component marks partOfRig() take
   // their value from the scene's rig: block, one value for every component that declares them.
@@ -284,7 +285,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
   applyOverrides(root, overrides);
   checkKeys(root,
             {"name", "domain_id", "dds_profile", "security", "seed", "clock", "on_crash", "max_restarts", "rig",
-             "external_topics", "outputs_for_tools", "components"},
+             "external_topics", "outputs_for_tools", "unused_inputs", "components"},
             "the scene");
   readRigNode(root);
   readTopLevel(root, scene);
@@ -306,7 +307,7 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
     resolveScenePorts(scene, errors_);
     // A reference that failed leaves its port on its default topic: checking that would only
     // add confusing messages.
-    if (errors_.size() == errors_before) checkConnections(scene, topic_locations_, errors_);
+    if (errors_.size() == errors_before) checkConnections(scene, topic_locations_, unused_input_locations_, errors_);
   }
   if (root["security"]) readSecurity(root["security"], scene);
   if (scene.clock.mode == ClockMode::kLockstep && scene.on_crash == CrashPolicy::kRestart) {
@@ -352,6 +353,14 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
   if (const YAML::Node topics = root["external_topics"]) readTopicList(topics, "external_topics", scene.external_topics);
   if (const YAML::Node topics = root["outputs_for_tools"]) {
     readTopicList(topics, "outputs_for_tools", scene.outputs_for_tools);
+  }
+  if (const YAML::Node topics = root["unused_inputs"]) {
+    readTopicList(topics, "unused_inputs", scene.unused_inputs);
+    if (topics.IsSequence()) {
+      for (const auto& item : topics) {
+        if (item.IsScalar()) unused_input_locations_.emplace(item.Scalar(), locationOf(item));
+      }
+    }
   }
   if (root["on_crash"]) {
     if (auto v = scalar<std::string>(root["on_crash"], "on_crash")) {
@@ -735,8 +744,8 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
   return std::nullopt;
 }
 
-// external_topics: [/livox/lidar, ...] and outputs_for_tools: [/lidar/points, ...]: ROS topic
-// names, each once.
+// external_topics: [/livox/lidar, ...], outputs_for_tools: [/lidar/points, ...] and
+// unused_inputs: [/lidar/imu, ...]: ROS topic names, each once.
 void SceneValidator::readTopicList(const YAML::Node& node, const std::string& key, std::vector<std::string>& topics) {
   if (!node.IsSequence()) {
     error(node, key + " must be a list of topics, e.g. [/livox/lidar]");

@@ -116,6 +116,42 @@ std::string portList(const std::vector<Binding>& bindings) {
   return out + " (" + bindings.front().port->type_name + ")";
 }
 
+bool listed(const std::vector<std::string>& topics, const std::string& topic) {
+  return std::find(topics.begin(), topics.end(), topic) != topics.end();
+}
+
+// unused_inputs: each topic is read in the scene and written by nobody, in it or beside it
+// (external_topics): a stale entry would hide the warning it was meant for once the input is fed.
+void checkUnusedInputs(const Scene& scene, const std::map<std::string, std::vector<Binding>>& by_topic,
+                       const std::map<std::string, SourceLocation>& unused_inputs, std::vector<std::string>& errors) {
+  std::vector<std::string> read;
+  for (const auto& [topic, bindings] : by_topic) {
+    if (std::any_of(bindings.begin(), bindings.end(),
+                    [](const Binding& b) { return b.port->direction == PortDirection::kInput; }))
+      read.push_back(topic);
+  }
+  for (const auto& [topic, where] : unused_inputs) {
+    if (!listed(read, topic)) {
+      errors.push_back(diagnostic(where, "error",
+                                  "unused_inputs: no component in the scene reads " + topic + didYouMean(topic, read)));
+      continue;
+    }
+    std::vector<Binding> writers;
+    for (const auto& b : by_topic.at(topic)) {
+      if (b.port->direction == PortDirection::kOutput) writers.push_back(b);
+    }
+    if (!writers.empty()) {
+      errors.push_back(diagnostic(where, "error",
+                                  "unused_inputs: " + topic + " is written by " + portList(writers) +
+                                      " in this scene; an input that is fed is not unused"));
+    } else if (listed(scene.external_topics, topic)) {
+      errors.push_back(diagnostic(
+          where, "error",
+          "unused_inputs: " + topic + " is in external_topics too; a topic published beside the scene is not unused"));
+    }
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -191,11 +227,13 @@ void resolveScenePorts(Scene& scene, std::vector<std::string>& errors) {
 // remapped that port (an explicit `topics:` entry): there the topic was typed by hand, and a typo
 // such as /lo/odometri would leave the reader waiting forever. With the port's own default topic it
 // is a warning: some inputs are optional in some scenes (lo's imu, initial_pose), and a process
-// group started with `run-process` may be fed from another host. An output nobody reads is always
-// a warning: many outputs exist for viewers and recorders (/lo/local_map, /world/points).
+// group started with `run-process` may be fed from another host. Neither for a topic the scene
+// declares fed from outside (external_topics) or left unfed on purpose (unused_inputs). An output
+// nobody reads is a warning unless its port or the scene (outputs_for_tools) says it is for
+// viewers and tools: many outputs exist for viewers and recorders (/lo/local_map, /world/points).
 // One line per topic, so that a scene with many silent ports does not drown the user.
 void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>& remapped,
-                      std::vector<std::string>& errors) {
+                      const std::map<std::string, SourceLocation>& unused_inputs, std::vector<std::string>& errors) {
   std::map<std::string, std::vector<Binding>> by_topic;
   for (const auto& c : scene.components) {
     for (const auto& port : c.ports) by_topic[c.topics.at(port.name)].push_back({&c, &port});
@@ -214,9 +252,8 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
                                   "topic " + topic + " connects ports of different types: " + first.key() + " (" +
                                       first.port->type_name + ") and " + b.key() + " (" + b.port->type_name + ")"));
     }
-    const bool external =
-        std::find(scene.external_topics.begin(), scene.external_topics.end(), topic) != scene.external_topics.end();
-    if (writers.empty() && !external) {
+    const bool fed_or_unused = listed(scene.external_topics, topic) || unused_inputs.count(topic);
+    if (writers.empty() && !fed_or_unused) {
       const auto typed =
           std::find_if(readers.begin(), readers.end(), [&](const Binding& b) { return remapped.count(b.key()); });
       const std::string suggestion =
@@ -234,8 +271,7 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
     }
     const bool for_viewers =
         std::all_of(writers.begin(), writers.end(), [](const Binding& b) { return b.port->for_viewers; }) ||
-        std::find(scene.outputs_for_tools.begin(), scene.outputs_for_tools.end(), topic) !=
-            scene.outputs_for_tools.end();
+        listed(scene.outputs_for_tools, topic);
     if (readers.empty() && !for_viewers) {
       scene.warnings.push_back(diagnostic(
           whereSet(writers.front()), "warning",
@@ -243,6 +279,7 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
               didYouMean(topic, topicsWith(by_topic, PortDirection::kInput, writers.front().port->type_name))));
     }
   }
+  checkUnusedInputs(scene, by_topic, unused_inputs, errors);
 }
 
 }  // namespace uampc

@@ -31,8 +31,9 @@ void resolvePortReferences(Scene& scene, const std::vector<PortReference>& refer
 void resolveScenePorts(Scene& scene, std::vector<std::string>& errors);
 
 // Type clashes (errors), inputs no component writes and outputs nobody reads (see the .cpp for
-// which is an error). `remapped` holds "instance.port" -> where the scene set that port's topic.
+// which is an error). `remapped` holds "instance.port" -> where the scene set that port's topic,
+// `unused_inputs` each topic of Scene::unused_inputs -> where the scene lists it.
 void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>& remapped,
-                      std::vector<std::string>& errors);
+                      const std::map<std::string, SourceLocation>& unused_inputs, std::vector<std::string>& errors);
 
 }  // namespace uampc

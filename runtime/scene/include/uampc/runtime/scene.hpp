@@ -83,6 +83,10 @@ struct Scene {
   // Outputs the scene writes for viewers and tools (outputs_for_tools:): that no component of the
   // scene reads them is expected, not a warning (as for ports declared PortSpec::forViewers).
   std::vector<std::string> outputs_for_tools;
+  // Inputs the scene leaves unfed on purpose (unused_inputs:): read by components that do without
+  // them here (the LO's imu with use_imu: false), written by nobody, and neither an error nor a
+  // warning. Listing a topic a component writes, or one nobody reads, is an error.
+  std::vector<std::string> unused_inputs;
   std::vector<ComponentInstance> components;  // in file order
   // The rig's parameters (ParameterSpec::rig) that the scene's components declare, resolved: the
   // rig: block's values, defaults filled in. Each such component has the same value in its params.
