@@ -48,7 +48,9 @@ TrajectoryReport TrajectoryEvaluator::report() const {
   report.ate = ate_.report();
   {
     RelativePoseError rpe;
-    for (std::size_t i = 0; i < estimates_.size(); ++i) rpe.add(estimates_[i].time, estimates_[i].pose, ground_truths_[i].pose);
+    for (std::size_t i = 0; i < estimates_.size(); ++i) {
+      rpe.add(estimates_[i].time, estimates_[i].pose, ground_truths_[i].pose);
+    }
     for (const double d : config_.rpe_segment_lengths) report.rpe.push_back(rpe.report(d));
   }
   // Pairs may come in any order; the figures below need time order. Sorted once, for both.

@@ -287,7 +287,8 @@ TEST(AbsoluteTrajectoryError, RmseAloneIsTheReportsToTheBit) {
   std::mt19937 random(7);
   std::normal_distribution<double> noise(0.0, 0.3);
   AbsoluteTrajectoryError ate;
-  const Eigen::Isometry3d drift = Eigen::Translation3d(0.4, -0.2, 0.1) * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ());
+  const Eigen::Isometry3d drift =
+      Eigen::Translation3d(0.4, -0.2, 0.1) * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ());
   for (int k = 0; k < 1000; ++k) {
     const double t = (k * 7919) % 1000 * 0.1;  // not in time order
     const Eigen::Vector3d truth(t, std::sin(t), 0.1 * t);

@@ -42,7 +42,9 @@ TEST(MapIo, WritersOnAFullDiskLeaveNoFileCutShort) {
   TriangleMesh box;
   box.addBox({0, 0, 0}, {1, 1, 1});
   std::vector<TimedPose> poses;
-  for (int i = 0; i < 50; ++i) poses.push_back({0.1 * i, Eigen::Vector3d(0.1 * i, 0, 0), Eigen::Quaterniond::Identity()});
+  for (int i = 0; i < 50; ++i) {
+    poses.push_back({0.1 * i, Eigen::Vector3d(0.1 * i, 0, 0), Eigen::Quaterniond::Identity()});
+  }
   const Trajectory trajectory(poses);
   const std::vector<std::pair<std::string, std::function<void(const std::string&)>>> writers = {
       {"map.pcd", [&](const std::string& path) { savePointsPcd(path, points); }},
