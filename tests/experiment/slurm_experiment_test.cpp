@@ -206,5 +206,57 @@ TEST(SlurmExperiment, CollectAndRunTaskSayWhatIsWrong) {
   EXPECT_NE(r.output.find("need --backend slurm"), std::string::npos) << r.output;
 }
 
+// The Slurm backend's own records on a full disk (docs/decisions/run-files-whole-or-absent.md),
+// against a stand-in sbatch that answers job 4242 and a stand-in scancel that notes what it was
+// asked: a submission that cannot be logged, or a job id that cannot be recorded, stops the
+// experiment naming the file (exit code 1), and the job is cancelled, since nothing would watch or
+// collect it. Before, both appends went unchecked: the experiment went on, exit code 0.
+TEST(SlurmExperiment, ASubmissionThatCannotBeRecordedStopsNamingTheFileAndCancelsTheJob) {
+  const std::string dir = freshDirectory("slurm_unrecorded");
+  const std::string fake_bin = dir + "/bin", scancel_log = dir + "/scancel.args";
+  fs::create_directories(fake_bin);
+  std::ofstream(fake_bin + "/sbatch") << "#!/bin/sh\necho 4242\n";
+  std::ofstream(fake_bin + "/scancel") << "#!/bin/sh\necho \"$@\" >> " << scancel_log << "\n";
+  for (const char* tool : {"/sbatch", "/scancel"}) fs::permissions(fake_bin + tool, fs::perms::owner_all);
+  const std::string experiment = writeExperiment(dir, "slurm_unrecorded", "duration: 3\nseeds: [1]");
+  const auto submit = [&](const std::string& out) {
+    return runShell("PATH=" + fake_bin + ":$PATH UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
+                    binaryPath("bin/uampc") + " experiment " + experiment + " --out " + out +
+                    " --backend slurm --no-wait");
+  };
+
+  // submissions.log on a full disk: /dev/full fails every write with ENOSPC.
+  const std::string full_log = dir + "/full_log";
+  fs::create_directories(full_log + "/slurm");
+  fs::create_symlink("/dev/full", full_log + "/slurm/submissions.log");
+  CommandResult r = submit(full_log);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write " + full_log + "/slurm/submissions.log: No space left on device; slurm job "
+                          "4242 was cancelled"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(readFile(scancel_log), "4242\n");
+  EXPECT_FALSE(fs::exists(full_log + "/slurm/jobs"));
+
+  // The job list cannot be made (a directory in its way): the log has the submission, the job is
+  // cancelled.
+  const std::string no_jobs = dir + "/no_jobs";
+  fs::create_directories(no_jobs + "/slurm/jobs");
+  r = submit(no_jobs);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write " + no_jobs + "/slurm/jobs: Is a directory; slurm job 4242 was cancelled"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(readFile(scancel_log), "4242\n4242\n");
+  EXPECT_NE(readFile(no_jobs + "/slurm/submissions.log").find("--array=0-1 "), std::string::npos);
+
+  // Recorded: the job is watched no further (--no-wait) and left running.
+  const std::string fine = dir + "/fine";
+  r = submit(fine);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(readFile(fine + "/slurm/jobs"), "4242\n");
+  EXPECT_EQ(readFile(scancel_log), "4242\n4242\n");
+}
+
 }  // namespace
 }  // namespace uampc::test

@@ -459,6 +459,36 @@ TEST(WholeFiles, AFileThatCannotBeWrittenWholeIsLeftAsItWas) {
   EXPECT_FALSE(readDoneMarker(dir));
 }
 
+// An append-only log (the Slurm backend's submissions.log and jobs) on a full disk: the append
+// fails naming the file, and the file is left with the lines it had, not with part of the new one
+// (a job id cut short would read as another job's). /dev/full fails the same append with ENOSPC.
+TEST(AppendedFiles, AnAppendThatCannotBeWrittenWholeLeavesTheFileAsItWas) {
+  const std::string dir = freshDirectory("appended_files");
+  const std::string path = inDirectory(dir, "jobs");
+  appendToTextFile(path, "4242\n");
+  appendToTextFile(path, "4243\n");
+  EXPECT_EQ(contentOf(path), "4242\n4243\n");
+  {
+    test::ScopedFileSizeLimit full_disk(14);  // room for 4 of the 10 bytes below
+    try {
+      appendToTextFile(path, "123456789\n");
+      ADD_FAILURE() << "an append beyond the file size limit was taken";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), "cannot write " + path + ": File too large");
+    }
+  }
+  EXPECT_EQ(contentOf(path), "4242\n4243\n");
+  try {
+    appendToTextFile("/dev/full", "4244\n");
+    ADD_FAILURE() << "an append to /dev/full was taken";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write /dev/full: No space left on device");
+  }
+  const std::string in_the_way = inDirectory(dir, "a_directory");
+  fs::create_directories(in_the_way);
+  EXPECT_THROW(appendToTextFile(in_the_way, "x\n"), std::runtime_error);
+}
+
 // The files written through a run, on a full disk: /dev/full fails every write with ENOSPC, as a
 // disk that has filled up does. The failure shows at the row that overflows the writer's buffer
 // (or at close), names the file and the reason, and every row after it fails the same way: a cut

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <regex>
@@ -138,6 +137,27 @@ std::vector<std::size_t> unfinishedRuns(const ExperimentSnapshot& snapshot, cons
   return indices;
 }
 
+// Appends the submission to slurm/submissions.log and its job id (if sbatch gave one) to
+// slurm/jobs, each whole or not at all. A job that cannot be recorded is cancelled: a later run of
+// the command would not know to wait for it, and --collect would not know of it. Throws
+// std::runtime_error naming the file and what became of the job
+// (docs/decisions/run-files-whole-or-absent.md).
+void recordSubmission(const fs::path& slurm, const std::string& log_entry, const std::string& job,
+                      const std::string& output_directory) {
+  try {
+    run_files::appendToTextFile(slurm / "submissions.log", log_entry);
+    if (!job.empty()) run_files::appendToTextFile(slurm / "jobs", job + "\n");
+  } catch (const std::runtime_error& e) {
+    if (job.empty()) throw;
+    const ExternalCommandResult cancel = slurmCommand({"scancel", job}, output_directory);
+    throw std::runtime_error(std::string(e.what()) + "; slurm job " + job +
+                             (cancel.ok() ? " was cancelled (not recorded, it would run unwatched)"
+                                          : " is not recorded and could not be cancelled (" +
+                                                (cancel.started ? cancel.output : cancel.error) +
+                                                "): `scancel " + job + "` stops it"));
+  }
+}
+
 // sbatch's job id, or "" with the reason printed.
 std::string submit(const std::vector<std::size_t>& runs, const std::string& output_directory,
                    const SlurmOptions& options, const std::string& name) {
@@ -156,20 +176,19 @@ std::string submit(const std::vector<std::size_t>& runs, const std::string& outp
   argv.insert(argv.end(), options.sbatch_options.begin(), options.sbatch_options.end());
   argv.push_back(script.string());
   const ExternalCommandResult r = slurmCommand(argv, output_directory);
-  std::ofstream(slurm / "submissions.log", std::ios::app) << commandText(argv) << "\n" << r.output;
+  std::smatch id;
+  const std::regex job_line(R"((^|\n)([0-9]+)(;[^\n]*)?\s*$)");
+  const std::string job = r.ok() && std::regex_search(r.output, id, job_line) ? id[2].str() : "";
+  recordSubmission(slurm, commandText(argv) + "\n" + r.output, job, output_directory);
   if (!r.started) {
     std::cerr << "uampc experiment: cannot run sbatch (" << r.error
               << "): --backend slurm needs Slurm's client commands (Debian: slurm-client) on this machine\n";
     return "";
   }
-  std::smatch id;
-  const std::regex job_line(R"((^|\n)([0-9]+)(;[^\n]*)?\s*$)");
-  if (!r.ok() || !std::regex_search(r.output, id, job_line)) {
+  if (job.empty()) {
     std::cerr << "uampc experiment: sbatch refused the job (" << commandText(argv) << "):\n" << r.output;
-    return "";
   }
-  std::ofstream(slurm / "jobs", std::ios::app) << id[2].str() << "\n";
-  return id[2].str();
+  return job;
 }
 
 struct DirectoryCounts {

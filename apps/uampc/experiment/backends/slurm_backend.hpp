@@ -5,7 +5,9 @@
 //
 //  - Submission: DIR/experiment.json (the plan), DIR/slurm/host_only_dds.xml, then `sbatch
 //    --array=<the unfinished runs' plan indices>`; each task's output in DIR/slurm/task-<job>_<k>.out;
-//    every submitted job id appended to DIR/slurm/jobs.
+//    every submitted job id appended to DIR/slurm/jobs, and sbatch's command and answer to
+//    DIR/slurm/submissions.log. A job that cannot be recorded there (a full disk) is cancelled and
+//    the experiment stops naming the file (docs/decisions/run-files-whole-or-absent.md).
 //  - DDS stays on each task's host: a scene without a dds_profile of its own runs with
 //    host_only_dds.xml (shared memory, and UDP on 127.0.0.1 only), so that runs on different
 //    nodes never discover each other even on the same domain; a scene with its own profile keeps

@@ -10,6 +10,10 @@
 
 #include <unistd.h>
 
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
 #include "uampc/msgs/geometry_msgs.hpp"
 #include "uampc/msgs/nav_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
@@ -18,6 +22,20 @@
 #include "uampc/run_files/run_info.hpp"
 #include "uampc/run_files/time_series.hpp"
 #include "uampc/runtime/testing/test_context.hpp"
+
+// Bytes allocated through operator new while counting (the running-figures test below).
+namespace {
+std::atomic<bool> counting_allocations{false};
+std::atomic<std::size_t> allocated_bytes{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (counting_allocations) allocated_bytes += size;
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace uampc {
 namespace {
@@ -100,6 +118,44 @@ run_files::MetricsDocument runEmpty(const std::filesystem::path& out) {
   const auto metrics = run_files::readMetricsFile((out / run_files::kMetricsFile).string());
   if (!metrics) throw std::runtime_error("no metrics.json in " + out.string());
   return *metrics;
+}
+
+// The running ATE published every report_period costs no memory in proportion to the run: with
+// 20,000 pairs (2000 s at 10 Hz) one report allocates a few kilobytes, and publishes the RMSEs of
+// the final metrics. It used to build the whole report, copying and sorting every pair (over 10 MB
+// here), which the heap kept as it grew: most of the evaluator's growth in a long run
+// (docs/results/soak.md).
+TEST(EvaluatorComponent, RunningFiguresCostNoMemoryInProportionToTheRun) {
+  const std::filesystem::path out = freshOutput("running");
+  testing::TestOptions options;
+  options.output_directory = out.string();
+  {
+    testing::TestContext ctx("evaluator", {}, options);
+    constexpr int kPairs = 20000;
+    for (int k = 0; k < kPairs; ++k) {
+      ctx.inject("ground_truth", truthAt(0.1 * k));
+      ctx.inject("odometry", estimateAt(0.1 * k, 0.01 * (k % 7)));
+    }
+    ctx.advanceTo(Time::fromSeconds(0.1 * kPairs - 1.0));
+    const std::size_t reports = ctx.publishedCount("metrics");
+    const double period = 5.0;  // report_period's default
+    allocated_bytes = 0;
+    counting_allocations = true;
+    ctx.advanceBy(period);
+    counting_allocations = false;
+    ASSERT_EQ(ctx.publishedCount("metrics"), reports + 1);
+    EXPECT_LT(allocated_bytes.load(), 64u * 1024u) << "bytes allocated by one running report of " << kPairs << " pairs";
+    const msg::Metrics running = ctx.published<msg::Metrics>("metrics").back();
+    ctx.shutdown();
+    const auto metrics = run_files::readMetricsFile((out / run_files::kMetricsFile).string());
+    ASSERT_TRUE(metrics);
+    ASSERT_EQ(metrics->trajectory.paired, static_cast<std::uint64_t>(kPairs));
+    for (const auto& v : running.values()) {
+      if (v.name() == "ate") EXPECT_EQ(v.value(), metrics->trajectory.ate.unaligned_m.rmse);
+      if (v.name() == "ate_aligned") EXPECT_EQ(v.value(), metrics->trajectory.ate.aligned_m.rmse);
+    }
+  }
+  std::filesystem::remove_all(out);
 }
 
 TEST(EvaluatorComponent, MetricsSayWhatTheRunWasFromTheLaunchersRunInfo) {

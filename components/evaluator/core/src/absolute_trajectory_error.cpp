@@ -44,4 +44,21 @@ AteReport AbsoluteTrajectoryError::report() const {
   return report;
 }
 
+AteRmse AbsoluteTrajectoryError::rmse() const {
+  AteRmse rmse;
+  const std::size_t n = times_.size();
+  if (n == 0) return rmse;
+  const Eigen::Isometry3d alignment = umeyamaAlignment(estimates_, ground_truths_);
+  double sum_squares = 0.0, aligned_sum_squares = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double error = (estimates_[i] - ground_truths_[i]).norm();
+    const double aligned_error = (alignment * estimates_[i] - ground_truths_[i]).norm();
+    sum_squares += error * error;
+    aligned_sum_squares += aligned_error * aligned_error;
+  }
+  rmse.unaligned = std::sqrt(sum_squares / static_cast<double>(n));
+  rmse.aligned = std::sqrt(aligned_sum_squares / static_cast<double>(n));
+  return rmse;
+}
+
 }  // namespace uampc::evaluator

@@ -34,7 +34,6 @@ bool TrajectoryEvaluator::addEstimate(double time, const Eigen::Isometry3d& esti
     return false;
   }
   ate_.add(time, estimate.translation(), truth->translation());
-  rpe_.add(time, estimate, *truth);
   estimates_.push_back({time, estimate});
   ground_truths_.push_back({time, *truth});
   return true;
@@ -47,7 +46,13 @@ TrajectoryReport TrajectoryEvaluator::report() const {
   report.unpaired = unpaired_;
   report.invalid = invalid_;
   report.ate = ate_.report();
-  for (const double d : config_.rpe_segment_lengths) report.rpe.push_back(rpe_.report(d));
+  {
+    RelativePoseError rpe;
+    for (std::size_t i = 0; i < estimates_.size(); ++i) {
+      rpe.add(estimates_[i].time, estimates_[i].pose, ground_truths_[i].pose);
+    }
+    for (const double d : config_.rpe_segment_lengths) report.rpe.push_back(rpe.report(d));
+  }
   // Pairs may come in any order; the figures below need time order. Sorted once, for both.
   std::vector<std::size_t> order(estimates_.size());
   std::iota(order.begin(), order.end(), std::size_t{0});

@@ -277,6 +277,28 @@ TEST(AbsoluteTrajectoryError, EmptyIsNaNNotZero) {
   EXPECT_EQ(report.unaligned.count, 0u);
   EXPECT_TRUE(std::isnan(report.unaligned.rmse));
   EXPECT_TRUE(std::isnan(report.aligned.rmse));
+  EXPECT_TRUE(std::isnan(AbsoluteTrajectoryError().rmse().unaligned));
+  EXPECT_TRUE(std::isnan(AbsoluteTrajectoryError().rmse().aligned));
+}
+
+// rmse() is report()'s two RMSEs to the last bit, pairs in any order (the running figure the
+// evaluator publishes, and metrics.json at the end, must agree).
+TEST(AbsoluteTrajectoryError, RmseAloneIsTheReportsToTheBit) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  AbsoluteTrajectoryError ate;
+  const Eigen::Isometry3d drift =
+      Eigen::Translation3d(0.4, -0.2, 0.1) * Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ());
+  for (int k = 0; k < 1000; ++k) {
+    const double t = (k * 7919) % 1000 * 0.1;  // not in time order
+    const Eigen::Vector3d truth(t, std::sin(t), 0.1 * t);
+    ate.add(t, drift * truth + Eigen::Vector3d(noise(random), noise(random), noise(random)), truth);
+  }
+  const AteReport report = ate.report();
+  const AteRmse rmse = ate.rmse();
+  EXPECT_EQ(rmse.unaligned, report.unaligned.rmse);
+  EXPECT_EQ(rmse.aligned, report.aligned.rmse);
+  EXPECT_LT(rmse.aligned, rmse.unaligned);
 }
 
 // ---------------------------------------------------------------- RPE

@@ -6,10 +6,12 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "pcd_reader.hpp"
 #include "ply_reader.hpp"
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/world/coordinate_bound.hpp"
 #include "uampc/world/point_sampling.hpp"
 
@@ -119,15 +121,14 @@ LoadedMap loadMap(const std::string& path, const MapLoadOptions& options) {
 }
 
 void saveMeshPly(const std::string& path, const TriangleMesh& mesh) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot write PLY file");
+  std::ostringstream out;
   out << "ply\nformat ascii 1.0\nelement vertex " << mesh.vertices.size()
       << "\nproperty float x\nproperty float y\nproperty float z\nelement face " << mesh.triangles.size()
       << "\nproperty list uchar int vertex_indices\nend_header\n";
   out.precision(9);
   for (const auto& v : mesh.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
   for (const auto& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-  if (!out) throw std::runtime_error(path + ": error while writing PLY file");
+  run_files::writeTextFile(path, out.str());  // whole or absent
 }
 
 }  // namespace uampc::world

@@ -3,10 +3,10 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <stdexcept>
 
 #include "lzf.hpp"
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/world/map_io.hpp"
 
 namespace uampc::world {
@@ -77,11 +77,7 @@ void savePointsPcd(const std::string& path, const std::vector<Eigen::Vector3f>& 
       data = "binary_compressed";
       break;
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error(path + ": cannot write PCD file");
-  out << pcdHeaderFor(points.size(), data) << body;
-  out.close();
-  if (!out) throw std::runtime_error(path + ": error while writing PCD file");
+  run_files::writeTextFile(path, pcdHeaderFor(points.size(), data) + body);  // whole or absent
 }
 
 }  // namespace uampc::world

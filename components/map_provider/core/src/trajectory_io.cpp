@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "uampc/run_files/text_file.hpp"
 #include "uampc/world/coordinate_bound.hpp"
 
 namespace uampc::world {
@@ -194,15 +195,14 @@ Trajectory readTrajectory(const std::string& path, const TrajectoryReadOptions& 
 }
 
 void writeTum(const std::string& path, const Trajectory& trajectory) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(path + ": cannot write trajectory file");
+  std::ostringstream out;
   out << "# t x y z qx qy qz qw\n" << std::setprecision(17);
   for (const auto& p : trajectory.poses()) {
     const auto& q = p.orientation;
     out << p.time << ' ' << p.position.x() << ' ' << p.position.y() << ' ' << p.position.z() << ' ' << q.x() << ' '
         << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
   }
-  if (!out) throw std::runtime_error(path + ": error while writing trajectory file");
+  run_files::writeTextFile(path, out.str());  // whole or absent
 }
 
 }  // namespace uampc::world

@@ -6,11 +6,14 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 
 #include "../src/lzf.hpp"
+#include "full_disk.hpp"
 #include "temp_dir.hpp"
 #include "uampc/world/seeded_random.hpp"
+#include "uampc/world/trajectory_io.hpp"
 
 namespace uampc::world {
 namespace {
@@ -29,6 +32,41 @@ void expectLoadError(const std::string& path, const std::string& fragment) {
 }
 
 const char* kAsciiPcdHeader = "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+
+// The writers on a full disk (test::ScopedFileSizeLimit, full_disk.hpp: EFBIG where a disk gives
+// ENOSPC): each fails naming the file and the reason, and leaves no file cut short that a later
+// load would take for a smaller map (docs/decisions/run-files-whole-or-absent.md).
+TEST(MapIo, WritersOnAFullDiskLeaveNoFileCutShort) {
+  TempDir dir;
+  const std::vector<Eigen::Vector3f> points(1000, Eigen::Vector3f(1, 2, 3));
+  TriangleMesh box;
+  box.addBox({0, 0, 0}, {1, 1, 1});
+  std::vector<TimedPose> poses;
+  for (int i = 0; i < 50; ++i) {
+    poses.push_back({0.1 * i, Eigen::Vector3d(0.1 * i, 0, 0), Eigen::Quaterniond::Identity()});
+  }
+  const Trajectory trajectory(poses);
+  const std::vector<std::pair<std::string, std::function<void(const std::string&)>>> writers = {
+      {"map.pcd", [&](const std::string& path) { savePointsPcd(path, points); }},
+      {"ascii.pcd", [&](const std::string& path) { savePointsPcd(path, points, PcdEncoding::kAscii); }},
+      {"box.ply", [&](const std::string& path) { saveMeshPly(path, box); }},
+      {"path.tum", [&](const std::string& path) { writeTum(path, trajectory); }}};
+  for (const auto& [name, write] : writers) {
+    const std::string path = dir.file(name);
+    {
+      uampc::test::ScopedFileSizeLimit full_disk(100);
+      try {
+        write(path);
+        ADD_FAILURE() << name << ": written under a 100-byte limit";
+      } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()), "cannot write " + path + ": File too large");
+      }
+    }
+    EXPECT_FALSE(std::ifstream(path).good()) << name << " left cut short";
+    write(path);  // with room, whole
+    EXPECT_TRUE(std::ifstream(path).good()) << name;
+  }
+}
 
 TEST(MapIo, PcdRoundTripWithVoxelAndOffset) {
   TempDir dir;

@@ -16,6 +16,12 @@ std::string readTextFile(const std::string& path);
 // (docs/decisions/run-files-whole-or-absent.md).
 void writeTextFile(const std::string& path, const std::string& text);
 
+// Appends `text` to the file (made if missing), whole or not at all: every byte is written and the
+// file closed without error, or the file is cut back to the size it had and std::runtime_error says
+// "cannot write PATH: REASON". For append-only logs read back line by line (the Slurm backend's
+// job ids), where a line cut short would read as another line.
+void appendToTextFile(const std::string& path, const std::string& text);
+
 // "cannot write PATH: REASON", REASON being strerror(error): the one wording of a failed write.
 std::string cannotWrite(const std::string& path, int error);
 

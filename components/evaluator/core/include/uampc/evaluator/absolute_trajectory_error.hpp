@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "uampc/evaluator/error_statistics.hpp"
@@ -20,6 +21,12 @@ struct AteSample {
   double time = 0.0;           // s
   double error = 0.0;          // m, unaligned
   double aligned_error = 0.0;  // m, after the Umeyama alignment
+};
+
+// The two RMSEs alone (NaN without pairs).
+struct AteRmse {
+  double unaligned = std::numeric_limits<double>::quiet_NaN();
+  double aligned = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct AteReport {
@@ -37,6 +44,10 @@ class AbsoluteTrajectoryError {
   bool add(double time, const Eigen::Vector3d& estimate, const Eigen::Vector3d& ground_truth);
 
   AteReport report() const;
+  // report()'s unaligned.rmse and aligned.rmse, the same doubles (the same sums in the same order),
+  // without the series and the other statistics: no memory in proportion to the pairs, for a
+  // figure published while the run goes on (docs/results/soak.md).
+  AteRmse rmse() const;
 
   std::size_t size() const { return times_.size(); }
   std::size_t rejected() const { return rejected_; }

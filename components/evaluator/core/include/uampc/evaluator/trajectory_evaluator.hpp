@@ -47,6 +47,9 @@ class TrajectoryEvaluator {
   bool addEstimate(double time, const Eigen::Isometry3d& estimate);
 
   TrajectoryReport report() const;
+  // The ATE's two RMSEs as report() has them, without building the report: what the evaluator
+  // publishes every report_period (AbsoluteTrajectoryError::rmse).
+  AteRmse ateRmse() const { return ate_.rmse(); }
 
   // The paired estimates and the ground truth at their times, in arrival order (for TUM files).
   const std::vector<TimedPose>& pairedEstimates() const { return estimates_; }
@@ -56,7 +59,7 @@ class TrajectoryEvaluator {
   GroundTruthLookup ground_truth_;
   TrajectoryEvaluatorConfig config_;
   AbsoluteTrajectoryError ate_;
-  RelativePoseError rpe_;
+  // The pairs, in arrival order; the RPE is computed from them in report() (it keeps no copy).
   std::vector<TimedPose> estimates_;
   std::vector<TimedPose> ground_truths_;
   std::size_t estimates_seen_ = 0;

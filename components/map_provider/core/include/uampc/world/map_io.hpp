@@ -41,7 +41,9 @@ struct LoadedMap {
 LoadedMap loadMap(const std::string& path, const MapLoadOptions& options = {});
 
 // Writers, for tools and tests: PCD of points (binary by default; fields x, y, z as float, read
-// back exactly by our reader and PCL's), ASCII PLY of a mesh.
+// back exactly by our reader and PCL's), ASCII PLY of a mesh. Whole or absent: a write that fails
+// throws std::runtime_error "cannot write PATH: REASON" and leaves no file cut short
+// (run_files::writeTextFile, docs/decisions/run-files-whole-or-absent.md).
 enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
 void savePointsPcd(const std::string& path, const std::vector<Eigen::Vector3f>& points,
                    PcdEncoding encoding = PcdEncoding::kBinary);

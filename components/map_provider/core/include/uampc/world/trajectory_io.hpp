@@ -36,7 +36,8 @@ Trajectory readTum(const std::string& path, const TrajectoryReadOptions& options
 // By extension: ".csv" is MCD CSV, anything else TUM.
 Trajectory readTrajectory(const std::string& path, const TrajectoryReadOptions& options = {});
 
-// Writes TUM format with full precision; throws std::runtime_error if the file cannot be written.
+// Writes TUM format with full precision, whole or absent; throws std::runtime_error "cannot write
+// PATH: REASON" if the file cannot be written (run_files::writeTextFile).
 void writeTum(const std::string& path, const Trajectory& trajectory);
 
 }  // namespace uampc::world
