@@ -184,7 +184,8 @@ Matrix12d MotorizedLidarOdometry::initialCovariance() const {
 // as at the start, since nothing was learnt that could make it less so.
 OdometryResult MotorizedLidarOdometry::extendInitialMap(const DerotatedScan& derotated, double end_time,
                                                         OdometryResult result) {
-  filter_.emplace(filter_->state(), initialCovariance());
+  const BaseState predicted = filter_->state();  // a copy: emplace destroys the filter first
+  filter_.emplace(predicted, initialCovariance());
   last_accepted_time_ = end_time;
   return addToInitialMap(derotated, std::move(result));
 }
