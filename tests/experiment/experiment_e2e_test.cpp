@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 
@@ -125,16 +126,27 @@ TEST(ExperimentEndToEnd, AnOutputDirectoryThatCannotBeMadeIsNamedWithTheReason) 
       << too_long.output;
 }
 
-// A full disk (full_disk.hpp: every file limited to 1 KB, EFBIG where a disk gives ENOSPC). At
-// 512 bytes the plan itself cannot be written: named, exit code 1, no file left. At 1 KB the plan
-// is written and the run starts, but its evaluator cannot write metrics.json (the run fails, and
-// its failed marker is written) and the experiment cannot write results.json: named, exit code 1,
-// and neither file is left half-written. Before, the experiment aborted at the first of them.
+// A full disk (full_disk.hpp: every file limited in size, EFBIG where a disk gives ENOSPC). At
+// 512 bytes the plan itself cannot be written: named, exit code 1, no file left. At the plan's own
+// size rounded up to 512 bytes (about 1 KB; it names the output paths, so it grows with the
+// checkout's path) the plan is written and the run starts, but its evaluator cannot write
+// metrics.json (the run fails, and its failed marker is written) and the experiment cannot write
+// results.json: named, exit code 1, and neither file is left half-written. Before, the experiment
+// aborted at the first of them.
 TEST(ExperimentEndToEnd, AFullDiskIsNamedWithTheFileAndLeavesNothingHalfWritten) {
   const std::string dir = freshDirectory("experiment_e2e_full_disk");
   const std::string out = dir + "/out";
   const std::string command = "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
                               binaryPath("bin/uampc") + " " + smallExperiment(dir) + " --out " + out;
+  // The sizes a disk with room gives: the limit that lets the plan through must stop the results.
+  const CommandResult unlimited = runShell(command);
+  ASSERT_EQ(unlimited.exit_code, 0) << unlimited.output;  // the run fails; the experiment reports it
+  const std::uintmax_t plan_bytes = fs::file_size(out + "/experiment.json");
+  const std::size_t plan_fits = (plan_bytes / 512 + 1) * 512;
+  ASSERT_GT(plan_bytes, 512u);
+  ASSERT_GT(fs::file_size(out + "/results.json"), plan_fits);
+  fs::remove_all(out);
+
   const CommandResult no_plan = runShell(withFileSizeLimit(512, command));
   EXPECT_EQ(no_plan.exit_code, 1) << no_plan.output;
   EXPECT_NE(no_plan.output.find("uampc experiment: cannot write " + out + "/experiment.json: File too large"),
@@ -143,7 +155,7 @@ TEST(ExperimentEndToEnd, AFullDiskIsNamedWithTheFileAndLeavesNothingHalfWritten)
   EXPECT_FALSE(fs::exists(out + "/experiment.json"));
   EXPECT_FALSE(fs::exists(out + "/experiment.json.partial"));
 
-  const CommandResult no_results = runShell(withFileSizeLimit(1024, command));
+  const CommandResult no_results = runShell(withFileSizeLimit(plan_fits, command));
   EXPECT_EQ(no_results.exit_code, 1) << no_results.output;
   EXPECT_NE(no_results.output.find("runs/panorama/none/seed1 failed (exit code 1)"), std::string::npos)
       << no_results.output;

@@ -142,6 +142,9 @@ class FreshCloneTimes:
         head = subprocess.run(["git", "-C", ROOT, "rev-parse", "HEAD"], stdout=subprocess.PIPE, text=True,
                               check=True).stdout.strip()
         work = tempfile.mkdtemp(prefix="uampc_build_times_")
+        # mkdtemp makes it 0700; the Slurm test's jobs run as the slurm user, which must reach the
+        # clone's build tree as it reaches a checkout's.
+        os.chmod(work, 0o755)
         try:
             clone = os.path.join(work, "uampc")
             run(["git", "clone", "--quiet", "--no-checkout", ROOT, clone], "git clone")
