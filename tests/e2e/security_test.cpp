@@ -11,6 +11,8 @@
 #include <fstream>
 #include <future>
 #include <thread>
+#include <tuple>
+#include <utility>
 
 #include "background_launch.hpp"
 #include "command_runner.hpp"
@@ -101,10 +103,30 @@ class Stranger {
   std::thread thread_;
 };
 
+// Fast DDS 2.9 very rarely never completes the DDS Security handshake between two participants
+// (docs/user/security.md, "Known limitation"): the run fails at its start, naming what it waited
+// for. A secured start that fails so is tried once more, and says so; any other failure, or a
+// second failed start, fails the test.
+bool failedAtTheStart(const std::string& output) {
+  return output.find("acknowledgements of step -1 ") != std::string::npos ||
+         output.find("DDS discovery did not complete") != std::string::npos;
+}
+
+void sayRetried(const std::string& what_happened, const std::string& output) {
+  std::cerr << what_happened << ", as when a DDS Security handshake never completes; trying once more. It said:\n"
+            << output << "\n";
+}
+
 std::string launch(const std::string& name, int domain_id, const std::string& extra, int expected_exit = 0) {
   const std::string out = freshDirectory(name);
-  const CommandResult r = runUampc("launch " + sourcePath(kScene) + " --out " + out +
-                                   " --set domain_id=" + std::to_string(domain_id) + extra);
+  const std::string command =
+      "launch " + sourcePath(kScene) + " --out " + out + " --set domain_id=" + std::to_string(domain_id) + extra;
+  CommandResult r = runUampc(command);
+  if (r.exit_code != expected_exit && failedAtTheStart(r.output)) {
+    sayRetried("launch " + name + " failed at its start", r.output);
+    freshDirectory(name);
+    r = runUampc(command);
+  }
   EXPECT_EQ(r.exit_code, expected_exit) << r.output;
   return out;
 }
@@ -224,25 +246,36 @@ TEST(Security, ToolsJoinASecuredRunWithTheirIdentities) {
   const std::string recording = out + "/scans.mcap";
   const std::string run_domain = " --domain " + std::to_string(domain(5));
   const std::string observer = " --security " + keys();
-  auto echo_plain =
-      std::async(std::launch::async, [&] { return runUampc("topic echo /lidar/points -n 1 --wait 10" + run_domain); });
   // The recorder runs until the run has ended (the test makes the stop file), then stops as at Ctrl-C.
   const std::string stop = out + "/stop";
-  auto record = std::async(std::launch::async, [&] {
-    return runShell(binaryPath("bin/uampc") + " record -o " + recording + run_domain + observer + " /lidar/points > " +
-                    out + "/record.log 2>&1 & rec=$!; for i in $(seq 1200); do [ -e " + stop +
-                    " ] && break; sleep 0.1; done; kill -INT $rec; wait $rec; code=$?; cat " + out +
-                    "/record.log; exit $code");
-  });
-  // 8 s of sim time at half real time: under ASan a secured reader needs seconds to join, and the
-  // scene's 3 s left the recorder with nothing.
-  launch("security_tools_run", domain(5), securedBy(keys()) + " --set clock.duration=8");
-  std::ofstream{stop};
-  const CommandResult plain = echo_plain.get(), recorded = record.get();
+  auto recordARun = [&] {
+    fs::remove(stop);
+    auto echo_plain = std::async(std::launch::async,
+                                 [&] { return runUampc("topic echo /lidar/points -n 1 --wait 10" + run_domain); });
+    auto record = std::async(std::launch::async, [&] {
+      return runShell(binaryPath("bin/uampc") + " record --overwrite -o " + recording + run_domain + observer +
+                      " /lidar/points > " + out + "/record.log 2>&1 & rec=$!; for i in $(seq 1200); do [ -e " + stop +
+                      " ] && break; sleep 0.1; done; kill -INT $rec; wait $rec; code=$?; cat " + out +
+                      "/record.log; exit $code");
+    });
+    // 8 s of sim time at half real time: under ASan a secured reader needs seconds to join, and the
+    // scene's 3 s left the recorder with nothing.
+    launch("security_tools_run", domain(5), securedBy(keys()) + " --set clock.duration=8");
+    std::ofstream{stop};
+    return std::make_pair(echo_plain.get(), record.get());
+  };
+  auto [plain, recorded] = recordARun();
   if (HasFailure()) return;  // the run failed: the recording below would be empty, and play would wait for nothing
+  // The recorder's own handshake with the run may be the one that never completes (see launch()).
+  if (recorded.exit_code == 0 && recorded.output.find("/lidar/points, ") == std::string::npos) {
+    sayRetried("the recorder beside the secured run recorded nothing", recorded.output);
+    std::tie(plain, recorded) = recordARun();
+    if (HasFailure()) return;
+  }
   EXPECT_EQ(plain.exit_code, 1) << plain.output;
   EXPECT_NE(plain.output.find("no writer of /lidar/points"), std::string::npos) << plain.output;
   ASSERT_EQ(recorded.exit_code, 0) << recorded.output;
+  ASSERT_NE(recorded.output.find("/lidar/points, "), std::string::npos) << recorded.output;
 
   const std::string play_domain = " --domain " + std::to_string(domain(6));
   auto echo_played = std::async(std::launch::async, [&] {
@@ -352,17 +385,31 @@ TEST(Security, MissingExpiredAndMismatchedFilesAreRefusedByNameAtTheSceneLine) {
 // security directory, and Foxglove's client decodes the run's scans through it.
 TEST(Security, TheViewerOfASecuredRunJoinsWithTheObserverIdentity) {
   const int port = 18760 + domain(9);
-  const std::string out = freshDirectory("security_viewer");
-  const std::string log = freshDirectory("security_viewer_log") + "/launch.log";  // no stale log
-  const pid_t run = startLaunch(sourcePath(kScene) + " --out " + out + securedBy(keys()) + " --set domain_id=" +
-                                    std::to_string(domain(9)) +
-                                    " --set clock.duration=8 --set clock.real_time_factor=1 --view --view-port " +
-                                    std::to_string(port),
-                                log);
-  ASSERT_TRUE(waitFor([&] { return logHas(log, "uampc view: serving"); }, std::chrono::seconds(30))) << readFile(log);
-  const CommandResult seen = runShell("node " + sourcePath("tests/foxglove_js/watch.mjs") + " ws://127.0.0.1:" +
-                                      std::to_string(port) + " --topics /lidar/points --until-closed");
-  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+  auto watchARun = [&](int& run_exit_code, std::string& run_log) {
+    const std::string log = freshDirectory("security_viewer_log") + "/launch.log";  // no stale log
+    const pid_t run = startLaunch(sourcePath(kScene) + " --out " + freshDirectory("security_viewer") +
+                                      securedBy(keys()) + " --set domain_id=" + std::to_string(domain(9)) +
+                                      " --set clock.duration=8 --set clock.real_time_factor=1 --view --view-port " +
+                                      std::to_string(port),
+                                  log);
+    const bool served = waitFor([&] { return logHas(log, "uampc view: serving"); }, std::chrono::seconds(30));
+    const CommandResult seen =
+        served ? runShell("node " + sourcePath("tests/foxglove_js/watch.mjs") + " ws://127.0.0.1:" +
+                          std::to_string(port) + " --topics /lidar/points --until-closed")
+               : CommandResult{};
+    run_exit_code = exitCodeOf(run);
+    run_log = readFile(log);
+    EXPECT_TRUE(served) << run_log;
+    return seen;
+  };
+  int run_exit_code = 0;
+  std::string run_log;
+  CommandResult seen = watchARun(run_exit_code, run_log);
+  if (run_exit_code != 0 && failedAtTheStart(run_log)) {  // see launch()
+    sayRetried("the viewed run failed at its start", run_log);
+    seen = watchARun(run_exit_code, run_log);
+  }
+  ASSERT_EQ(run_exit_code, 0) << run_log;
   EXPECT_EQ(seen.exit_code, 0) << seen.output;
   EXPECT_NE(seen.output.find("\"/lidar/points\":{\"received\":"), std::string::npos) << seen.output;
 }

@@ -7,6 +7,21 @@
 #include "uampc/evaluator/umeyama.hpp"
 
 namespace uampc::evaluator {
+namespace {
+
+// One pair's distances, unaligned and after the alignment: the one definition report() and rmse()
+// share, so that their RMSEs are the same doubles.
+struct PairErrors {
+  double unaligned;
+  double aligned;
+};
+
+PairErrors pairErrors(const Eigen::Vector3d& estimate, const Eigen::Vector3d& ground_truth,
+                      const Eigen::Isometry3d& alignment) {
+  return {(estimate - ground_truth).norm(), (alignment * estimate - ground_truth).norm()};
+}
+
+}  // namespace
 
 bool AbsoluteTrajectoryError::add(double time, const Eigen::Vector3d& estimate,
                                   const Eigen::Vector3d& ground_truth) {
@@ -27,8 +42,9 @@ AteReport AbsoluteTrajectoryError::report() const {
   std::vector<double> errors(n);
   std::vector<double> aligned_errors(n);
   for (std::size_t i = 0; i < n; ++i) {
-    errors[i] = (estimates_[i] - ground_truths_[i]).norm();
-    aligned_errors[i] = (report.alignment * estimates_[i] - ground_truths_[i]).norm();
+    const PairErrors e = pairErrors(estimates_[i], ground_truths_[i], report.alignment);
+    errors[i] = e.unaligned;
+    aligned_errors[i] = e.aligned;
   }
 
   std::vector<std::size_t> order(n);
@@ -51,10 +67,9 @@ AteRmse AbsoluteTrajectoryError::rmse() const {
   const Eigen::Isometry3d alignment = umeyamaAlignment(estimates_, ground_truths_);
   double sum_squares = 0.0, aligned_sum_squares = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double error = (estimates_[i] - ground_truths_[i]).norm();
-    const double aligned_error = (alignment * estimates_[i] - ground_truths_[i]).norm();
-    sum_squares += error * error;
-    aligned_sum_squares += aligned_error * aligned_error;
+    const PairErrors e = pairErrors(estimates_[i], ground_truths_[i], alignment);
+    sum_squares += e.unaligned * e.unaligned;
+    aligned_sum_squares += e.aligned * e.aligned;
   }
   rmse.unaligned = std::sqrt(sum_squares / static_cast<double>(n));
   rmse.aligned = std::sqrt(aligned_sum_squares / static_cast<double>(n));
