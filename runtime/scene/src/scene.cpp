@@ -59,7 +59,7 @@ std::vector<std::string> Scene::processes() const {
 bool Scene::processesStepThemselves() const { return clock.mode == ClockMode::kLockstep && clock.in_process; }
 
 // DDS readers of a topic: in each process, the typed inputs with one QoS share one reader
-// (process_group.cpp); each serialized input has its own.
+// (launch/src/process/context_impl.cpp); each serialized input has its own.
 int Scene::readersOf(const std::string& topic) const {
   std::set<std::pair<std::string, QosPreset>> shared;
   int own = 0;
