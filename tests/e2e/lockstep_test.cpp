@@ -131,5 +131,36 @@ TEST(Lockstep, ScenesSplitOverProcessesWorkWithTheLargeDataDdsProfile) {
       << bad.output;
 }
 
+// A scene spread by hand (docs/dev/time-and-lockstep.md): `uampc run-process` for each process
+// group, following `uampc clock`. At the clock's end the processes end too, with exit code 0
+// (before, they waited for ticks for ever); a clock stopped before the scene's end fails them, and
+// they say so.
+TEST(Lockstep, ProcessesStartedByHandEndWithTheirClock) {
+  for (const bool stopped_early : {false, true}) {
+    SCOPED_TRACE(stopped_early ? "the clock stopped early" : "the clock at its end");
+    const std::string out = freshDirectory(stopped_early ? "lockstep_by_hand_stopped" : "lockstep_by_hand");
+    const std::string uampc = "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " timeout -s KILL 90 " +
+                              binaryPath("bin/uampc");
+    const std::string scene = sourcePath("tests/scenes/motor_two_processes.yaml");
+    const std::string set = domainOverride(DomainBlock::kLockstep, stopped_early ? 10 : 9) +
+                            (stopped_early ? " --set clock.duration=30 --set clock.real_time_factor=1"
+                                           : " --set clock.duration=2");
+    const CommandResult r = runShell(
+        uampc + " run-process " + scene + " --process motor --out " + out + set + " > " + out + "/motor.log 2>&1 & m=$!; " +
+        uampc + " run-process " + scene + " --process control --out " + out + set + " > " + out +
+        "/control.log 2>&1 & c=$!; " + uampc + " clock " + scene + set + " > " + out + "/clock.log 2>&1 & k=$!; " +
+        (stopped_early ? "sleep 6; kill -INT $k; " : "") +
+        "wait $k; echo clock=$?; wait $m; echo motor=$?; wait $c; echo control=$?");
+    EXPECT_NE(r.output.find(stopped_early ? "clock=130" : "clock=0"), std::string::npos) << r.output;
+    for (const std::string process : {"motor", "control"}) {
+      const std::string log = readFile(out + "/" + process + ".log");
+      EXPECT_NE(r.output.find(process + (stopped_early ? "=1" : "=0")), std::string::npos) << r.output << log;
+      EXPECT_NE(log.find(stopped_early ? "the lockstep clock left at" : "the lockstep clock ended the run"),
+                std::string::npos)
+          << log;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace uampc::test

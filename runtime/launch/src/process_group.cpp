@@ -91,7 +91,7 @@ class ProcessRunner {
       if (stop) return false;
       if (SteadyClock::now() > deadline) {
         log_.error("DDS discovery did not complete within ", scene_.clock.startupTimeout(),
-                   " s; still missing:", missing);
+                   " s; still missing:", missing, securedStartHint(scene_));
         return false;
       }
       if (SteadyClock::now() > next_report) {
@@ -115,18 +115,42 @@ class ProcessRunner {
     return own_clock_ ? runOwnClock(stop) : followLauncherClock(stop);
   }
 
-  // The launcher's clock ticks each step once every process acknowledged the one before.
+  // The launcher's clock ticks each step once every process acknowledged the one before. When the
+  // clock leaves, the run is over for this process (docs/dev/time-and-lockstep.md).
   int followLauncherClock(const std::atomic<bool>& stop) {
     while (!stop) {
       state_.wakeup.waitUntil(SteadyClock::now() + std::chrono::milliseconds(100));
       if (protocol_->anotherRunStops()) return 1;
+      // Before the ticks are taken: a clock's last tick arrives before it leaves.
+      const bool clock_left = protocol_->clockLeft();
       for (const Time t : protocol_->takeTicks()) {
         const StepOutcome outcome = tickedStep(t, stop);
         if (outcome != StepOutcome::kDone) return exitCodeOf(outcome);
       }
+      if (clock_left) return afterTheClockLeft(stop);
       // Data may have arrived for later steps; the tick will come.
     }
     return 0;
+  }
+
+  // At the scene's end (clock.duration), or of a run without an end, the clock's leaving ends this
+  // process: `uampc clock` finished or was stopped. Before the end it is a failure, unless the
+  // process is being stopped too: under `uampc launch` the launcher stops its processes right after
+  // its clock, whichever ended the run.
+  int afterTheClockLeft(const std::atomic<bool>& stop) {
+    const double end_s = scene_.clock.duration_s;
+    const double now_s = state_.now.seconds();
+    if (end_s <= 0 || now_s >= end_s - 0.5 * scene_.clock.step.seconds()) {
+      log_.info("the lockstep clock ended the run");
+      return 0;
+    }
+    const auto patience = SteadyClock::now() + std::chrono::seconds(2);
+    while (!stop && SteadyClock::now() < patience) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (stop) return 0;
+    state_.failure = "the lockstep clock left at " + std::to_string(now_s) + " s, before the run's end at " +
+                     std::to_string(end_s) + " s (`uampc clock` stopped or failed)";
+    log_.error(state_.failure);
+    return 1;
   }
 
   // One step the launcher's clock ticked: the samples of the step before as every process counted

@@ -11,6 +11,7 @@
 #include "uampc/runtime/message_type.hpp"
 #include "../lockstep_clock.hpp"
 #include "dds_writer.hpp"
+#include "unmatched_ports.hpp"
 
 namespace uampc::process {
 
@@ -47,6 +48,13 @@ LockstepProtocol::~LockstepProtocol() {
   ack_writer_.reset();
   progress_writer_.reset();
   ack_reader_.reset();
+}
+
+bool LockstepProtocol::clockLeft() const {
+  if (!clock_reader_) return false;
+  SubscriptionMatchedStatus clock_status;
+  clock_reader_->shared.reader->get_subscription_matched_status(clock_status);
+  return clock_status.current_count < 1;
 }
 
 std::string LockstepProtocol::unmatched() const {
@@ -130,7 +138,8 @@ bool LockstepProtocol::awaitAcks(std::int64_t step, TopicCounts& expected, const
     if (stop || anotherRunStops()) return false;
     if (SteadyClock::now() > deadline) {
       state_.failure = "acknowledgements of step " + std::to_string(step) + " from process(es) " + missing +
-                       " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s";
+                       " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s" +
+                       (step < 0 ? securedStartHint(scene_) : std::string());
       log_.error(state_.failure);
       return false;
     }

@@ -45,6 +45,10 @@ class LockstepProtocol {
   // The times the launcher's clock has ticked since the last call.
   std::vector<Time> takeTicks();
 
+  // Whether the launcher's clock (or `uampc clock`) has left the domain: no writer of /clock is
+  // matched any more. Meaningful once the start matched it.
+  bool clockLeft() const;
+
   // /clock for outside tools, if this process publishes it.
   void publishClock(Time t);
 

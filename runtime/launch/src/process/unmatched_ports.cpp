@@ -33,4 +33,10 @@ std::string unmatchedPorts(const Scene& scene, const ProcessState& state) {
   return missing;
 }
 
+std::string securedStartHint(const Scene& scene) {
+  if (scene.security_directory.empty()) return {};
+  return "; in a secured run this can be a DDS Security handshake that Fast DDS 2.9 never completed (rare; "
+         "docs/user/security.md, \"Known limitation\"): start the run again";
+}
+
 }  // namespace uampc::process
