@@ -98,8 +98,8 @@ TEST(ExperimentEndToEnd, HelpPrintsTheUsageAndRunsNothing) {
 }
 
 // One short run of a test scene (the evaluator with a test publisher, 2 s), one at a time.
-std::string smallExperiment(const std::string& dir) {
-  std::ofstream(dir + "/experiment.yaml") << "name: small\nseeds: [1]\nscenes:\n  - {name: panorama, scene: " +
+std::string smallExperiment(const std::string& dir, const std::string& seeds = "[1]") {
+  std::ofstream(dir + "/experiment.yaml") << "name: small\nseeds: " + seeds + "\nscenes:\n  - {name: panorama, scene: " +
                                                  sourcePath("tests/scenes/evaluator_bad_panorama.yaml") +
                                                  "}\ncontrollers:\n  - {name: none, overrides: []}\n";
   return "experiment " + dir + "/experiment.yaml --jobs 1 --domain-base " +
@@ -127,24 +127,27 @@ TEST(ExperimentEndToEnd, AnOutputDirectoryThatCannotBeMadeIsNamedWithTheReason) 
 }
 
 // A full disk (full_disk.hpp: every file limited in size, EFBIG where a disk gives ENOSPC). At
-// 512 bytes the plan itself cannot be written: named, exit code 1, no file left. At the plan's own
-// size rounded up to 512 bytes (about 1 KB; it names the output paths, so it grows with the
-// checkout's path) the plan is written and the run starts, but its evaluator cannot write
-// metrics.json (the run fails, and its failed marker is written) and the experiment cannot write
-// results.json: named, exit code 1, and neither file is left half-written. Before, the experiment
-// aborted at the first of them.
+// 512 bytes the plan itself cannot be written: named, exit code 1, no file left. With a limit
+// between the plan's size and the results' (both name the checkout's paths, so the limit is taken
+// from an unlimited run; each seed adds more to the results than to the plan, and four put a
+// 512-byte step between them for any checkout path of under about 300 characters) the plan
+// is written and the runs start, but the evaluator cannot write metrics.json (the run fails, and
+// its failed marker is written) and the experiment cannot write results.json: named, exit code 1,
+// and neither file is left half-written. Before, the experiment aborted at the first of them.
 TEST(ExperimentEndToEnd, AFullDiskIsNamedWithTheFileAndLeavesNothingHalfWritten) {
   const std::string dir = freshDirectory("experiment_e2e_full_disk");
   const std::string out = dir + "/out";
   const std::string command = "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " +
-                              binaryPath("bin/uampc") + " " + smallExperiment(dir) + " --out " + out;
-  // The sizes a disk with room gives: the limit that lets the plan through must stop the results.
+                              binaryPath("bin/uampc") + " " + smallExperiment(dir, "[1, 2, 3, 4]") + " --out " + out;
+  // The sizes a disk with room gives: a limit (in dash's 512-byte steps) the plan fits under and
+  // the results do not.
   const CommandResult unlimited = runShell(command);
-  ASSERT_EQ(unlimited.exit_code, 0) << unlimited.output;  // the run fails; the experiment reports it
+  ASSERT_EQ(unlimited.exit_code, 0) << unlimited.output;  // the runs fail; the experiment reports them
   const std::uintmax_t plan_bytes = fs::file_size(out + "/experiment.json");
-  const std::size_t plan_fits = (plan_bytes / 512 + 1) * 512;
+  const std::uintmax_t results_bytes = fs::file_size(out + "/results.json");
+  const std::size_t plan_fits = (results_bytes - 1) / 512 * 512;
   ASSERT_GT(plan_bytes, 512u);
-  ASSERT_GT(fs::file_size(out + "/results.json"), plan_fits);
+  ASSERT_GE(plan_fits, plan_bytes) << "results.json " << results_bytes << " bytes, experiment.json " << plan_bytes;
   fs::remove_all(out);
 
   const CommandResult no_plan = runShell(withFileSizeLimit(512, command));
