@@ -29,13 +29,29 @@ std::atomic<bool> counting_allocations{false};
 std::atomic<std::size_t> allocated_bytes{0};
 }  // namespace
 
-void* operator new(std::size_t size) {
+// Every form that malloc can serve is replaced, so that no block is allocated by one allocator and
+// freed by another (std::stable_sort's buffer comes from the nothrow form: AddressSanitizer found
+// it freed here after its own operator new). The aligned forms stay the library's, in pairs.
+namespace {
+void* countedAllocation(std::size_t size) noexcept {
   if (counting_allocations) allocated_bytes += size;
-  if (void* p = std::malloc(size ? size : 1)) return p;
+  return std::malloc(size ? size : 1);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (void* p = countedAllocation(size)) return p;
   throw std::bad_alloc();
 }
+void* operator new[](std::size_t size) { return operator new(size); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept { return countedAllocation(size); }
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept { return countedAllocation(size); }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 namespace uampc {
 namespace {
