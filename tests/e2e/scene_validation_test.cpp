@@ -65,6 +65,13 @@ TEST(SceneValidation, CommandLineOverridesAreValidatedAndNamed) {
   r = runUampc("validate " + scene + " --set nobody.speed=1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("the scene has no component 'nobody'"), std::string::npos) << r.output;
+  // A key --set cannot set names those it can.
+  r = runUampc("validate " + scene + " --set 'unused_inputs=[/lo/imu]'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("a top-level key (dds_profile, domain_id, max_restarts, name, on_crash, security, seed); "
+                          "the topic lists are set in the scene file"),
+            std::string::npos)
+      << r.output;
   r = runUampc("validate " + scene + " --set controller.speed=1.8");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("--set controller.speed=1.8: error: unknown parameter 'speed' for component 'controller' "

@@ -263,7 +263,11 @@ void SceneValidator::applyOverrides(YAML::Node& root, const std::vector<Override
       }
       components[o.path[0]]["params"][o.path[1]] = value;
     } else {
-      errors_.push_back("--set " + o.text + ": error: expected component.parameter, clock.key or a top-level key");
+      std::string keys;
+      for (const auto& k : top_level) keys += (keys.empty() ? "" : ", ") + k;
+      errors_.push_back("--set " + o.text +
+                        ": error: expected component.parameter, clock.key, rig.key or a top-level key (" + keys +
+                        "); the topic lists are set in the scene file");
     }
   }
 }
