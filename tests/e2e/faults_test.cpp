@@ -113,6 +113,38 @@ TEST(Faults, ASecondRunOnADomainIsRefusedAndTheFirstGoesOn) {
   EXPECT_FALSE(logHas(dir + "/launch.log", "another run")) << readFile(dir + "/launch.log");
 }
 
+// The run lock's directory is shared by every user: a link planted at a lock file's path (to a
+// file of the user who launches, or dangling into a directory that does not exist) makes the launch
+// refuse, naming the path, and the file it points to is neither written, truncated nor chmodded
+// nor created. Before, the launch opened it with O_CREAT through the link, made it 0666 and wrote
+// its description into it (docs/decisions/lock-files-never-followed.md).
+TEST(Faults, ALinkPlantedAtTheRunLockIsNeverFollowed) {
+  const int domain = testDomain(DomainBlock::kFaults, 9);
+  const std::string dir = freshDirectory("faults_planted_lock_link");
+  const std::string victim = dir + "/victim.txt";
+  std::ofstream(victim) << "precious\n";
+  fs::permissions(victim, fs::perms::owner_read | fs::perms::owner_write);
+  // The documented location (docs/user/faults.md).
+  const std::string lock = "/tmp/uampc/run-on-domain-" + std::to_string(domain) + ".lock";
+  if (fs::create_directories("/tmp/uampc")) fs::permissions("/tmp/uampc", fs::perms(01777));  // as a launch makes it
+  for (const std::string& target : {victim, dir + "/missing/made.lock"}) {
+    fs::remove(lock);
+    fs::create_symlink(target, lock);
+    const CommandResult r =
+        runUampc("launch " + sourcePath("tests/scenes/motor_two_processes.yaml") + " --out " + dir +
+                 "/out --overwrite --set clock.duration=1 --set domain_id=" + std::to_string(domain));
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("cannot use the lock file " + lock + ": it is a symbolic link"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("nothing was started"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir + "/out/run_info.json"));
+  }
+  fs::remove(lock);
+  EXPECT_EQ(readFile(victim), "precious\n");
+  EXPECT_EQ(fs::status(victim).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+  EXPECT_FALSE(fs::exists(dir + "/missing"));
+}
+
 TEST(Faults, AProcessGroupKilledMidRunIsNamedAndLeavesNothingBehind) {
   const int domain = testDomain(DomainBlock::kFaults, 3);
   const std::string dir = freshDirectory("faults_process_killed");
@@ -211,12 +243,11 @@ TEST(Faults, RecordRefusesAnExistingFileUnlessOverwriteIsGiven) {
   const std::string dir = freshDirectory("faults_record_existing");
   const std::string file = dir + "/earlier.mcap";
   std::ofstream(file) << "an earlier recording";
-  const std::string record = "record -o " + file + " --duration 0.2 --domain " +
-                             std::to_string(testDomain(DomainBlock::kFaults, 8));
+  const std::string record =
+      "record -o " + file + " --duration 0.2 --domain " + std::to_string(testDomain(DomainBlock::kFaults, 8));
   const CommandResult refused = runUampc(record);
   EXPECT_EQ(refused.exit_code, 1) << refused.output;
-  EXPECT_NE(refused.output.find(file + " exists; give --overwrite to replace it"), std::string::npos)
-      << refused.output;
+  EXPECT_NE(refused.output.find(file + " exists; give --overwrite to replace it"), std::string::npos) << refused.output;
   EXPECT_EQ(readFile(file), "an earlier recording");
   const CommandResult replaced = runUampc(record + " --overwrite");
   EXPECT_EQ(replaced.exit_code, 0) << replaced.output;
@@ -237,8 +268,8 @@ TEST(Faults, AFullDiskStopsTheRunNamingTheFileAndLeavesNoMetrics) {
   const std::string dir = freshDirectory("faults_full_disk");
   const std::string out = dir + "/out";
   const CommandResult r = runShell(withFileSizeLimit(
-      32 * 1024, "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " + binaryPath("bin/uampc") +
-                     " launch " + sourcePath("tests/scenes/motor_evaluator.yaml") + " --out " + out +
+      32 * 1024, "UAMPC_COMPONENT_PATH=" + binaryPath("tests/components") + " " + binaryPath("bin/uampc") + " launch " +
+                     sourcePath("tests/scenes/motor_evaluator.yaml") + " --out " + out +
                      domainOverride(DomainBlock::kFaults, 7)));
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("component 'evaluator' failed in input 'motor_state'"), std::string::npos) << r.output;

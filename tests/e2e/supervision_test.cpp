@@ -1,4 +1,4 @@
-// What the launcher does when a component or process misbehaves, and on Ctrl-C.
+// What the launcher does when a component or process misbehaves, and on Ctrl-C, SIGTERM and SIGHUP.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -10,6 +10,7 @@
 #include "background_launch.hpp"
 #include "command_runner.hpp"
 #include "test_domains.hpp"
+#include "uampc/run_files/metrics_file.hpp"
 
 namespace uampc::test {
 namespace {
@@ -42,7 +43,8 @@ TEST(Supervision, AHungComponentTimesOutInsteadOfHangingTheRun) {
   EXPECT_NE(r.output.find("from process(es) faulty did not arrive"), std::string::npos) << r.output;
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
   // The launcher's clock names the process that did not acknowledge its tick.
-  const CommandResult ticked = runFault("hang", testDomain(DomainBlock::kSupervision, 5), " --set clock.in_process=false");
+  const CommandResult ticked =
+      runFault("hang", testDomain(DomainBlock::kSupervision, 5), " --set clock.in_process=false");
   EXPECT_EQ(ticked.exit_code, 1);
   EXPECT_NE(ticked.output.find("no acknowledgement of the step from process(es) faulty"), std::string::npos)
       << ticked.output;
@@ -90,6 +92,47 @@ TEST(Supervision, CtrlCStopsEveryProcessCleanly) {
   EXPECT_NE(output.find("stopped by Ctrl-C"), std::string::npos) << output;
   EXPECT_EQ(output.find("while stopping"), std::string::npos) << output;          // children exited cleanly
   EXPECT_TRUE(processesOfRun(testDomain(DomainBlock::kSupervision, 4)).empty());  // none left behind
+}
+
+// A run that a signal cuts short (Slurm's time limit, `docker stop`, systemd send SIGTERM; a
+// closed terminal SIGHUP) exits 128 + the signal, as a shell reports it, and its metrics say that
+// it did not reach its end. Before, SIGTERM gave 0 and a whole-looking metrics.json, and SIGHUP
+// killed the launcher with no summary.
+void expectASignalCutsTheRunShort(int signal, int exit_code, const std::string& said, int domain_index) {
+  const std::string dir = freshDirectory("cut_by_signal_" + std::to_string(signal));
+  const pid_t pid =
+      startLaunch(sourcePath("tests/scenes/motor_evaluator.yaml") + " --out " + dir + "/out" +
+                      " --set clock.real_time_factor=1" + domainOverride(DomainBlock::kSupervision, domain_index),
+                  dir + "/launch.log");
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  kill(pid, signal);
+  EXPECT_EQ(exitCodeOf(pid), exit_code) << readFile(dir + "/launch.log");
+  EXPECT_TRUE(logHas(dir + "/launch.log", "stopped by " + said + "; the run was cut short"))
+      << readFile(dir + "/launch.log");
+  const auto metrics = run_files::readMetricsFile(dir + "/out/metrics.json");
+  ASSERT_TRUE(metrics) << readFile(dir + "/launch.log");
+  EXPECT_LT(metrics->sim_time, 30.0);
+  EXPECT_EQ(metrics->scene_duration, 30.0);
+  EXPECT_EQ(metrics->reached_end, false);
+  EXPECT_TRUE(processesOfRun(testDomain(DomainBlock::kSupervision, domain_index)).empty());
+}
+
+TEST(Supervision, SigtermCutsTheRunShortWithExitCode143) { expectASignalCutsTheRunShort(SIGTERM, 143, "SIGTERM", 7); }
+
+TEST(Supervision, SighupCutsTheRunShortWithExitCode129) {
+  expectASignalCutsTheRunShort(SIGHUP, 129, "SIGHUP (its terminal closed)", 8);
+}
+
+// The same scene run to its end says it reached it.
+TEST(Supervision, ARunToItsEndSaysItReachedIt) {
+  const std::string dir = freshDirectory("run_to_end");
+  const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/motor_evaluator.yaml") + " --out " + dir +
+                                   domainOverride(DomainBlock::kSupervision, 9));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto metrics = run_files::readMetricsFile(dir + "/metrics.json");
+  ASSERT_TRUE(metrics) << r.output;
+  EXPECT_EQ(metrics->scene_duration, 30.0);
+  EXPECT_EQ(metrics->reached_end, true);
 }
 
 }  // namespace

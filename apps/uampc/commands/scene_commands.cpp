@@ -55,17 +55,18 @@ std::function<int()> withOverrides(CommandSet& commands, CLI::App* sub, const Op
 
 void addLaunch(CommandSet& commands) {
   auto o = std::make_shared<SceneCommandOptions>();
-  CLI::App* sub =
-      commands.add("launch",
-                   "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR [--overwrite]]\n"
-                   "[--view [--view-port P] [--view-address A]]",
-                   "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
-                   "(seed, domain_id, ...). --out DIR collects the run's outputs, with DIR/scene.yaml (the\n"
-                   "resolved scene: launch it to run the same again) and DIR/run_info.json (scene, overrides,\n"
-                   "seed, versions, every parameter; also in DIR/metrics.json as \"run\"); a DIR that holds a run\n"
-                   "already is refused unless --overwrite is given. Ctrl-C stops\n"
-                   "everything, while starting or running (exit code 130). --view serves the run live to Foxglove\n"
-                   "(docs/user/viewing.md).");
+  CLI::App* sub = commands.add(
+      "launch",
+      "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR [--overwrite]]\n"
+      "[--view [--view-port P] [--view-address A]]",
+      "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
+      "(seed, domain_id, ...). --out DIR collects the run's outputs, with DIR/scene.yaml (the\n"
+      "resolved scene: launch it to run the same again) and DIR/run_info.json (scene, overrides,\n"
+      "seed, versions, every parameter; also in DIR/metrics.json as \"run\"); a DIR that holds a run\n"
+      "already is refused unless --overwrite is given. Ctrl-C stops\n"
+      "everything, while starting or running (exit code 130; SIGTERM 143, SIGHUP 129: a run cut\n"
+      "short, which DIR/metrics.json marks \"reached_end\": false). --view serves the run live to Foxglove\n"
+      "(docs/user/viewing.md).");
   addScene(sub, *o);
   addOverrides(sub, *o);
   addOutput(sub, *o);

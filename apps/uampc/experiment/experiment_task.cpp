@@ -8,10 +8,11 @@
 #include <iostream>
 #include <optional>
 
-#include "experiment/experiment_command.hpp"
 #include "experiment/backends/experiment_runner.hpp"
+#include "experiment/experiment_command.hpp"
 #include "experiment/experiment_snapshot.hpp"
 #include "uampc/runtime/domain_run_lock.hpp"
+#include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 
 namespace fs = std::filesystem;
@@ -21,14 +22,17 @@ namespace uampc::app {
 
 namespace {
 
-// A DDS domain of this node held by an exclusive lock on a file in /tmp (the launcher's lock,
-// domain_run_lock.hpp, on a file of its own); released on destruction or when the process dies.
+// A DDS domain of this node held by an exclusive lock on a file of the host's lock directory (the
+// launcher's lock, domain_run_lock.hpp, on a file of its own); released on destruction or when the
+// process dies.
 class DomainClaim {
  public:
   // The first domain from `first` to kHighestDomainId nobody on this node holds; nullopt if none.
+  // Throws LockFileError when a claim file cannot be used safely.
   static std::optional<DomainClaim> takeFirstFree(int first) {
     for (int domain = first; domain <= kHighestDomainId; ++domain) {
-      auto lock = DomainRunLock::takeFile("/tmp/uampc-dds-domain-" + std::to_string(domain) + ".lock", "", nullptr);
+      auto lock = DomainRunLock::takeFile(DomainRunLock::kDirectory, "dds-domain-" + std::to_string(domain) + ".lock",
+                                          "", nullptr);
       if (lock) return DomainClaim(domain, std::move(*lock));
     }
     return std::nullopt;
@@ -81,7 +85,13 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
     std::cerr << prefix << run.directory << " finished before; nothing to do\n";
     return 0;
   }
-  std::optional<DomainClaim> claim = DomainClaim::takeFirstFree(domain_base);
+  std::optional<DomainClaim> claim;
+  try {
+    if (auto free = DomainClaim::takeFirstFree(domain_base)) claim.emplace(std::move(*free));
+  } catch (const LockFileError& e) {
+    std::cerr << prefix << printableText(e.what()) << "; the run was not started\n";
+    return 1;
+  }
   if (!claim) {
     std::cerr << prefix << "every DDS domain from " << domain_base << " to " << kHighestDomainId
               << " is held by another task on " << hostName() << "\n";

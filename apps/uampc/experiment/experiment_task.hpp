@@ -6,7 +6,7 @@
 //
 // DDS domain: tasks of one node must not share one, and a node may run tasks of several
 // experiments. Each task takes the first domain from N (default 100) to 232 that no other task on
-// the node holds, by an exclusive lock on /tmp/uampc-dds-domain-<D>.lock kept while its run lasts
+// the node holds, by an exclusive lock on /tmp/uampc/dds-domain-<D>.lock kept while its run lasts
 // (released by the kernel however the task ends). Tasks on other nodes may use the same domain:
 // a Slurm run's DDS traffic is kept on its own host (slurm_backend.hpp).
 #pragma once

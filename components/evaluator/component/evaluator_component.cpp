@@ -18,7 +18,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "uampc/runtime/file_checks.hpp"
+#include "path_trail.hpp"
 #include "uampc/adapters/pose_messages.hpp"
 #include "uampc/adapters/rig_parameters.hpp"
 #include "uampc/evaluator/completeness.hpp"
@@ -42,8 +42,8 @@
 #include "uampc/run_files/run_info.hpp"
 #include "uampc/run_files/time_series.hpp"
 #include "uampc/runtime/component.hpp"
+#include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/parameter_binding.hpp"
-#include "path_trail.hpp"
 
 namespace uampc {
 
@@ -279,7 +279,17 @@ class EvaluatorComponent : public Component {
     metrics.lo.frames = lo_frames_;
     metrics.lo.degenerate_frames = degenerate_frames_;
     metrics.run = run_info_;
+    markWhetherTheRunReachedItsEnd(metrics);
     return metrics;
+  }
+
+  // A run cut short (a stop signal, a failed process) must not read as a whole one: its metrics
+  // say whether the clock reached the scene's duration (docs/user/experiments.md). Within a step:
+  // the last step's samples are the last the evaluator sees.
+  void markWhetherTheRunReachedItsEnd(run_files::MetricsDocument& metrics) const {
+    if (!run_info_ || run_info_->duration_s <= 0.0) return;
+    metrics.scene_duration = run_info_->duration_s;
+    metrics.reached_end = metrics.sim_time >= run_info_->duration_s - ctx_.step().seconds() - 1e-9;
   }
 
   // The parameters that set CMPLT's config: declared from the core's defaults, read into them.

@@ -95,6 +95,8 @@ void eachField(S& s, Visit&& visit) {
 template <class S, class Visit, Is<S, MetricsDocument> = 0>
 void eachField(S& s, Visit&& visit) {
   visit(kSimTimeKey, s.sim_time);
+  visit("scene_duration", s.scene_duration);
+  visit("reached_end", s.reached_end);
   visit("trajectory", s.trajectory);
   visit("cmplt", s.cmplt);
   visit("cmplt_ground_truth", s.cmplt_ground_truth);
@@ -124,6 +126,9 @@ struct Writer {
   void operator()(const char* key, std::uint64_t value) { json[key] = value; }
   void operator()(const char* key, std::int64_t value) { json[key] = value; }
   void operator()(const char* key, const std::optional<double>& value) {
+    if (value) json[key] = *value;
+  }
+  void operator()(const char* key, const std::optional<bool>& value) {
     if (value) json[key] = *value;
   }
   void operator()(const char*, const std::vector<RpeSummary>& segments) {
@@ -158,6 +163,9 @@ struct Reader {
   }
   void operator()(const char* key, std::optional<double>& value) {
     if (const Json* number = member(key); number && number->is_number()) value = number->get<double>();
+  }
+  void operator()(const char* key, std::optional<bool>& value) {
+    if (const Json* flag = member(key); flag && flag->is_boolean()) value = flag->get<bool>();
   }
   void operator()(const char* key, std::optional<RunInfo>& run) {
     const Json* object = member(key);

@@ -17,6 +17,7 @@ void eachInfoField(I& info, Visit&& visit) {
   visit("started_utc", info.started_utc);
   visit("seed", info.seed);
   visit("domain_id", info.domain_id);
+  visit("duration_s", info.duration_s);
   visit("uampc_version", info.uampc_version);
   visit("fastdds_version", info.fastdds_version);
   visit("components", info.components);

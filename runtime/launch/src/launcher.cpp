@@ -13,6 +13,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <thread>
 
 #include "lockstep_clock.hpp"
@@ -20,6 +21,7 @@
 #include "uampc/runtime/child_processes.hpp"
 #include "uampc/runtime/domain_run_lock.hpp"
 #include "uampc/runtime/file_checks.hpp"
+#include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/process_group.hpp"
 #include "uampc/runtime/run_record.hpp"
 #include "uampc/runtime/shared_memory_cleanup.hpp"
@@ -32,15 +34,34 @@ namespace uampc {
 namespace {
 
 // How a process ended when the user asked everything to stop: exit 0 (stopped by SIGTERM) or 130
-// (it got the terminal's SIGINT too), or killed by either signal before it had its handlers
+// (it got the terminal's SIGINT too), or killed by a stop signal before it had its handlers
 // installed (a process still starting). Anything else is a failure, stop or no stop.
 bool stoppedAsAsked(int status) {
   if (WIFEXITED(status)) return WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 130;
-  return WIFSIGNALED(status) && (WTERMSIG(status) == SIGTERM || WTERMSIG(status) == SIGINT);
+  if (!WIFSIGNALED(status)) return false;
+  const int sig = WTERMSIG(status);
+  return sig == SIGTERM || sig == SIGINT || sig == SIGHUP;
 }
 
-// 130 after Ctrl-C, as shells report a command that SIGINT ended; otherwise the command's code.
+// A process group's code: 130 after Ctrl-C, as shells report a command that SIGINT ended;
+// otherwise its own (0 when its launcher stopped it with SIGTERM, which is how every run ends).
 int exitCodeAfter(int code) { return code == 0 && lastStopSignal() == SIGINT ? 130 : code; }
+
+// The launcher's code when a stop signal ended the run: 128 + the signal, as a shell reports a
+// command that the signal ended (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP), so that whoever sent it
+// (Slurm's time limit, `docker stop`, systemd, a closed terminal) never reads the cut run as done.
+int exitCodeForStopSignal() { return 128 + lastStopSignal(); }
+
+std::string stopSignalName() {
+  switch (lastStopSignal()) {
+    case SIGINT:
+      return "Ctrl-C";
+    case SIGHUP:
+      return "SIGHUP (its terminal closed)";
+    default:
+      return "SIGTERM";
+  }
+}
 
 std::string describeStatus(int status) {
   if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
@@ -228,7 +249,17 @@ int launch(const LaunchOptions& options) {
   if (!ok) return 2;
   // Before anything of this run exists: a run already on the domain must not hear of this one.
   std::string holder;
-  const auto domain_lock = DomainRunLock::take(scene.domain_id, runDescription(options), &holder);
+  std::optional<DomainRunLock> domain_lock;
+  try {
+    if (auto taken = DomainRunLock::take(scene.domain_id, runDescription(options), &holder)) {
+      domain_lock.emplace(std::move(*taken));
+    }
+  } catch (const LockFileError& e) {
+    // Without the lock a second run could join this one's domain: refuse rather than run unguarded.
+    std::cerr << "uampc: " << printableText(e.what()) << "; without it two runs could share DDS domain "
+              << scene.domain_id << ", so nothing was started\n";
+    return 1;
+  }
   if (!domain_lock) {
     std::cerr << "uampc: another run is on DDS domain " << scene.domain_id << " ("
               << (holder.empty() ? "its launcher did not say which" : holder)
@@ -244,7 +275,7 @@ int launch(const LaunchOptions& options) {
   }
   if (refusesEarlierRun(options)) return 1;
   if (!options.output_directory.empty() && !recordRun(scene, options)) return 1;
-  if (stopRequested()) return exitCodeAfter(0);  // stopped while loading: nothing to stop
+  if (stopRequested()) return exitCodeForStopSignal();  // stopped while loading: nothing to stop
 
   std::cerr << "uampc: scene '" << scene.name << "' (" << scene.components.size() << " components, "
             << scene.processes().size() << " process(es), "
@@ -298,10 +329,12 @@ int launch(const LaunchOptions& options) {
     std::cerr << "uampc: run failed: " << error << "\n";
     return 1;
   }
-  // Ctrl-C wins over a process that then failed to stop cleanly (said above): the user ended it.
-  if (lastStopSignal() == SIGINT) {
-    std::cerr << "uampc: stopped by Ctrl-C\n";
-    return 130;
+  // A stop signal wins over a process that then failed to stop cleanly (said above): it ended the run.
+  if (stopRequested()) {
+    std::cerr << "uampc: stopped by " << stopSignalName()
+              << (scene.clock.duration_s > 0 ? "; the run was cut short of its end (metrics.json says so)" : "")
+              << "\n";
+    return exitCodeForStopSignal();
   }
   return supervisor.failed() ? 1 : 0;
 }

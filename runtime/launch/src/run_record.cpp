@@ -155,6 +155,7 @@ void writeRunRecord(const Scene& scene, const LaunchOptions& options) {
   info.started_utc = utcNow();
   info.seed = scene.seed;
   info.domain_id = scene.domain_id;
+  info.duration_s = scene.clock.duration_s;
   info.uampc_version = options.uampc_version;
   info.fastdds_version = options.fastdds_version;
   info.components = componentsJson(scene);

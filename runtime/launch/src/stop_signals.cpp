@@ -20,6 +20,7 @@ void catchStopSignals() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGHUP, &action, nullptr);  // a closed terminal: stop cleanly, as on Ctrl-C
 }
 
 bool stopRequested() { return g_stop; }

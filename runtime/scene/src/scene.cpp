@@ -16,8 +16,8 @@
 #include "uampc/runtime/dds_security.hpp"
 #include "uampc/runtime/edit_distance.hpp"
 #include "uampc/runtime/file_checks.hpp"
-#include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/lockstep_topics.hpp"
+#include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/yaml_errors.hpp"
 
 namespace fs = std::filesystem;
@@ -215,8 +215,8 @@ class SceneValidator {
   std::vector<std::pair<YAML::Node, std::string>> override_nodes_;  // value grafted by --set, its text
   std::vector<std::pair<std::string, std::string>> override_keys_;  // last name of each --set, its text
   std::vector<PortReference> pending_;
-  std::set<std::string> component_names_;  // of scene.components, for finding one defined twice
-  std::map<std::string, SourceLocation> topic_locations_;  // instance.port -> where it was mapped
+  std::set<std::string> component_names_;                         // of scene.components, for finding one defined twice
+  std::map<std::string, SourceLocation> topic_locations_;         // instance.port -> where it was mapped
   std::map<std::string, SourceLocation> unused_input_locations_;  // topic -> where unused_inputs: lists it
 
   // The rig (docs/dev/architecture.md section 5): parameters a component marks partOfRig() take
@@ -326,7 +326,19 @@ Scene SceneValidator::validate(YAML::Node root, const std::vector<Override>& ove
 void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
   scene.name = fs::path(file_).stem().string();
   if (root["name"]) {
-    if (auto v = scalar<std::string>(root["name"], "name")) scene.name = *v;
+    if (auto v = scalar<std::string>(root["name"], "name")) {
+      // Printed in every run's first line, graphs and records: a terminal must show it, not obey it.
+      const bool printable = std::none_of(v->begin(), v->end(), [](char c) {
+        const auto byte = static_cast<unsigned char>(c);
+        return byte < 0x20 || byte == 0x7f;
+      });
+      if (printable)
+        scene.name = *v;
+      else
+        error(root["name"],
+              "name '" + *v +
+                  "' holds control characters (a newline, an escape, NUL ...); a scene's name is one printable line");
+    }
   }
   if (root["domain_id"]) {
     if (auto v = scalar<int>(root["domain_id"], "domain_id")) {
@@ -354,7 +366,8 @@ void SceneValidator::readTopLevel(const YAML::Node& root, Scene& scene) {
         scene.max_restarts = *v;
     }
   }
-  if (const YAML::Node topics = root["external_topics"]) readTopicList(topics, "external_topics", scene.external_topics);
+  if (const YAML::Node topics = root["external_topics"])
+    readTopicList(topics, "external_topics", scene.external_topics);
   if (const YAML::Node topics = root["outputs_for_tools"]) {
     readTopicList(topics, "outputs_for_tools", scene.outputs_for_tools);
   }
@@ -604,7 +617,8 @@ void SceneValidator::checkRequirements(const YAML::Node& params, const Component
     const YAML::Node where = params && params.IsMap() ? params[r.parameter] : YAML::Node();
     const std::string what = r.needed_value.empty() ? r.needed : r.needed + ": " + r.needed_value;
     error(where ? locationOf(where) : instance.location, r.parameter + ": " + r.value + " needs " + what +
-                                                             " (component '" + instance.name + "', " + instance.type + ")");
+                                                             " (component '" + instance.name + "', " + instance.type +
+                                                             ")");
   }
 }
 

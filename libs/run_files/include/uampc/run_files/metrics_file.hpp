@@ -79,6 +79,12 @@ struct LoSummary {
 
 struct MetricsDocument {
   double sim_time = kNotANumber;  // s
+  // The scene's clock.duration, s, from the run record; absent when the run is open-ended or was
+  // not started by `uampc launch --out`.
+  std::optional<double> scene_duration;
+  // Whether sim_time reached scene_duration: false for a run cut short (a stop signal, a failed
+  // process), which no experiment counts as done; absent with scene_duration.
+  std::optional<bool> reached_end;
   TrajectorySummary trajectory;
   CompletenessSummary cmplt;               // from the LO's registered scans
   CompletenessSummary cmplt_ground_truth;  // from the raw scans placed with ground truth

@@ -19,6 +19,7 @@ struct RunInfo {
   std::string started_utc;             // when the launcher started, "2025-01-31T12:00:00Z"
   std::uint64_t seed = 0;
   int domain_id = 0;
+  double duration_s = 0.0;      // the scene's clock.duration, s; 0: until stopped
   std::string uampc_version;    // git describe when uampc was built, as `uampc --version` prints it
   std::string fastdds_version;  // the Fast DDS uampc was built with
   // Every parameter of every component, defaults and rig values included, in the scene's order:

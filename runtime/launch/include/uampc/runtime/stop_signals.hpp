@@ -1,4 +1,4 @@
-// Ctrl-C and SIGTERM for every uampc command that runs until stopped (launch, run-process, clock,
+// Ctrl-C, SIGTERM and SIGHUP for every uampc command that runs until stopped (launch, run-process, clock,
 // topic, record, play, experiment): caught, so that the command finishes its work (processes
 // stopped, a complete file, a summary) and exits by itself.
 #pragma once
@@ -8,11 +8,11 @@
 namespace uampc {
 
 void catchStopSignals();
-// True once SIGINT or SIGTERM arrived; async-signal-safe to set, cheap to poll.
+// True once SIGINT, SIGTERM or SIGHUP arrived; async-signal-safe to set, cheap to poll.
 bool stopRequested();
 // The flag itself, for code that polls it (the lockstep clock, a process group, the experiment runner).
 const std::atomic<bool>& stopFlag();
-// The last of the two signals that arrived (SIGINT: the terminal's Ctrl-C), 0 before any.
+// The last of these signals that arrived (SIGINT: the terminal's Ctrl-C), 0 before any.
 int lastStopSignal();
 
 }  // namespace uampc
