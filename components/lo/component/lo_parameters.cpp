@@ -66,6 +66,23 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
   b.bind("plane_max_point_distance", c.plane_max_point_distance,
          "a plane fit is rejected if one of its neighbours lies farther from it than this, m")
       .between(0.001, 10.0);
+  b.bind("max_neighbour_distance", c.max_neighbour_distance,
+         "a plane is fitted only if the farthest of its 5 map neighbours is nearer than this, m (I2EKF-LO: "
+         "sqrt(5) = 2.236)")
+      .between(0.01, 100.0);
+  b.bindChoice("deskew", c.deskew,
+               {{"time", lo::DeskewMode::kTime}, {"index", lo::DeskewMode::kIndex}, {"none", lo::DeskewMode::kNone}},
+               "which time places each point in the deskew: 'time', its own; 'index', its place in the frame spread "
+               "from the previous scan's end to this one's (I2EKF-LO's with the reference simulator); 'none', the "
+               "scan's end");
+  b.bindChoice("association_gate", c.association_gate,
+               {{"residual", lo::AssociationGate::kResidual}, {"range_scaled", lo::AssociationGate::kRangeScaled}},
+               "which correspondences register: 'residual', all until converged, then within 3 robust standard "
+               "deviations; 'range_scaled', FAST-LIO2's and I2EKF-LO's 1 - 0.9 |residual| / sqrt(range) > 0.9 at "
+               "every association");
+  b.bind("match_seen_side_only", c.match_seen_side_only,
+         "match a map plane only from the side its points were seen from (docs/decisions/lo-seen-side-planes.md; "
+         "I2EKF-LO has no such check)");
   b.bind("plane_min_spread_ratio", c.plane_min_spread_ratio,
          "a plane fit is rejected if its neighbours' narrower in-plane spread is below this share of the wider "
          "(0: any)")

@@ -21,6 +21,11 @@ void bindScanParameters(ParameterBinding& b, raycaster::RayCasterConfig& c) {
                 "datasheet: 0.15; off by default, see docs/results/sensor-noise.md)")
       .between(0.0, 10.0);
   b.bind("dropout", c.dropout_probability, "probability that a return is lost").between(0.0, 1.0);
+  b.bindChoice("frame_timing", c.frame_timing,
+               {{"continuous", raycaster::FrameTiming::kContinuous}, {"snapshot", raycaster::FrameTiming::kSnapshot}},
+               "when a frame's rays are cast: 'continuous', each at its own time (a real LiDAR: the base and "
+               "the motor move during the frame), or 'snapshot', all from the one pose at the frame's stamp, "
+               "time offsets 0 (the paper's reference simulator; docs/results/table-1-reference-regime.md)");
   b.bind("range_noise", c.range_noise_stddev,
          "standard deviation of Gaussian range noise, m (default: the Mid-360 datasheet, 2 cm at 10 m)")
       .between(0.0, 1.0);

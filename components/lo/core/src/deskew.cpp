@@ -39,4 +39,15 @@ double middleTime(const std::vector<TimedPoint>& points) {
   return 0.5 * (earliest->tau + latest->tau);
 }
 
+void retimeForDeskew(std::vector<TimedPoint>& points, DeskewMode mode, double since_previous_scan) {
+  if (mode == DeskewMode::kTime) return;
+  const bool spread = mode == DeskewMode::kIndex && since_previous_scan > 0.0 && points.size() > 1;
+  const double last = static_cast<double>(points.size()) - 1.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // Point i of N at the share i / (N - 1) of the way from the previous scan's end (tau = -dt)
+    // to this one's (tau = 0).
+    points[i].tau = spread ? (static_cast<double>(i) / last - 1.0) * since_previous_scan : 0.0;
+  }
+}
+
 }  // namespace uampc::lo

@@ -135,6 +135,14 @@ using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 using Matrix18d = Eigen::Matrix<double, 18, 18>;
 using Vector18d = Eigen::Matrix<double, 18, 1>;
 
+// FAST-LIO2's gate (laserMapping.cpp of FAST-LIO2 and I2EKF-LO): s = 1 - 0.9 |z| / sqrt(|p|) > 0.9,
+// z the residual and |p| the range (the LiDAR sits on the motor axis, at the base origin within
+// centimetres: the point's norm in B).
+bool withinRangeScaledGate(const Plane& plane, const Eigen::Vector3d& q_W, const TimedPoint& point) {
+  const double residual = plane.normal.dot(q_W) + plane.offset;
+  return 1.0 - 0.9 * std::abs(residual) / std::sqrt(point.p_B.norm()) > 0.9;
+}
+
 // Data association at the iterate x: each point with the plane through its k nearest map points,
 // if they are near enough, planar, and (options.match_seen_side_only) seen from the point's side.
 // spreads: how each plane's normal tilts, in the same order (apart, so the hot loops stay lean).
@@ -159,6 +167,7 @@ void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew,
     // The sensor is at the base origin (the rigs we model carry the LiDAR on the motor axis
     // within centimetres of it, and nothing that near is seen), at the point's time.
     if (options.match_seen_side_only && seenFromOtherSide(*plane, views, q, deskew.originAt(point.tau))) continue;
+    if (options.association_gate == AssociationGate::kRangeScaled && !withinRangeScaledGate(*plane, q, point)) continue;
     correspondences.push_back({&point, *plane});
     spreads.push_back(spread);
   }
@@ -405,7 +414,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     linearise(correspondences, x, frame, H, z);
     // The gate is set once, when the gated iterations start, so that they converge on a fixed
     // set of residuals.
-    if (gated && !std::isfinite(gate)) gate = residualGate(z, options.min_residual_gate);
+    if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kResidual)
+      gate = residualGate(z, options.min_residual_gate);
     const std::size_t used = std::isfinite(gate) ? applyGate(gate, H, z) : correspondences.size();
     summary.correspondences = used;
     if (used < options.min_correspondences) break;

@@ -71,6 +71,8 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
   options.plane_max_point_distance = config.plane_max_point_distance;
   options.plane_min_spread_ratio = config.plane_min_spread_ratio;
   options.max_neighbour_distance = config.max_neighbour_distance;
+  options.association_gate = config.association_gate;
+  options.match_seen_side_only = config.match_seen_side_only;
   options.measurement_variance = config.measurement_variance;
   options.max_iterations = config.max_iterations;
   options.min_correspondences = config.min_correspondences;
@@ -93,11 +95,15 @@ MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
 
 OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const frames::MotorAngleTrack& motor) {
   OdometryResult result;
-  const DerotatedScan derotated = derotateScan(scan, motor, result);
-  if (!filter_) return initialise(derotated, result);
+  DerotatedScan derotated = derotateScan(scan, motor, result);
+  if (!filter_) {
+    retimeForDeskew(derotated.points, config_.deskew, 0.0);
+    return initialise(derotated, result);
+  }
 
   const double end_time = derotated.points.empty() ? scan.stamp : derotated.end_time;
   const double dt = end_time - last_time_;
+  retimeForDeskew(derotated.points, config_.deskew, dt);
   if (!(dt > 0.0)) {
     result.status = OdometryStatus::kRejected;
     addWarning(result.warning, "scan ends at " + std::to_string(end_time) + " s, not after the previous one (" +

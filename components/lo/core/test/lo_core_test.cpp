@@ -265,6 +265,50 @@ TEST(IteratedEkf, MatchesAPlaneOnlyFromTheSideItWasSeenFrom) {
   EXPECT_GT(correspondencesFrom(-1.0, 0.0, true), 250u);  // underside from below: matched
 }
 
+// FAST-LIO2's range-scaled gate (I2EKF-LO's): a point 0.2 m off a plane is kept at 25 m
+// (1 - 0.9 * 0.2 / 5 = 0.964 > 0.9) and dropped at 1 m (0.82); the residual gate keeps both until
+// the iterations converge. A plane of map points at z = 0, the points 0.2 m above it.
+TEST(IteratedEkf, TheRangeScaledGateKeepsFarPointsFartherOffTheirPlane) {
+  LocalMap map(0.3, 1000.0);
+  std::vector<Eigen::Vector3d> floor;
+  for (int i = -120; i <= 120; ++i) {
+    for (int j = -10; j <= 10; ++j) floor.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
+  }
+  map.insert(floor, 0.0, Eigen::Vector3d(0.0, 0.0, 2.0));
+  const auto correspondencesAt = [&](double distance, AssociationGate gate) {
+    BaseState x;  // the sensor 1 m above the plane, seen from above as the map was
+    x.r_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
+    Matrix12d P = Matrix12d::Identity() * 1e-12;
+    IteratedEkf filter(x, P);
+    std::vector<TimedPoint> scan;
+    for (int i = 0; i < 40; ++i) scan.push_back({Eigen::Vector3d(distance, 0.05 * (i - 20), -0.8), 0.0});
+    UpdateOptions options;
+    options.association_gate = gate;
+    options.max_iterations = 1;
+    options.min_correspondences = 1;
+    return filter.update(scan, map, options).correspondences;
+  };
+  EXPECT_EQ(correspondencesAt(25.0, AssociationGate::kRangeScaled), 40u);
+  EXPECT_EQ(correspondencesAt(1.0, AssociationGate::kRangeScaled), 0u);
+  EXPECT_EQ(correspondencesAt(1.0, AssociationGate::kResidual), 40u);
+}
+
+// Index deskew (I2EKF-LO's): point i of N at i / (N - 1) of the way from the previous scan's end
+// to this one's, whatever its own time; none: all at the scan's end; time: untouched.
+TEST(Deskew, RetimingByIndexSpreadsThePointsOverTheTimeSinceThePreviousScan) {
+  std::vector<TimedPoint> points(5, TimedPoint{Eigen::Vector3d::Zero(), 0.0});
+  retimeForDeskew(points, DeskewMode::kIndex, 0.1);
+  EXPECT_DOUBLE_EQ(points[0].tau, -0.1);
+  EXPECT_DOUBLE_EQ(points[2].tau, -0.05);
+  EXPECT_DOUBLE_EQ(points[4].tau, 0.0);
+  retimeForDeskew(points, DeskewMode::kTime, 0.1);
+  EXPECT_DOUBLE_EQ(points[0].tau, -0.1);
+  retimeForDeskew(points, DeskewMode::kNone, 0.1);
+  for (const TimedPoint& p : points) EXPECT_EQ(p.tau, 0.0);
+  retimeForDeskew(points, DeskewMode::kIndex, 0.0);  // the first scan: nothing before it
+  for (const TimedPoint& p : points) EXPECT_EQ(p.tau, 0.0);
+}
+
 TEST(Derotation, SpinningMotorIsTakenOutExactlyPerPoint) {
   // Base at rest at the world origin, so the base frame is the world frame: every de-rotated
   // point must land on the surface it was cast against.

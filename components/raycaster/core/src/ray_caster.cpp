@@ -75,25 +75,49 @@ const std::vector<PatternPoint>& RayCaster::pattern(std::uint64_t frame_index) {
   return cached_pattern_;
 }
 
-Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const BasePoseAt& base_pose_at,
-                          const MotorAngleAt& motor_angle_at) {
-  const std::vector<PatternPoint>& points = pattern(frame_index);
-  const auto max_range = static_cast<float>(config_.model.max_range);
-  const auto min_range = static_cast<float>(config_.model.min_range);
+double RayCaster::lastRayTime(double frame_start, const std::vector<PatternPoint>& points) const {
+  return config_.frame_timing == FrameTiming::kSnapshot ? frame_start : frame_start + lastTimeOffset(points);
+}
 
-  // Eq. 1 per point: the LiDAR's pose in the world at the point's own time,
-  //   T_WL(t) = T_WB(t) * T_BL(theta(t)),
-  // exact at knots 0.25 ms apart and interpolated in between (frames/pose_knots.hpp).
-  lidar_pose_.build(frame_start, frame_start + lastTimeOffset(points), [&](double t) {
+// Eq. 1 per point: the LiDAR's pose in the world at the point's own time,
+//   T_WL(t) = T_WB(t) * T_BL(theta(t)),
+// exact at knots 0.25 ms apart and interpolated in between (frames/pose_knots.hpp).
+void RayCaster::placeContinuousRays(double frame_start, const std::vector<PatternPoint>& points,
+                                    const BasePoseAt& base_pose_at, const MotorAngleAt& motor_angle_at) {
+  const auto max_range = static_cast<float>(config_.model.max_range);
+  lidar_pose_.build(frame_start, lastRayTime(frame_start, points), [&](double t) {
     return base_pose_at(t) * frames::lidarPoseInBase(motor_angle_at(t), config_.calibration);
   });
-  rays_.resize(points.size());
   lidar_pose_.placeRays(
       points.size(), [&](std::size_t k) { return frame_start + static_cast<double>(points[k].time_offset); },
       [&](std::size_t k) { return points[k].direction; },
       [&](std::size_t k, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction) {
         rays_[k] = {origin, direction, max_range};
       });
+}
+
+// Eq. 1 once for the whole frame, at its stamp: the reference simulator renders each frame from
+// the latest base pose and one motor angle (its speed_control_opengl_render_node.cpp).
+void RayCaster::placeSnapshotRays(double frame_start, const std::vector<PatternPoint>& points,
+                                  const BasePoseAt& base_pose_at, const MotorAngleAt& motor_angle_at) {
+  const auto max_range = static_cast<float>(config_.model.max_range);
+  const Eigen::Isometry3d T_WL =
+      base_pose_at(frame_start) * frames::lidarPoseInBase(motor_angle_at(frame_start), config_.calibration);
+  const Eigen::Vector3f origin = T_WL.translation().cast<float>();
+  const Eigen::Matrix3f R_WL = T_WL.linear().cast<float>();
+  for (std::size_t k = 0; k < points.size(); ++k) rays_[k] = {origin, R_WL * points[k].direction, max_range};
+}
+
+Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const BasePoseAt& base_pose_at,
+                          const MotorAngleAt& motor_angle_at) {
+  const std::vector<PatternPoint>& points = pattern(frame_index);
+  const auto min_range = static_cast<float>(config_.model.min_range);
+  const bool snapshot = config_.frame_timing == FrameTiming::kSnapshot;
+  rays_.resize(points.size());
+  if (snapshot)
+    placeSnapshotRays(frame_start, points, base_pose_at, motor_angle_at);
+  else
+    placeContinuousRays(frame_start, points, base_pose_at, motor_angle_at);
   if (config_.use_packets) {
     scene_.intersect(rays_, hits_, packet_order_);
   } else {
@@ -124,7 +148,7 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const B
     ScanPoint p;
     p.position = (blurred ? reportedDirection(points[k].direction, across) : points[k].direction) * range;
     p.intensity = 255.0f * std::abs(hit.normal.dot(rays_[k].direction));
-    p.time_offset = points[k].time_offset;
+    p.time_offset = snapshot ? 0.0f : points[k].time_offset;
     p.ring = points[k].ring;
     scan.points.push_back(p);
   }
@@ -134,7 +158,7 @@ Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const B
 Scan RayCaster::castFrame(std::uint64_t frame_index, double frame_start, const world::Trajectory& trajectory,
                           const frames::MotorAngleTrack& motor) {
   const std::vector<PatternPoint>& points = pattern(frame_index);
-  const double frame_end = frame_start + lastTimeOffset(points);
+  const double frame_end = lastRayTime(frame_start, points);
   std::ostringstream msg;
   msg.precision(17);
   if (!trajectory.contains(frame_start) || !trajectory.contains(frame_end)) {

@@ -130,6 +130,40 @@ TEST(RayCaster, WorksFromTrajectoryAndEncoderTrackAndTheMotorTurnsDuringTheFrame
   EXPECT_THROW(caster.castFrame(0, 4.85, trajectory, motor), std::out_of_range);
 }
 
+// Snapshot frames (the reference simulator's): every point at offset 0, cast from the pose at the
+// frame's stamp, so that placing them with the stamp's pose alone lands them on the plane, and
+// with each continuous-frame point's own time would not. The same rays as a continuous frame of a
+// rig that stands still.
+TEST(RayCaster, SnapshotFramesCastEveryRayFromThePoseAtTheStamp) {
+  RayCasterConfig config;
+  config.frame_timing = FrameTiming::kSnapshot;
+  RayCaster caster(groundPlane(), config);
+  const double start = 5.0;
+  const world::Trajectory trajectory = movingTrajectory(4.9, 5.2);
+  const MotorAngleTrack motor = motorTrack(4.9, 5.2);
+  const Scan scan = caster.castFrame(3, start, trajectory, motor);
+  ASSERT_GT(scan.points.size(), 1000u);
+  const auto calibration = MotorLidarCalibration::referenceRig();
+  for (const auto& p : scan.points) {
+    ASSERT_EQ(p.time_offset, 0.0f);
+    const Eigen::Vector3d p_W =
+        frames::lidarToWorld(p.position.cast<double>(), *motor.thetaAt(start), calibration, trajectory.poseAt(start));
+    ASSERT_LT(std::abs(p_W.z()), 1e-3);
+  }
+  // It needs the trajectory and the encoder at the stamp only, not over the frame.
+  const world::Trajectory short_trajectory = movingTrajectory(4.9, 5.02);
+  const MotorAngleTrack short_motor = motorTrack(4.9, 5.02);
+  EXPECT_NO_THROW(caster.castFrame(4, start, short_trajectory, short_motor));
+
+  // A rig standing still: a snapshot is the continuous frame with its offsets dropped.
+  auto still = [](double) { return movingBase(0.0); };
+  auto stopped = [](double) { return 0.7; };
+  RayCaster continuous(groundPlane(), RayCasterConfig{});
+  const Scan a = caster.castFrame(0, 0.0, still, stopped), b = continuous.castFrame(0, 0.0, still, stopped);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t k = 0; k < a.points.size(); ++k) ASSERT_LT((a.points[k].position - b.points[k].position).norm(), 1e-4);
+}
+
 TEST(RayCaster, RangeLimits) {
   // The plane 50 m below: beyond max_range, nothing returns.
   auto high = [](double) {

@@ -91,4 +91,17 @@ std::vector<Eigen::Vector3d> deskewToWorld(const std::vector<TimedPoint>& points
 // The middle of the points' time span, (earliest + latest) / 2; 0 for no points.
 double middleTime(const std::vector<TimedPoint>& points);
 
+// Which time places a point in the deskew. kTime: its own (the driver's per-point time; ours).
+// kIndex: its place in the frame, spread evenly from the previous scan's end to this one's, as
+// I2EKF-LO does with the reference simulator's frames, whose points carry index-made times
+// (its preprocess gives point i the time i * 1e-9 ms and its deskew interpolates between the two
+// poses by that share); a snapshot frame then comes out distorted by the motion since the last
+// scan. kNone: every point at the scan's end.
+enum class DeskewMode { kTime, kIndex, kNone };
+
+// The points' tau set as `mode` says; since_previous_scan (s) is the time from the previous
+// scan's end to this one's (kIndex only; <= 0 for the first scan: every tau 0). The points stay in
+// the order the frame delivered them.
+void retimeForDeskew(std::vector<TimedPoint>& points, DeskewMode mode, double since_previous_scan);
+
 }  // namespace uampc::lo

@@ -67,6 +67,13 @@
 
 namespace uampc::lo {
 
+// Which correspondences the update keeps. kResidual (ours): every one until the iterations
+// converge, then those within the residual gate below. kRangeScaled (FAST-LIO2's and I2EKF-LO's,
+// laserMapping.cpp): at every association, a plane only if s = 1 - 0.9 |z| / sqrt(|p|) > 0.9,
+// |z| the point's residual and |p| its range, so a far point may lie farther off its plane; no
+// residual gate.
+enum class AssociationGate { kResidual, kRangeScaled };
+
 struct UpdateOptions {
   std::size_t nearest_neighbours = 5;
   double plane_max_point_distance = 0.1;  // m
@@ -81,7 +88,8 @@ struct UpdateOptions {
   double reassociation_rotation = 3e-3;     // rad
   double reassociation_translation = 3e-2;  // m
   std::size_t min_correspondences = 30;     // fewer: the update is skipped
-  // Residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
+  AssociationGate association_gate = AssociationGate::kResidual;
+  // kResidual: residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
   double min_residual_gate = 0.05;  // m
   // Skip a plane whose map points were mostly seen from its other side (see the header).
   bool match_seen_side_only = true;

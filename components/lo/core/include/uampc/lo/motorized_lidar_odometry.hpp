@@ -60,6 +60,12 @@ struct OdometryConfig {
   int map_mean_points = 20;
   double map_radius = 60.0;      // m, voxels farther than this from the base are dropped
 
+  // Which time places each point in the deskew (deskew.hpp): its own by default; the reference's
+  // LO places them by index (docs/results/table-1-reference-regime.md).
+  DeskewMode deskew = DeskewMode::kTime;
+  AssociationGate association_gate = AssociationGate::kResidual;  // iterated_ekf.hpp
+  bool match_seen_side_only = true;  // docs/decisions/lo-seen-side-planes.md; I2EKF-LO has no such check
+
   std::size_t nearest_neighbours = 5;
   double plane_max_point_distance = 0.1;  // m, a plane is rejected if a neighbour is farther off
   // A plane is rejected if its points spread along their narrower in-plane direction less than
@@ -68,7 +74,7 @@ struct OdometryConfig {
   // they were the x-facing planes near the sensor (docs/results/lo-degenerate-geometry.md, "The
   // plain corridor"). Off until measured on every world.
   double plane_min_spread_ratio = 0.0;
-  double max_neighbour_distance = 1.0;    // m
+  double max_neighbour_distance = 1.0;    // m, the k-th neighbour must be closer (I2EKF-LO: sqrt(5))
   double measurement_variance = 0.001;    // m^2
   // Velocity random walk densities of the constant-velocity model, linear and angular (they can
   // be set apart). 0.1 for both: hand-held rigs (MCD KTH and TUHH) change their yaw rate by

@@ -1,8 +1,12 @@
 // The simulated motorized LiDAR: renders one frame of a LiDAR spun by a motor.
 //
-// Every pattern point is cast at its own time t_i = frame_start + time_offset_i, from the pose
+// Continuous frames (the default): every pattern point is cast at its own time
+// t_i = frame_start + time_offset_i, from the pose
 //   T_WL(t_i) = T_WB(t_i) * T_BL(theta(t_i)),   T_BL = lidarPoseInBase(theta, calibration)  (Eq. 1)
-// so both the base motion and the motor turning during the frame shape the scan. The first hit
+// so both the base motion and the motor turning during the frame shape the scan. Snapshot frames
+// (the paper's reference simulator, docs/results/table-1-reference-regime.md): every point is cast
+// from the one pose T_WL(frame_start) and carries time offset 0; the motor still turns between
+// frames. The first hit
 // within [min_range, max_range] is kept (a nearer hit hides what lies behind, and is dropped if
 // closer than min_range, as a real sensor returns nothing then), range noise and dropout are
 // applied, and the point is returned in the LiDAR frame at that time.
@@ -22,6 +26,10 @@
 
 namespace uampc::raycaster {
 
+// When a frame's rays are cast: each at its own time (a real spinning or scanning LiDAR), or all
+// at the frame's stamp from one pose (the reference simulator's rendered snapshots).
+enum class FrameTiming { kContinuous, kSnapshot };
+
 struct RayCasterConfig {
   lidar::LidarModel model = lidar::livoxMid360();
   frames::MotorLidarCalibration calibration = frames::MotorLidarCalibration::referenceRig();
@@ -32,6 +40,7 @@ struct RayCasterConfig {
   std::uint64_t seed = 0;             // noise and dropout; frame k uses a seed mixed from (seed, k)
   float point_radius = 0.05f;         // m, splats of point maps (see RayCastScene)
   bool use_packets = true;            // cast in packets (RayCastScene::kPacketSize rays; same result, faster)
+  FrameTiming frame_timing = FrameTiming::kContinuous;
 };
 
 // One return, in the LiDAR frame at its own time (docs/dev/architecture.md section 4, scan fields).
@@ -89,6 +98,12 @@ class RayCaster {
   frames::PoseKnots lidar_pose_;  // T_WL over the frame being cast
   std::vector<Hit> hits_;
   const std::vector<PatternPoint>& pattern(std::uint64_t frame_index);
+  // The time of the frame's last ray: frame_start itself for a snapshot.
+  double lastRayTime(double frame_start, const std::vector<PatternPoint>& points) const;
+  void placeContinuousRays(double frame_start, const std::vector<PatternPoint>& points, const BasePoseAt& base_pose_at,
+                           const MotorAngleAt& motor_angle_at);
+  void placeSnapshotRays(double frame_start, const std::vector<PatternPoint>& points, const BasePoseAt& base_pose_at,
+                         const MotorAngleAt& motor_angle_at);
 };
 
 }  // namespace uampc::raycaster
