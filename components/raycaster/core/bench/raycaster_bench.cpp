@@ -25,10 +25,12 @@ const world::Trajectory& campusLoop() {
 }
 
 // Frames along the campus loop, the motor at 3.6 rad/s; time per frame and rays per second.
-void castFrames(benchmark::State& state, const lidar::LidarModel& model, bool packets, bool noisy = false) {
+void castFrames(benchmark::State& state, const lidar::LidarModel& model, bool packets, bool noisy = false,
+                FrameTiming timing = FrameTiming::kContinuous) {
   RayCasterConfig config;
   config.model = model;
   config.use_packets = packets;
+  config.frame_timing = timing;
   if (noisy) {  // the model's datasheet precision, as the paper scenes set it
     config.range_noise_stddev = model.range_precision;
     config.angular_noise_stddev = model.angular_precision_deg * M_PI / 180.0;
@@ -57,11 +59,16 @@ void BM_Mid360FramePackets(benchmark::State& s) { castFrames(s, lidar::livoxMid3
 void BM_Mid360FrameSingleRays(benchmark::State& s) { castFrames(s, lidar::livoxMid360(), false); }
 // With range and angular noise: three normal draws per ray (Box-Muller, a log and a cosine each).
 void BM_Mid360FrameNoisy(benchmark::State& s) { castFrames(s, lidar::livoxMid360(), true, true); }
+// Snapshot frames (the reference simulator's): one pose per frame instead of knots over it.
+void BM_Mid360FrameSnapshot(benchmark::State& s) {
+  castFrames(s, lidar::livoxMid360(), true, false, FrameTiming::kSnapshot);
+}
 void BM_Vlp16Frame(benchmark::State& s) { castFrames(s, lidar::velodyneVlp16(), true); }
 void BM_AviaFrame(benchmark::State& s) { castFrames(s, lidar::livoxAvia(), true); }
 BENCHMARK(BM_Mid360FramePackets)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Mid360FrameSingleRays)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Mid360FrameNoisy)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Mid360FrameSnapshot)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Vlp16Frame)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AviaFrame)->Unit(benchmark::kMillisecond);
 
