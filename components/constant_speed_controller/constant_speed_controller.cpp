@@ -9,7 +9,8 @@ class ConstantSpeedController : public Component {
  public:
   static void describe(ComponentSpec& spec) {
     spec.summary = "Commands a constant motor speed (the paper's baseline; 0 gives zero speed)";
-    spec.output<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "speed command, rad/s");
+    spec.output<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "speed command, rad/s")
+        .soleWriter();
     spec.param("speed", 3.6, "commanded speed, rad/s").between(-1000.0, 1000.0);
     spec.param("rate", 10.0, "command rate, Hz (the motor bridge falls back if commands stop)")
         .between(0.01, 10000.0);

@@ -115,6 +115,26 @@ std::string writeScene(const std::string& dir, const std::string& name, const st
   return path;
 }
 
+// Two writers of a topic that needs one are an error (tests/scenes/invalid/two_motor_commands.yaml);
+// of any other topic, a warning: two motor bridges' /motor/state is an error, two evaluators'
+// /evaluator/metrics only interleave. Before, both passed validation silently.
+TEST(SceneValidation, TwoWritersOfOneTopicAreAnErrorOrAWarning) {
+  const std::string dir = freshDirectory("validation_two_writers");
+  const std::string two_worlds = writeScene(dir, "two_worlds.yaml",
+                                            "components:\n  a:\n    type: map_provider\n  b:\n    type: map_provider\n");
+  CommandResult r = runUampc("validate " + two_worlds);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("2 components write /ground_truth/pose: a.ground_truth, b.ground_truth"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("2 components write /world/mesh"), std::string::npos) << r.output;
+  const std::string two_evaluators = writeScene(
+      dir, "two_evaluators.yaml", "components:\n  e1:\n    type: evaluator\n  e2:\n    type: evaluator\n");
+  r = runUampc("validate " + two_evaluators);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: 2 components write /evaluator/metrics: e1.metrics, e2.metrics"), std::string::npos)
+      << r.output;
+}
+
 TEST(SceneValidation, PortReferenceChainsResolveToTheirEndInAnyOrder) {
   // Four references in a row, written top-down and bottom-up: every reader ends on the motor's
   // /enc/state (one pass in file order left evaluator on lo's default topic).

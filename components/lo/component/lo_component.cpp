@@ -37,7 +37,8 @@ class LoComponent : public Component {
     spec.input<geometry_msgs::msg::PoseStamped>("initial_pose", "/ground_truth/pose", QosPreset::kControl,
                                                 "start pose (first sample used when init_from_pose is true)");
     spec.output<nav_msgs::msg::Odometry>("odometry", "/lo/odometry", QosPreset::kControl,
-                                         "base pose and twist with covariance at the scan end");
+                                         "base pose and twist with covariance at the scan end")
+        .soleWriter();
     spec.output<sensor_msgs::msg::PointCloud2>("registered", "/lo/registered", QosPreset::kSensor,
                                                "the scan, deskewed, in the world frame");
     spec.output<sensor_msgs::msg::PointCloud2>("local_map", "/lo/local_map", QosPreset::kSensor,

@@ -24,12 +24,13 @@ class MapProvider : public Component {
  public:
   static void describe(ComponentSpec& spec) {
     spec.summary = "Serves the world (procedural or a PCD/PLY map) and plays the ground-truth trajectory";
-    spec.output<msg::WorldMesh>("world", "/world/mesh", QosPreset::kLatched, "world surfaces, in chunks");
+    spec.output<msg::WorldMesh>("world", "/world/mesh", QosPreset::kLatched, "world surfaces, in chunks").soleWriter();
     spec.output<sensor_msgs::msg::PointCloud2>("map", "/world/points", QosPreset::kLatched,
                                                "point sample of the world, for viewers")
         .forViewers();
     spec.output<geometry_msgs::msg::PoseStamped>("ground_truth", "/ground_truth/pose", QosPreset::kControl,
-                                                 "ground-truth base pose T_WB at sim time");
+                                                 "ground-truth base pose T_WB at sim time")
+        .soleWriter();
     world::WorldSettings defaults;
     ParameterBinding binding(spec);
     bindWorldParameters(binding, defaults);

@@ -22,7 +22,8 @@ class MotorBridge : public Component {
     spec.summary = "Drives the motor from speed commands and publishes its encoder state";
     spec.input<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "speed commands, rad/s");
     spec.output<sensor_msgs::msg::JointState>("state", "/motor/state", QosPreset::kControl,
-                                              "encoder state: position = theta (rad, multi-turn), velocity = omega");
+                                              "encoder state: position = theta (rad, multi-turn), velocity = omega")
+        .soleWriter();
     spec.param("backend", "sim", "motor backend: 'sim' simulates the motor; 'dynamixel' drives an X-series servo")
         .oneOf({"sim", "dynamixel"});
     spec.param("joint_name", "motor", "name of the joint in the published JointState");

@@ -28,7 +28,8 @@ class MpcComponent : public Component {
     spec.input<sensor_msgs::msg::PointCloud2>("local_map", "/lo/local_map", QosPreset::kSensor,
                                               "the LO's local map, world frame");
     spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
-    spec.output<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "speed command, rad/s");
+    spec.output<msg::MotorCommand>("command", "/motor/command", QosPreset::kControl, "speed command, rad/s")
+        .soleWriter();
     spec.output<msg::UncertaintyProfile>("profile", "/mpc/uncertainty", QosPreset::kSensor,
                                          "U samples over one turn, planned horizon, predicted U");
     spec.output<sensor_msgs::msg::Image>("panorama", "/mpc/panorama", QosPreset::kSensor,

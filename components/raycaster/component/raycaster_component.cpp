@@ -35,7 +35,8 @@ class RaycasterComponent : public Component {
                                                 "ground-truth base pose");
     spec.input<sensor_msgs::msg::JointState>("motor_state", "/motor/state", QosPreset::kControl, "encoder states");
     spec.output<sensor_msgs::msg::PointCloud2>("scan", "/lidar/points", QosPreset::kSensor,
-                                               "one frame, LiDAR frame, per-point time t");
+                                               "one frame, LiDAR frame, per-point time t")
+        .soleWriter();
     spec.output<sensor_msgs::msg::Imu>("imu", "/lidar/imu", QosPreset::kSensor,
                                        "IMU in the LiDAR frame, turning with the motor (with imu: true)");
     adapters::declareLidarModelParameters(spec);

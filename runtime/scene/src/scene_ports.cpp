@@ -223,6 +223,25 @@ void resolveScenePorts(Scene& scene, std::vector<std::string>& errors) {
   }
 }
 
+// Two writers on one topic: an error where one of their ports must be the topic's only writer
+// (PortSpec::sole_writer), a warning otherwise (their samples interleave).
+template <class WhereSet>
+void checkWriterCount(Scene& scene, const std::string& topic, const std::vector<Binding>& writers,
+                      const WhereSet& whereSet, std::vector<std::string>& errors) {
+  if (writers.size() < 2) return;
+  const auto sole =
+      std::find_if(writers.begin(), writers.end(), [](const Binding& b) { return b.port->sole_writer; });
+  const std::string what = std::to_string(writers.size()) + " components write " + topic + ": " + portList(writers);
+  if (sole != writers.end()) {
+    errors.push_back(diagnostic(whereSet(writers[1]), "error",
+                                what + "; " + sole->key() + " must be its only writer (give the others another "
+                                       "topic under `topics:`, or remove them)"));
+  } else {
+    scene.warnings.push_back(
+        diagnostic(whereSet(writers[1]), "warning", what + " (their samples interleave on the topic)"));
+  }
+}
+
 // An input whose topic no component of the scene writes is an error only when the scene itself
 // remapped that port (an explicit `topics:` entry): there the topic was typed by hand, and a typo
 // such as /lo/odometri would leave the reader waiting forever. With the port's own default topic it
@@ -252,6 +271,7 @@ void checkConnections(Scene& scene, const std::map<std::string, SourceLocation>&
                                   "topic " + topic + " connects ports of different types: " + first.key() + " (" +
                                       first.port->type_name + ") and " + b.key() + " (" + b.port->type_name + ")"));
     }
+    checkWriterCount(scene, topic, writers, whereSet, errors);
     const bool fed_or_unused = listed(scene.external_topics, topic) || unused_inputs.count(topic);
     if (writers.empty() && !fed_or_unused) {
       const auto typed =

@@ -29,9 +29,17 @@ struct PortSpec {
   // An output for viewers and tools (TF, a map to look at, running metrics): that nobody in the
   // scene reads it is expected, not a mistake worth a warning.
   bool for_viewers = false;
+  // An output whose topic must have no other writer in the scene (a motor command, a world, a
+  // pose): a second writer on it is a validation error, not a warning. Two controllers on
+  // /motor/command would both drive the motor; two worlds on /ground_truth/pose lose the LO.
+  bool sole_writer = false;
 
   PortSpec& forViewers() {
     for_viewers = true;
+    return *this;
+  }
+  PortSpec& soleWriter() {
+    sole_writer = true;
     return *this;
   }
 };
