@@ -142,7 +142,9 @@ class AckFollower {
 std::string noAcknowledgement(const char* what, const std::string& late, SteadyClock::duration timeout) {
   return std::string("no ") + what + " from process(es) " + late + " within " +
          std::to_string(std::chrono::duration<double>(timeout).count()) +
-         " s of wall time (clock.ack_timeout; at least 30 s at the start); a component is hung or far too slow";
+         " s of wall time (clock.ack_timeout; at least 30 s at the start); a component is hung or far too slow (at the "
+         "start, a large point map may still be building: raise clock.ack_timeout, or coarsen "
+         "world.point_map_resolution)";
 }
 
 }  // namespace
