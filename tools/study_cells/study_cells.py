@@ -3,14 +3,16 @@
 rule needs (docs/results/point-map-regime.md, "The study").
 
   tools/study_cells/study_cells.py OUT_DIR/results.json --cell NAME=REGEX [--cell ...]
-                                   [--subject ua_mpc] [--baseline constant_3.6]
+                                   [--subject ua_mpc] [--baseline constant_3.6] [--ate unaligned|aligned]
 
 A cell is the scenes whose name matches REGEX (e.g. --cell 'Mid-360, point map=_pm_mid360$'). Per
 cell, over the pairs (same scene and seed, both runs finished with an ATE): losses of track of each
 controller, the summed ATE ratio (subject / baseline), the median paired ATE ratio with its
 distribution-free 95 % interval (order statistics of the paired log ratios, from the binomial
 distribution), the exact two-sided Wilcoxon signed-rank p of the log ratios, the median paired CMPLT
-ratio, and the baseline's median ATE. Prints a Markdown table. Exit codes: 0 printed, 2 bad input.
+ratio, and the baseline's median ATE. The ATE is the unaligned one (our studies') or, with --ate
+aligned, the one after a rigid alignment over the whole path (the paper's Table I, as its reference's
+plot_ate.py computes it). Prints a Markdown table. Exit codes: 0 printed, 2 bad input.
 """
 import argparse
 import itertools
@@ -60,7 +62,10 @@ def wilcoxon_p(values):
     return count / 2 ** n
 
 
-def cell_figures(runs, pattern, subject, baseline):
+ATE_KEYS = {"unaligned": "ate_m", "aligned": "ate_aligned_m"}
+
+
+def cell_figures(runs, pattern, subject, baseline, ate_key="ate_m"):
     by_key = {}
     for r in runs:
         if re.search(pattern, r["scene"]):
@@ -73,16 +78,16 @@ def cell_figures(runs, pattern, subject, baseline):
     for scene, seed in keys:
         a, b = by_key.get((scene, seed, subject)), by_key.get((scene, seed, baseline))
         for name, run in ((subject, a), (baseline, b)):
-            if run and run.get("ate_m") is not None:
+            if run and run.get(ate_key) is not None:
                 finished[name] += 1
                 if run.get("lost_track_at_s") is not None:
                     lost[name] += 1
                     lost_at[name].append(run["lost_track_at_s"])
-        if a and b and a.get("ate_m") and b.get("ate_m"):
+        if a and b and a.get(ate_key) and b.get(ate_key):
             pairs.append((a, b))
     if not pairs:
         return None
-    logs = [math.log(a["ate_m"] / b["ate_m"]) for a, b in pairs]
+    logs = [math.log(a[ate_key] / b[ate_key]) for a, b in pairs]
     low, high = median_interval(logs) or (float("nan"), float("nan"))
     cmplt = [a["cmplt"] / b["cmplt"] for a, b in pairs if a.get("cmplt") and b.get("cmplt")]
     return {
@@ -90,12 +95,12 @@ def cell_figures(runs, pattern, subject, baseline):
         "lost": lost,
         "median_lost_at": {k: statistics.median(v) if v else None for k, v in lost_at.items()},
         "finished": finished,
-        "sum_ratio": sum(a["ate_m"] for a, _ in pairs) / sum(b["ate_m"] for _, b in pairs),
+        "sum_ratio": sum(a[ate_key] for a, _ in pairs) / sum(b[ate_key] for _, b in pairs),
         "median_ratio": math.exp(statistics.median(logs)),
         "interval": (math.exp(low), math.exp(high)),
         "p": wilcoxon_p(logs),
         "cmplt_ratio": statistics.median(cmplt) if cmplt else float("nan"),
-        "baseline_median_ate": statistics.median(b["ate_m"] for _, b in pairs),
+        "baseline_median_ate": statistics.median(b[ate_key] for _, b in pairs),
     }
 
 
@@ -105,6 +110,7 @@ def main(argv):
     parser.add_argument("--cell", action="append", required=True, metavar="NAME=REGEX")
     parser.add_argument("--subject", default="ua_mpc")
     parser.add_argument("--baseline", default="constant_3.6")
+    parser.add_argument("--ate", choices=sorted(ATE_KEYS), default="unaligned")
     args = parser.parse_args(argv[1:])
     try:
         runs = json.load(open(args.results))["runs"]
@@ -117,7 +123,7 @@ def main(argv):
     print("|---|---|---|---|---|---|---|---|---|")
     for cell in args.cell:
         name, _, pattern = cell.partition("=")
-        f = cell_figures(runs, pattern, s, b)
+        f = cell_figures(runs, pattern, s, b, ATE_KEYS[args.ate])
         if f is None:
             print(f"| {name} | 0 | | | | | | | |")
             continue

@@ -36,6 +36,12 @@ class StudyCells(unittest.TestCase):
         self.assertAlmostEqual(f["cmplt_ratio"], 0.99)
         self.assertTrue(math.isclose(f["baseline_median_ate"], 4.0))
 
+    def test_aligned_ate_is_read_when_asked(self):
+        runs = [{"scene": "A", "seed": 1, "controller": "u", "ate_m": 1.0, "ate_aligned_m": 3.0, "cmplt": 1.0},
+                {"scene": "A", "seed": 1, "controller": "c", "ate_m": 4.0, "ate_aligned_m": 6.0, "cmplt": 1.0}]
+        self.assertAlmostEqual(study_cells.cell_figures(runs, "A", "u", "c")["sum_ratio"], 0.25)
+        self.assertAlmostEqual(study_cells.cell_figures(runs, "A", "u", "c", "ate_aligned_m")["sum_ratio"], 0.5)
+
 
 if __name__ == "__main__":
     unittest.main()
