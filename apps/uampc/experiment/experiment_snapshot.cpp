@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "uampc/runtime/file_checks.hpp"
 #include "uampc/run_files/text_file.hpp"
+#include "uampc/runtime/file_checks.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -15,7 +15,8 @@ namespace uampc::app {
 
 namespace {
 
-constexpr int kSnapshotVersion = 1;
+// 2: every run's scene end (end_s, step_s), which what counts as done needs (run_completion.hpp).
+constexpr int kSnapshotVersion = 2;
 
 json toJson(const Experiment& e) {
   json scenes = json::array(), controllers = json::array();
@@ -33,8 +34,8 @@ json toJson(const Experiment& e) {
 }
 
 json toJson(const PlannedRun& r) {
-  return {{"scene", r.scene}, {"controller", r.controller}, {"seed", r.seed}, {"directory", r.directory},
-          {"args", r.args}};
+  return {{"scene", r.scene}, {"controller", r.controller}, {"seed", r.seed},        {"directory", r.directory},
+          {"args", r.args},   {"end_s", r.end.duration_s},  {"step_s", r.end.step_s}};
 }
 
 Experiment experimentFrom(const json& j) {
@@ -63,6 +64,7 @@ PlannedRun runFrom(const json& j, const Experiment& e) {
   r.seed = j.at("seed").get<std::uint64_t>();
   r.directory = j.at("directory").get<std::string>();
   r.args = j.at("args").get<std::vector<std::string>>();
+  r.end = {j.at("end_s").get<double>(), j.at("step_s").get<double>()};
   if (r.scene >= e.scenes.size() || r.controller >= e.controllers.size()) {
     throw std::out_of_range("run " + r.directory + " names a scene or controller the experiment does not have");
   }
@@ -89,7 +91,9 @@ ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory) {
     const json j = json::parse(run_files::readTextFile(path));
     if (j.at("version").get<int>() != kSnapshotVersion) {
       throw ExperimentError({path + ": error: version " + j.at("version").dump() + ", this uampc reads version " +
-                             std::to_string(kSnapshotVersion)});
+                             std::to_string(kSnapshotVersion) +
+                             " (plan it again: `uampc experiment EXPERIMENT.yaml --out " + output_directory +
+                             " --plan-only` keeps the runs)"});
     }
     ExperimentSnapshot snapshot;
     snapshot.experiment = experimentFrom(j.at("experiment"));

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <optional>
 
-#include "experiment/experiment_command.hpp"
 #include "experiment/backends/experiment_runner.hpp"
+#include "experiment/experiment_command.hpp"
 #include "experiment/experiment_snapshot.hpp"
 #include "uampc/runtime/domain_run_lock.hpp"
 #include "uampc/runtime/stop_signals.hpp"
@@ -77,7 +77,7 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
   }
   const PlannedRun& run = snapshot.plan[static_cast<std::size_t>(task_index)];
   const std::string directory = (fs::path(output_directory) / run.directory).string();
-  if (isRunComplete(directory)) {
+  if (isRunComplete(directory, run.end)) {
     std::cerr << prefix << run.directory << " finished before; nothing to do\n";
     return 0;
   }
@@ -100,7 +100,7 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
   const int status = waitForRun(children);
   RunResult result;
   const std::string error = recordRunEnd(directory, status, std::chrono::duration<double>(Clock::now() - start).count(),
-                                         stopRequested(), result);
+                                         stopRequested(), run.end, result);
   std::cerr << prefix << run.directory << " " << statusName(result.status)
             << (result.failure.empty() ? "" : " (" + result.failure + ")") << "\n";
   if (!error.empty()) {

@@ -15,8 +15,9 @@
 
 namespace uampc::app {
 
-// Exit codes: 0 the run finished, 1 it failed (its failed marker says why), 2 DIR or K is wrong,
-// 3 no free DDS domain on this node, 130 stopped by SIGINT/SIGTERM (Slurm's scancel or time limit).
+// Exit codes: 0 the run finished (run_completion.hpp), 1 it failed or was cut short (its failed
+// marker says why), 2 DIR or K is wrong, 3 no free DDS domain on this node, 130 stopped by
+// SIGINT/SIGTERM (Slurm's scancel or time limit).
 int experimentTaskCommand(const std::string& output_directory, long task_index, int domain_base);
 
 }  // namespace uampc::app
