@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
+#include "experiment/output_lock.hpp"
 #include "experiment/run_completion.hpp"
 #include "report/report_page.hpp"
 #include "report/results_table.hpp"
@@ -80,6 +82,8 @@ int collectCommand(const std::string& output_directory) {
     for (const auto& m : e.messages()) std::cerr << "uampc experiment --collect: " << m << "\n";
     return 2;
   }
+  const std::optional<FileLock> lock = lockOutputDirectory(output_directory, "uampc experiment --collect");
+  if (!lock) return 2;
   const std::vector<RunResult> results = collectRuns(snapshot, output_directory);
   std::size_t finished = 0;
   for (const RunResult& r : results) finished += r.finished();

@@ -21,7 +21,8 @@ std::vector<RunResult> collectRuns(const ExperimentSnapshot& snapshot, const std
 int writeExperimentOutputs(const Experiment& experiment, const std::vector<RunResult>& results,
                            const std::string& output_directory);
 
-// `uampc experiment --collect DIR`: 2 when DIR holds no readable experiment.json.
+// `uampc experiment --collect DIR`: 2 when DIR holds no readable experiment.json, or another
+// command holds DIR (output_lock.hpp).
 int collectCommand(const std::string& output_directory);
 
 }  // namespace uampc::app

@@ -13,11 +13,13 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <thread>
 
 #include "experiment/experiment_eta.hpp"
+#include "experiment/run_attempt.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/text_file.hpp"
 #include "uampc/runtime/child_processes.hpp"
@@ -101,6 +103,7 @@ struct Running {
   std::size_t run;
   int slot;
   Clock::time_point start;
+  FileLock attempt;  // the run's, until its end is recorded (run_attempt.hpp)
 };
 
 // This process's environment with the run's progress file named in it (the clock writes it).
@@ -184,8 +187,6 @@ RunResult plannedResult(const Experiment& experiment, const PlannedRun& run) {
 
 pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
                const std::string& directory, int domain_id) {
-  fs::remove_all(directory);  // no stale file of an earlier attempt may pass for this one's
-  fs::create_directories(directory);
   std::vector<std::string> args = run.args;
   args.insert(args.end(), {"--out", directory, "--set", "domain_id=" + std::to_string(domain_id)});
   return children.start(runCommand(executable, args, directory));
@@ -267,9 +268,9 @@ class Scheduler {
       }
       const auto found = running_.find(exit->pid);
       if (found == running_.end()) continue;  // not a run (the pool only holds runs; kept safe)
-      const Running done = found->second;
+      const Running done = std::move(found->second);
       running_.erase(found);
-      collect(done, exit->status);
+      collect(done, exit->status);  // its attempt's lock is released after its end is recorded
       report(true);
     }
     progress.finish();
@@ -292,7 +293,7 @@ class Scheduler {
         if (r.metrics.sim_time_s > 0) scene_length_s_[plan_[i].scene] = r.metrics.sim_time_s;
         continue;
       }
-      r.retried = fs::exists(dir) && !fs::is_empty(dir);
+      r.retried = holdsAnAttempt(dir.string());
       if (r.retried) retry_reasons_[i] = before;
       pending_.push_back(i);
     }
@@ -336,8 +337,11 @@ class Scheduler {
       const int slot = freeSlot();
       if (slot < 0) return;
       const std::size_t i = pending_[next_++];
+      std::optional<FileLock> attempt;
       pid_t pid = -1;
       try {
+        attempt = beginAttemptAt(i);
+        if (!attempt) continue;
         pid = startRun(children_, options_.executable, plan_[i], directoryOf(i).string(), options_.domain_base + slot);
       } catch (const fs::filesystem_error& e) {
         results_[i].status = RunStatus::kNotRun;
@@ -349,8 +353,25 @@ class Scheduler {
         continue;
       }
       slot_busy_[static_cast<std::size_t>(slot)] = true;
-      running_[pid] = {i, slot, Clock::now()};
+      running_.emplace(pid, Running{i, slot, Clock::now(), std::move(*attempt)});
     }
+  }
+
+  // The run held for this experiment and emptied; nullopt, with the run's result said, when
+  // another attempt holds it (left alone, not run) or it cannot be held (failed).
+  std::optional<FileLock> beginAttemptAt(std::size_t i) {
+    AttemptStart start = beginAttempt(options_.output_directory, plan_[i], thisProcess() + " (uampc experiment)");
+    if (start.lock) return std::move(start.lock);
+    RunResult& r = results_[i];
+    if (!start.held_by.empty()) {
+      r.status = RunStatus::kNotRun;
+      r.failure = "being run by " + start.held_by;
+      ++finished_now_;
+      progress_->say("experiment: " + plan_[i].directory + " left alone: it is " + r.failure);
+    } else {
+      fail(i, start.error);
+    }
+    return std::nullopt;
   }
 
   // A run that failed before it started.

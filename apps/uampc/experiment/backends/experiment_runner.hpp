@@ -5,7 +5,8 @@
 //
 // Resume: a done run (run_completion.hpp: `uampc launch` exited 0 and its metrics reached the
 // scene's end) is not run again. Anything else in a run directory is an unfinished, failed or cut
-// short run: its directory is emptied and the run retried.
+// short run: its directory is emptied and the run retried, by an attempt that holds the run
+// (run_attempt.hpp), so that no other experiment or --run-task clears it meanwhile.
 #pragma once
 
 #include <sys/types.h>
@@ -47,9 +48,8 @@ struct RunnerOptions {
 RunResult plannedResult(const Experiment& experiment, const PlannedRun& run);
 
 // Starts one run as `executable launch ... --out directory --set domain_id=D`, its stdout and
-// stderr into the directory's run.log, after emptying the directory. Returns its pid; throws
-// std::filesystem::error naming the directory when it cannot be emptied or created, and
-// std::system_error when no process can be started.
+// stderr into the directory's run.log; the directory is an attempt's (beginAttempt, emptied and
+// held). Returns its pid; throws std::system_error when no process can be started.
 pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
                const std::string& directory, int domain_id);
 
