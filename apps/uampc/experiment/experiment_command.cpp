@@ -18,6 +18,7 @@
 #include "experiment/experiment_snapshot.hpp"
 #include "experiment/experiment_task.hpp"
 #include "experiment/output_lock.hpp"
+#include "experiment/plan_directories.hpp"
 #include "experiment/run_completion.hpp"
 #include "experiment/run_results.hpp"
 #include "uampc/runtime/file_checks.hpp"
@@ -221,6 +222,10 @@ int runExperiment(const ExperimentOptions& options) {
   const std::optional<FileLock> lock =
       lockOutputDirectory(options.output_directory, "uampc experiment " + options.experiment_file);
   if (!lock) return 2;
+  if (const std::string problem = planDirectoriesProblem(options.output_directory, snapshot.plan); !problem.empty()) {
+    std::cerr << "uampc experiment: " << problem << "; nothing was run\n";
+    return 2;
+  }
   if (options.backend == "local" && !options.plan_only) {
     return writeOutcome(snapshot.experiment, runLocally(snapshot, options), options.output_directory);
   }

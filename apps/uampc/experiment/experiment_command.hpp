@@ -43,8 +43,9 @@ struct ExperimentOptions {
 std::string experimentOptionsError(const ExperimentOptions& options);
 
 // Exit codes: 0 every run finished (run_completion.hpp: exited 0 and reached its scene's end), 1 a
-// run failed, was cut short or did not finish, 2 invalid experiment or --out held by another
-// experiment (output_lock.hpp), 130 Ctrl-C (what finished is still written to the results). --collect
+// run failed, was cut short or did not finish, 2 invalid experiment, --out held by another
+// experiment (output_lock.hpp) or a plan whose run directories are not inside --out/runs
+// (plan_directories.hpp), 130 Ctrl-C (what finished is still written to the results). --collect
 // and --run-task are dispatched to their own commands.
 int experimentCommand(const ExperimentOptions& options);
 

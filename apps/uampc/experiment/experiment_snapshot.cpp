@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "experiment/plan_directories.hpp"
 #include "uampc/run_files/text_file.hpp"
 #include "uampc/runtime/file_checks.hpp"
 
@@ -57,6 +58,18 @@ Experiment experimentFrom(const json& j) {
   return e;
 }
 
+// What planRuns writes, and nothing else: the runner adds --out and domain_id itself, so a plan
+// must not give an --out (or --overwrite) of its own.
+bool isLaunchOfScene(const std::vector<std::string>& args) {
+  if (args.size() < 2 || args[0] != "launch" || args[1].empty() || args[1][0] == '-' || args.size() % 2 != 0) {
+    return false;
+  }
+  for (std::size_t i = 2; i < args.size(); i += 2) {
+    if (args[i] != "--set") return false;
+  }
+  return true;
+}
+
 PlannedRun runFrom(const json& j, const Experiment& e) {
   PlannedRun r;
   r.scene = j.at("scene").get<std::size_t>();
@@ -67,6 +80,9 @@ PlannedRun runFrom(const json& j, const Experiment& e) {
   r.end = {j.at("end_s").get<double>(), j.at("step_s").get<double>()};
   if (r.scene >= e.scenes.size() || r.controller >= e.controllers.size()) {
     throw std::out_of_range("run " + r.directory + " names a scene or controller the experiment does not have");
+  }
+  if (!isLaunchOfScene(r.args)) {
+    throw std::out_of_range("run " + r.directory + ": its arguments are not `launch SCENE [--set NAME=VALUE ...]`");
   }
   return r;
 }
@@ -98,6 +114,9 @@ ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory) {
     ExperimentSnapshot snapshot;
     snapshot.experiment = experimentFrom(j.at("experiment"));
     for (const auto& run : j.at("plan")) snapshot.plan.push_back(runFrom(run, snapshot.experiment));
+    if (const std::string problem = planDirectoriesProblem(output_directory, snapshot.plan); !problem.empty()) {
+      throw ExperimentError({path + ": error: " + problem + "; nothing was done"});
+    }
     return snapshot;
   } catch (const json::exception& e) {
     throw ExperimentError({path + ": error: " + e.what()});

@@ -86,7 +86,7 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
   catchStopSignals();
   std::optional<FileLock> attempt;
   try {
-    AttemptStart begun = beginAttempt(output_directory, run,
+    AttemptStart begun = beginAttempt(output_directory, index, run,
                                       thisProcess() + " (uampc experiment --run-task " + std::to_string(index) + ")");
     if (!begun.held_by.empty()) {
       std::cerr << prefix << run.directory << " is being run by " << begun.held_by << "; left alone\n";

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "experiment/plan_directories.hpp"
 #include "uampc/run_files/run_directory.hpp"
 
 namespace fs = std::filesystem;
@@ -21,8 +22,11 @@ void emptyRunDirectory(const fs::path& directory) {
 
 }  // namespace
 
-AttemptStart beginAttempt(const std::string& output_directory, const PlannedRun& run, const std::string& holder_text) {
+AttemptStart beginAttempt(const std::string& output_directory, std::size_t index, const PlannedRun& run,
+                          const std::string& holder_text) {
   AttemptStart start;
+  start.error = runDirectoryProblem(output_directory, index, run.directory);
+  if (!start.error.empty()) return start;
   const fs::path directory = fs::path(output_directory) / run.directory;
   fs::create_directories(directory);
   LockAttempt lock = lockFile((directory / kAttemptLockFile).string(), holder_text);

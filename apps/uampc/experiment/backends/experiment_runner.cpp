@@ -360,7 +360,7 @@ class Scheduler {
   // The run held for this experiment and emptied; nullopt, with the run's result said, when
   // another attempt holds it (left alone, not run) or it cannot be held (failed).
   std::optional<FileLock> beginAttemptAt(std::size_t i) {
-    AttemptStart start = beginAttempt(options_.output_directory, plan_[i], thisProcess() + " (uampc experiment)");
+    AttemptStart start = beginAttempt(options_.output_directory, i, plan_[i], thisProcess() + " (uampc experiment)");
     if (start.lock) return std::move(start.lock);
     RunResult& r = results_[i];
     if (!start.held_by.empty()) {

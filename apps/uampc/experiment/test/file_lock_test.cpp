@@ -65,7 +65,7 @@ TEST(RunAttempt, EmptiesItsDirectoryOnceItHoldsTheRun) {
   std::ofstream(run + "/metrics.json") << "{}";
   ASSERT_TRUE(holdsAnAttempt(run));
 
-  AttemptStart held = beginAttempt(out, plannedIn("runs/a/seed1"), "pid 1 on here (first)");
+  AttemptStart held = beginAttempt(out, 0, plannedIn("runs/a/seed1"), "pid 1 on here (first)");
   ASSERT_TRUE(held.lock) << held.error;
   std::vector<std::string> left;
   for (const auto& entry : fs::directory_iterator(run)) left.push_back(entry.path().filename().string());
@@ -74,7 +74,7 @@ TEST(RunAttempt, EmptiesItsDirectoryOnceItHoldsTheRun) {
 
   // A second attempt while the first holds it leaves its files alone.
   std::ofstream(run + "/run.log") << "the first attempt's\n";
-  const AttemptStart second = beginAttempt(out, plannedIn("runs/a/seed1"), "pid 2 on here");
+  const AttemptStart second = beginAttempt(out, 0, plannedIn("runs/a/seed1"), "pid 2 on here");
   EXPECT_FALSE(second.lock);
   EXPECT_EQ(second.held_by, "pid 1 on here (first)");
   EXPECT_EQ(test::readFile(run + "/run.log"), "the first attempt's\n");
