@@ -38,6 +38,20 @@ struct PublishCost {
   double max_s = 0.0;
 };
 
+// Where a pass starts on the recording's time line: its first sample, or --start seconds after.
+Time playOrigin(const recording::Playback& playback, const PlayOptions& options) {
+  return playback.start() + Time::fromSeconds(options.start_s);
+}
+
+// What a pass will play, said before it starts: the topics, the samples of them due from the
+// origin on (after --topics and --start), and the seconds from there to the end.
+void announce(recording::Playback& playback, const PlayOptions& options, int domain) {
+  const Time origin = playOrigin(playback, options);
+  std::cerr << "uampc play: " << options.file << ": " << playback.topics().size() << " topics, "
+            << playback.samplesDueFrom(origin) << " samples, " << std::max(0.0, (playback.end() - origin).seconds())
+            << " s, on domain " << domain << "\n";
+}
+
 class Player {
  public:
   Player(const PlayOptions& options, recording::Playback& playback, DdsNode& dds)
@@ -85,7 +99,7 @@ class Player {
   // Plays once through; false when stopped by a signal.
   bool playOnce() {
     const auto started = SteadyClock::now();
-    const Time origin = playback_.start() + Time::fromSeconds(options_.start_s);
+    const Time origin = playOrigin(playback_, options_);
     // Each pass starts now: its samples' stamps move by the same offset as its time line.
     restamper_.setOffset(options_.restamp ? wallNow() - origin : Time{0});
     playback_.seek(origin);  // from the start, or past what --start skips without reading it
@@ -184,9 +198,7 @@ int playCommand(const PlayOptions& options) {
     if (playback.topics().empty()) throw std::runtime_error(options.file + ": the recording has no topics to play");
     DdsNode dds(domain, "", false, "uampc/play", checkedSecurityIdentity(options.security_dir, kPlayerIdentity));
     Player player(options, playback, dds);
-    std::cerr << "uampc play: " << options.file << ": " << playback.topics().size() << " topics, "
-              << playback.sampleCount() << " samples, " << (playback.end() - playback.start()).seconds()
-              << " s, on domain " << domain << "\n";
+    announce(playback, options, domain);
     catchStopSignals();
     std::unique_ptr<ViewerProcess> viewer;
     if (options.viewer.enabled) viewer = std::make_unique<ViewerProcess>(options.viewer, domain, options.security_dir);

@@ -3,7 +3,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
+#include "experiment/output_lock.hpp"
+#include "experiment/run_completion.hpp"
 #include "report/report_page.hpp"
 #include "report/results_table.hpp"
 #include "uampc/run_files/run_directory.hpp"
@@ -13,20 +16,33 @@ namespace fs = std::filesystem;
 
 namespace uampc::app {
 
+namespace {
+
+// Each run left out of the table, by name, with why: a count alone does not say which to look at.
+void sayRunsNotDone(const std::vector<RunResult>& results) {
+  for (const RunResult& r : results) {
+    if (r.finished()) continue;
+    std::cerr << "uampc experiment: " << r.directory << " " << statusName(r.status)
+              << (r.failure.empty() ? "" : ": " + r.failure) << "\n";
+  }
+}
+
+}  // namespace
+
 std::vector<RunResult> collectRuns(const ExperimentSnapshot& snapshot, const std::string& output_directory) {
   std::vector<RunResult> results;
   for (const PlannedRun& run : snapshot.plan) {
     RunResult r = plannedResult(snapshot.experiment, run);
     const std::string dir = (fs::path(output_directory) / run.directory).string();
-    if (isRunComplete(dir)) {
+    const RunCompletion completion = runCompletion(dir, run.end);
+    if (completion.state == RunState::kDone) {
       r.status = RunStatus::kOk;
       r.exit_code = 0;
       readRunOutputs(dir, r);
-    } else if (const std::string why = run_files::readFailedMarker(dir); !why.empty()) {
-      r.status = RunStatus::kFailed;
-      r.failure = why.substr(0, why.find_last_not_of("\r\n ") + 1);
     } else {
-      r.failure = "not finished";
+      r.status = completion.state == RunState::kFailed ? RunStatus::kFailed : RunStatus::kNotRun;
+      r.failure = completion.reason;
+      if (auto metrics = readRunMetrics(dir)) r.metrics = *metrics;  // how far it got, for results.json
     }
     results.push_back(std::move(r));
   }
@@ -47,6 +63,7 @@ int writeExperimentOutputs(const Experiment& experiment, const std::vector<RunRe
     failed += r.status == RunStatus::kFailed;
     not_run += r.status == RunStatus::kNotRun;
   }
+  sayRunsNotDone(results);
   // The paper's table, as in results.md, for the terminal.
   std::cout << markdown.substr(0, markdown.find("\n## Runs")) << "\n";
   std::cerr << "uampc experiment: results in " << (out / "results.md").string() << " and "
@@ -65,6 +82,8 @@ int collectCommand(const std::string& output_directory) {
     for (const auto& m : e.messages()) std::cerr << "uampc experiment --collect: " << m << "\n";
     return 2;
   }
+  const std::optional<FileLock> lock = lockOutputDirectory(output_directory, "uampc experiment --collect");
+  if (!lock) return 2;
   const std::vector<RunResult> results = collectRuns(snapshot, output_directory);
   std::size_t finished = 0;
   for (const RunResult& r : results) finished += r.finished();

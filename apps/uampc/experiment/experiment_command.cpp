@@ -6,6 +6,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "cli/command_set.hpp"
@@ -16,6 +17,9 @@
 #include "experiment/experiment_file.hpp"
 #include "experiment/experiment_snapshot.hpp"
 #include "experiment/experiment_task.hpp"
+#include "experiment/output_lock.hpp"
+#include "experiment/plan_directories.hpp"
+#include "experiment/run_completion.hpp"
 #include "experiment/run_results.hpp"
 #include "uampc/runtime/file_checks.hpp"
 #include "uampc/runtime/scene.hpp"
@@ -27,28 +31,42 @@ namespace uampc::app {
 
 namespace {
 
+void sayWhatIsWrong(const Experiment& experiment, const PlannedRun& run, const std::vector<std::string>& messages) {
+  std::cerr << "uampc experiment: scene '" << experiment.scenes[run.scene].name << "' with controller '"
+            << experiment.controllers[run.controller].name << "' (" << experiment.scenes[run.scene].location << ", "
+            << experiment.controllers[run.controller].location << "):\n";
+  for (const auto& m : messages) std::cerr << "  " << m << "\n";
+}
+
 // Every scene with every controller's overrides, validated as `uampc launch` will, before the
 // first run starts: a typo in a controller's override should cost seconds, not an hour of runs.
-// `scenes_with_profile` gets the scenes that name a dds_profile of their own.
-bool validateScenes(const Experiment& experiment, const std::vector<PlannedRun>& plan, int domain_base,
+// Each run gets its scene's end (what counts as done, run_completion.hpp); a scene without one
+// is refused. `scenes_with_profile` gets the scenes that name a dds_profile of their own.
+bool validateScenes(const Experiment& experiment, std::vector<PlannedRun>& plan, int domain_base,
                     std::set<std::size_t>& scenes_with_profile) {
   ComponentCatalog catalog;
   bool ok = true;
+  std::map<std::pair<std::size_t, std::size_t>, SceneEnd> ends;  // by scene and controller
   for (const PlannedRun& run : plan) {
-    if (run.seed != experiment.seeds.front()) continue;  // seeds do not change what is valid
+    if (run.seed != experiment.seeds.front()) continue;  // seeds change neither what is valid nor the end
     std::vector<Override> overrides;
     for (std::size_t i = 2; i + 1 < run.args.size(); i += 2) overrides.push_back(parseOverride(run.args[i + 1]));
     overrides.push_back(parseOverride("domain_id=" + std::to_string(domain_base)));
     try {
-      if (!loadScene(run.args[1], overrides, catalog).dds_profile.empty()) scenes_with_profile.insert(run.scene);
+      const Scene scene = loadScene(run.args[1], overrides, catalog);
+      if (!scene.dds_profile.empty()) scenes_with_profile.insert(run.scene);
+      std::string problem;
+      ends[{run.scene, run.controller}] = sceneEndOf(scene, &problem);
+      if (!problem.empty()) {
+        ok = false;
+        sayWhatIsWrong(experiment, run, {scene.file + ": error: " + problem});
+      }
     } catch (const SceneError& e) {
       ok = false;
-      std::cerr << "uampc experiment: scene '" << experiment.scenes[run.scene].name << "' with controller '"
-                << experiment.controllers[run.controller].name << "' (" << experiment.scenes[run.scene].location << ", "
-                << experiment.controllers[run.controller].location << "):\n";
-      for (const auto& m : e.messages()) std::cerr << "  " << m << "\n";
+      sayWhatIsWrong(experiment, run, e.messages());
     }
   }
+  for (PlannedRun& run : plan) run.end = ends[{run.scene, run.controller}];
   return ok;
 }
 
@@ -200,6 +218,14 @@ int runExperiment(const ExperimentOptions& options) {
     std::cerr << "uampc experiment: " << problem << "; nothing was run\n";
     return 1;
   }
+  // Held until the command ends: the runs, the results and the report are this command's.
+  const std::optional<FileLock> lock =
+      lockOutputDirectory(options.output_directory, "uampc experiment " + options.experiment_file);
+  if (!lock) return 2;
+  if (const std::string problem = planDirectoriesProblem(options.output_directory, snapshot.plan); !problem.empty()) {
+    std::cerr << "uampc experiment: " << problem << "; nothing was run\n";
+    return 2;
+  }
   if (options.backend == "local" && !options.plan_only) {
     return writeOutcome(snapshot.experiment, runLocally(snapshot, options), options.output_directory);
   }
@@ -227,21 +253,25 @@ int experimentCommand(const ExperimentOptions& options) {
 void addExperimentCommand(CommandSet& commands) {
   auto options = std::make_shared<ExperimentOptions>();
   ExperimentOptions& o = *options;
-  CLI::App* sub =
-      commands.add("experiment",
-                   "uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]\n"
-                   "[--set NAME=VALUE ...] [--dry-run | --plan-only] [--backend local|slurm [--partition P] [--time T] "
-                   "[--no-wait]]\n"
-                   "uampc experiment --collect DIR\n"
-                   "uampc experiment --run-task K --out DIR [--domain-base N]",
-                   "Run every scene x controller x seed of an experiment (at most N at once, default: one per\n"
-                   "CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,\n"
-                   "DIR/results.md (the paper's table) and DIR/report/index.html. Finished runs are kept:\n"
-                   "running it again only runs what is missing or failed. ${data_dir} in the experiment's\n"
-                   "overrides is --data-dir. --set applies to every run. --dry-run only validates and lists the runs.\n"
-                   "--backend slurm submits the unfinished runs as one Slurm job array instead (DIR on a filesystem\n"
-                   "the nodes share), watches it and collects; --collect DIR builds the results from DIR's run\n"
-                   "directories wherever they ran; --run-task K runs planned run K of DIR (what an array task does).");
+  CLI::App* sub = commands.add(
+      "experiment",
+      "uampc experiment EXPERIMENT.yaml --out DIR [--jobs N] [--data-dir DIR] [--domain-base N]\n"
+      "[--set NAME=VALUE ...] [--dry-run | --plan-only] [--backend local|slurm [--partition P] [--time T] "
+      "[--no-wait]]\n"
+      "uampc experiment --collect DIR\n"
+      "uampc experiment --run-task K --out DIR [--domain-base N]",
+      "Run every scene x controller x seed of an experiment (at most N at once, default: one per\n"
+      "CPU, each on DDS domain domain-base (100) + its slot), then write DIR/results.json,\n"
+      "DIR/results.md (the paper's table) and DIR/report/index.html. A run is done when it exited 0\n"
+      "and its sim time reached its scene's end; done runs are kept: running it again only runs the\n"
+      "others. One command at a time on DIR (it holds DIR/experiment.lock; a second is refused, exit 2).\n"
+      "${data_dir} in the experiment's overrides is --data-dir. --set applies to every run.\n"
+      "--dry-run only validates and lists the runs.\n"
+      "--backend slurm submits the unfinished runs as one Slurm job array instead (DIR on a filesystem\n"
+      "the nodes share), watches it and collects; --collect DIR builds the results from DIR's run\n"
+      "directories wherever they ran; --run-task K runs planned run K of DIR (what an array task does;\n"
+      "it takes no lock of DIR, only its run's, and leaves a run another attempt holds alone).\n"
+      "Exit codes: 0 every run done, 1 a run failed or was cut short, 2 invalid, or DIR in use, 130 Ctrl-C.");
   sub->add_option("EXPERIMENT.yaml", o.experiment_file, "The experiment file.")->type_name("");
   sub->add_option("--out", o.output_directory, "Write the runs, results and report into DIR.")->type_name("DIR");
   sub->add_option("--jobs", o.jobs,
@@ -282,7 +312,9 @@ void addExperimentCommand(CommandSet& commands) {
   sub->add_option("--collect", o.collect_directory,
                   "Build DIR/results.json, results.md and the report from DIR's finished run directories.")
       ->type_name("DIR");
-  sub->add_option("--run-task", o.run_task, "Run planned run K of --out DIR (what a Slurm array task runs).")
+  sub->add_option("--run-task", o.run_task,
+                  "Run planned run K of --out DIR (what a Slurm array task runs); exit 4 when another attempt\n"
+                  "holds the run.")
       ->check(CLI::Range(0L, 1000000L).description(""))
       ->type_name("K");
   commands.onRun(sub, [&commands, sub, options] {

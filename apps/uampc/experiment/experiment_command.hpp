@@ -42,9 +42,11 @@ struct ExperimentOptions {
 // domains past kHighestDomainId), as a message for the user; empty if nothing.
 std::string experimentOptionsError(const ExperimentOptions& options);
 
-// Exit codes: 0 every run finished, 1 a run failed or did not finish, 2 invalid experiment,
-// 130 Ctrl-C (what finished is still written to the results). --collect and --run-task are
-// dispatched to their own commands.
+// Exit codes: 0 every run finished (run_completion.hpp: exited 0 and reached its scene's end), 1 a
+// run failed, was cut short or did not finish, 2 invalid experiment, --out held by another
+// experiment (output_lock.hpp) or a plan whose run directories are not inside --out/runs
+// (plan_directories.hpp), 130 Ctrl-C (what finished is still written to the results). --collect
+// and --run-task are dispatched to their own commands.
 int experimentCommand(const ExperimentOptions& options);
 
 // `uampc experiment` and its options.

@@ -5,8 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "uampc/runtime/file_checks.hpp"
+#include "experiment/plan_directories.hpp"
 #include "uampc/run_files/text_file.hpp"
+#include "uampc/runtime/file_checks.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -15,7 +16,8 @@ namespace uampc::app {
 
 namespace {
 
-constexpr int kSnapshotVersion = 1;
+// 2: every run's scene end (end_s, step_s), which what counts as done needs (run_completion.hpp).
+constexpr int kSnapshotVersion = 2;
 
 json toJson(const Experiment& e) {
   json scenes = json::array(), controllers = json::array();
@@ -33,8 +35,8 @@ json toJson(const Experiment& e) {
 }
 
 json toJson(const PlannedRun& r) {
-  return {{"scene", r.scene}, {"controller", r.controller}, {"seed", r.seed}, {"directory", r.directory},
-          {"args", r.args}};
+  return {{"scene", r.scene}, {"controller", r.controller}, {"seed", r.seed},        {"directory", r.directory},
+          {"args", r.args},   {"end_s", r.end.duration_s},  {"step_s", r.end.step_s}};
 }
 
 Experiment experimentFrom(const json& j) {
@@ -56,6 +58,18 @@ Experiment experimentFrom(const json& j) {
   return e;
 }
 
+// What planRuns writes, and nothing else: the runner adds --out and domain_id itself, so a plan
+// must not give an --out (or --overwrite) of its own.
+bool isLaunchOfScene(const std::vector<std::string>& args) {
+  if (args.size() < 2 || args[0] != "launch" || args[1].empty() || args[1][0] == '-' || args.size() % 2 != 0) {
+    return false;
+  }
+  for (std::size_t i = 2; i < args.size(); i += 2) {
+    if (args[i] != "--set") return false;
+  }
+  return true;
+}
+
 PlannedRun runFrom(const json& j, const Experiment& e) {
   PlannedRun r;
   r.scene = j.at("scene").get<std::size_t>();
@@ -63,8 +77,12 @@ PlannedRun runFrom(const json& j, const Experiment& e) {
   r.seed = j.at("seed").get<std::uint64_t>();
   r.directory = j.at("directory").get<std::string>();
   r.args = j.at("args").get<std::vector<std::string>>();
+  r.end = {j.at("end_s").get<double>(), j.at("step_s").get<double>()};
   if (r.scene >= e.scenes.size() || r.controller >= e.controllers.size()) {
     throw std::out_of_range("run " + r.directory + " names a scene or controller the experiment does not have");
+  }
+  if (!isLaunchOfScene(r.args)) {
+    throw std::out_of_range("run " + r.directory + ": its arguments are not `launch SCENE [--set NAME=VALUE ...]`");
   }
   return r;
 }
@@ -89,11 +107,16 @@ ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory) {
     const json j = json::parse(run_files::readTextFile(path));
     if (j.at("version").get<int>() != kSnapshotVersion) {
       throw ExperimentError({path + ": error: version " + j.at("version").dump() + ", this uampc reads version " +
-                             std::to_string(kSnapshotVersion)});
+                             std::to_string(kSnapshotVersion) +
+                             " (plan it again: `uampc experiment EXPERIMENT.yaml --out " + output_directory +
+                             " --plan-only` keeps the runs)"});
     }
     ExperimentSnapshot snapshot;
     snapshot.experiment = experimentFrom(j.at("experiment"));
     for (const auto& run : j.at("plan")) snapshot.plan.push_back(runFrom(run, snapshot.experiment));
+    if (const std::string problem = planDirectoriesProblem(output_directory, snapshot.plan); !problem.empty()) {
+      throw ExperimentError({path + ": error: " + problem + "; nothing was done"});
+    }
     return snapshot;
   } catch (const json::exception& e) {
     throw ExperimentError({path + ": error: " + e.what()});

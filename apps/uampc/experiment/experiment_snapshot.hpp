@@ -26,7 +26,8 @@ struct ExperimentSnapshot {
 void writeExperimentSnapshot(const std::string& output_directory, const ExperimentSnapshot& snapshot);
 
 // Reads it back; throws ExperimentError naming the file and what is wrong (missing, not JSON, a
-// field missing or of the wrong type).
+// field missing or of the wrong type, an older version, a run whose arguments are not a launch of
+// its scene, run directories not inside DIR/runs: plan_directories.hpp).
 ExperimentSnapshot readExperimentSnapshot(const std::string& output_directory);
 
 }  // namespace uampc::app

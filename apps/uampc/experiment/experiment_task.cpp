@@ -1,7 +1,6 @@
 #include "experiment/experiment_task.hpp"
 
 #include <signal.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -11,6 +10,8 @@
 #include "experiment/backends/experiment_runner.hpp"
 #include "experiment/experiment_command.hpp"
 #include "experiment/experiment_snapshot.hpp"
+#include "experiment/file_lock.hpp"
+#include "experiment/run_attempt.hpp"
 #include "uampc/runtime/domain_run_lock.hpp"
 #include "uampc/runtime/logger.hpp"
 #include "uampc/runtime/stop_signals.hpp"
@@ -45,12 +46,6 @@ class DomainClaim {
   DomainRunLock lock_;
 };
 
-std::string hostName() {
-  char name[256] = {};
-  gethostname(name, sizeof(name) - 1);
-  return name;
-}
-
 // Waits for the run, passing a stop request on to it once (the launcher then stops cleanly).
 int waitForRun(ChildProcesses& children) {
   bool passed_on = false;
@@ -79,9 +74,10 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
               << snapshot.plan.size() - 1 << "\n";
     return 2;
   }
-  const PlannedRun& run = snapshot.plan[static_cast<std::size_t>(task_index)];
+  const auto index = static_cast<std::size_t>(task_index);
+  const PlannedRun& run = snapshot.plan[index];
   const std::string directory = (fs::path(output_directory) / run.directory).string();
-  if (isRunComplete(directory)) {
+  if (isRunComplete(directory, run.end)) {
     std::cerr << prefix << run.directory << " finished before; nothing to do\n";
     return 0;
   }
@@ -98,6 +94,23 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
     return 3;
   }
   catchStopSignals();
+  std::optional<FileLock> attempt;
+  try {
+    AttemptStart begun = beginAttempt(output_directory, index, run,
+                                      thisProcess() + " (uampc experiment --run-task " + std::to_string(index) + ")");
+    if (!begun.held_by.empty()) {
+      std::cerr << prefix << run.directory << " is being run by " << begun.held_by << "; left alone\n";
+      return 4;
+    }
+    if (!begun.error.empty()) {
+      std::cerr << prefix << begun.error << "\n";
+      return 1;
+    }
+    attempt = std::move(begun.lock);
+  } catch (const fs::filesystem_error& e) {
+    std::cerr << prefix << "cannot prepare its directory: " << e.what() << "\n";
+    return 1;
+  }
   std::cerr << prefix << run.directory << " on " << hostName() << ", DDS domain " << claim->domain() << "\n";
   ChildProcesses children;
   const auto start = Clock::now();
@@ -110,7 +123,7 @@ int experimentTaskCommand(const std::string& output_directory, long task_index, 
   const int status = waitForRun(children);
   RunResult result;
   const std::string error = recordRunEnd(directory, status, std::chrono::duration<double>(Clock::now() - start).count(),
-                                         stopRequested(), result);
+                                         stopRequested(), run.end, result);
   std::cerr << prefix << run.directory << " " << statusName(result.status)
             << (result.failure.empty() ? "" : " (" + result.failure + ")") << "\n";
   if (!error.empty()) {

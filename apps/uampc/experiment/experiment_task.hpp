@@ -15,8 +15,14 @@
 
 namespace uampc::app {
 
-// Exit codes: 0 the run finished, 1 it failed (its failed marker says why), 2 DIR or K is wrong,
-// 3 no free DDS domain on this node, 130 stopped by SIGINT/SIGTERM (Slurm's scancel or time limit).
+// The --out lock (output_lock.hpp) is not taken: the command that submitted the task may hold it
+// while it watches. The task holds its run instead, for as long as it runs (run_attempt.hpp): a
+// run another attempt holds (an experiment on DIR, another task) is left alone.
+//
+// Exit codes: 0 the run finished (run_completion.hpp), 1 it failed or was cut short (its failed
+// marker says why), 2 DIR or K is wrong (also a plan whose run directories are not inside
+// DIR/runs, plan_directories.hpp), 3 no free DDS domain on this node, 4 another attempt holds the
+// run (named), 130 stopped by SIGINT/SIGTERM (Slurm's scancel or time limit).
 int experimentTaskCommand(const std::string& output_directory, long task_index, int domain_base);
 
 }  // namespace uampc::app

@@ -13,11 +13,13 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <thread>
 
 #include "experiment/experiment_eta.hpp"
+#include "experiment/run_attempt.hpp"
 #include "uampc/run_files/run_directory.hpp"
 #include "uampc/run_files/text_file.hpp"
 #include "uampc/runtime/child_processes.hpp"
@@ -101,6 +103,7 @@ struct Running {
   std::size_t run;
   int slot;
   Clock::time_point start;
+  FileLock attempt;  // the run's, until its end is recorded (run_attempt.hpp)
 };
 
 // This process's environment with the run's progress file named in it (the clock writes it).
@@ -134,6 +137,14 @@ std::string describeExit(int status) {
   return "stopped";
 }
 
+// Why a run that ended is not done: how it exited, and how far its metrics got if they stop short.
+std::string describeFailure(int status, const std::optional<RunMetrics>& metrics, const SceneEnd& end) {
+  const bool exited_0 = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (exited_0 && !metrics) return "exit code 0 but no readable metrics.json";
+  const bool short_of_end = metrics && !reachesSceneEnd(metrics->sim_time_s, end);
+  return describeExit(status) + (short_of_end ? ", cut short: " + simTimeOfEnd(metrics->sim_time_s, end) : "");
+}
+
 }  // namespace
 
 std::vector<PlannedRun> planRuns(const Experiment& experiment, const std::vector<std::string>& extra_overrides) {
@@ -141,7 +152,7 @@ std::vector<PlannedRun> planRuns(const Experiment& experiment, const std::vector
   for (std::size_t s = 0; s < experiment.scenes.size(); ++s) {
     for (std::size_t c = 0; c < experiment.controllers.size(); ++c) {
       for (const std::uint64_t seed : experiment.seeds) {
-        PlannedRun run{s, c, seed, "", {}};
+        PlannedRun run{s, c, seed, "", {}, {}};
         run.directory =
             "runs/" + experiment.scenes[s].name + "/" + experiment.controllers[c].name + "/seed" + std::to_string(seed);
         run.args = {"launch", experiment.scenes[s].scene_file};
@@ -165,10 +176,6 @@ std::vector<PlannedRun> planRuns(const Experiment& experiment, const std::vector
   return plan;
 }
 
-bool isRunComplete(const std::string& run_directory) {
-  return run_files::readDoneMarker(run_directory).has_value() && readRunMetrics(run_directory).has_value();
-}
-
 RunResult plannedResult(const Experiment& experiment, const PlannedRun& run) {
   RunResult r;
   r.scene = experiment.scenes[run.scene].name;
@@ -180,8 +187,6 @@ RunResult plannedResult(const Experiment& experiment, const PlannedRun& run) {
 
 pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
                const std::string& directory, int domain_id) {
-  fs::remove_all(directory);  // no stale file of an earlier attempt may pass for this one's
-  fs::create_directories(directory);
   std::vector<std::string> args = run.args;
   args.insert(args.end(), {"--out", directory, "--set", "domain_id=" + std::to_string(domain_id)});
   return children.start(runCommand(executable, args, directory));
@@ -202,9 +207,10 @@ std::string tryToWrite(const std::function<void()>& write_marker) {
 }  // namespace
 
 std::string recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
-                         RunResult& result) {
+                         const SceneEnd& end, RunResult& result) {
   result.exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
-  if (result.exit_code == 0 && readRunMetrics(directory)) {
+  const std::optional<RunMetrics> metrics = readRunMetrics(directory);
+  if (result.exit_code == 0 && metrics && reachesSceneEnd(metrics->sim_time_s, end)) {
     const std::string error = tryToWrite([&] { run_files::writeDoneMarker(directory, wall_time_s); });
     if (error.empty()) {
       result.status = RunStatus::kOk;
@@ -222,8 +228,9 @@ std::string recordRunEnd(const std::string& directory, int wait_status, double w
     result.failure = "interrupted";
   } else {
     result.status = RunStatus::kFailed;
-    result.failure = result.exit_code == 0 ? "exit code 0 but no readable metrics.json" : describeExit(wait_status);
+    result.failure = describeFailure(wait_status, metrics, end);
     result.wall_time_s = wall_time_s;
+    if (metrics) result.metrics = *metrics;  // how far it got, for results.json
   }
   return tryToWrite([&] { run_files::writeFailedMarker(directory, result.failure); });
 }
@@ -261,9 +268,9 @@ class Scheduler {
       }
       const auto found = running_.find(exit->pid);
       if (found == running_.end()) continue;  // not a run (the pool only holds runs; kept safe)
-      const Running done = found->second;
+      const Running done = std::move(found->second);
       running_.erase(found);
-      collect(done, exit->status);
+      collect(done, exit->status);  // its attempt's lock is released after its end is recorded
       report(true);
     }
     progress.finish();
@@ -273,29 +280,30 @@ class Scheduler {
  private:
   fs::path directoryOf(std::size_t run) const { return fs::path(options_.output_directory) / plan_[run].directory; }
 
-  // Complete runs of before are read, not run again; the others are pending.
+  // Done runs of before are read, not run again; the others are pending.
   void reuseCompleteRuns() {
     for (std::size_t i = 0; i < plan_.size(); ++i) {
       RunResult& r = results_[i] = plannedResult(experiment_, plan_[i]);
       const fs::path dir = directoryOf(i);
-      if (isRunComplete(dir.string())) {
+      const RunCompletion before = runCompletion(dir.string(), plan_[i].end);
+      if (before.state == RunState::kDone) {
         r.status = RunStatus::kReused;
         r.exit_code = 0;
         readRunOutputs(dir.string(), r);
         if (r.metrics.sim_time_s > 0) scene_length_s_[plan_[i].scene] = r.metrics.sim_time_s;
         continue;
       }
-      r.retried = fs::exists(dir) && !fs::is_empty(dir);
+      r.retried = holdsAnAttempt(dir.string());
+      if (r.retried) retry_reasons_[i] = before;
       pending_.push_back(i);
     }
   }
 
   void announceRetries() {
-    for (std::size_t i : pending_) {
-      if (!results_[i].retried) continue;
-      const std::string before = lastLine(run_files::readFailedMarker(directoryOf(i).string()));
+    for (const auto& [i, before] : retry_reasons_) {
       progress_->say("experiment: retrying " + plan_[i].directory +
-                     (before.empty() ? " (unfinished before)" : " (failed before: " + before + ")"));
+                     (before.state == RunState::kFailed ? " (failed before: " + lastLine(before.reason) + ")"
+                                                        : " (unfinished before)"));
     }
   }
 
@@ -329,8 +337,11 @@ class Scheduler {
       const int slot = freeSlot();
       if (slot < 0) return;
       const std::size_t i = pending_[next_++];
+      std::optional<FileLock> attempt;
       pid_t pid = -1;
       try {
+        attempt = beginAttemptAt(i);
+        if (!attempt) continue;
         pid = startRun(children_, options_.executable, plan_[i], directoryOf(i).string(), options_.domain_base + slot);
       } catch (const fs::filesystem_error& e) {
         results_[i].status = RunStatus::kNotRun;
@@ -338,15 +349,38 @@ class Scheduler {
         halt(results_[i].failure);
         return;
       } catch (const std::system_error& e) {
-        results_[i].status = RunStatus::kFailed;
-        results_[i].failure = "cannot start a process: " + e.code().message();
-        ++failed_;
-        ++finished_now_;
+        fail(i, "cannot start a process: " + e.code().message());
         continue;
       }
       slot_busy_[static_cast<std::size_t>(slot)] = true;
-      running_[pid] = {i, slot, Clock::now()};
+      running_.emplace(pid, Running{i, slot, Clock::now(), std::move(*attempt)});
     }
+  }
+
+  // The run held for this experiment and emptied; nullopt, with the run's result said, when
+  // another attempt holds it (left alone, not run) or it cannot be held (failed).
+  std::optional<FileLock> beginAttemptAt(std::size_t i) {
+    AttemptStart start = beginAttempt(options_.output_directory, i, plan_[i], thisProcess() + " (uampc experiment)");
+    if (start.lock) return std::move(start.lock);
+    RunResult& r = results_[i];
+    if (!start.held_by.empty()) {
+      r.status = RunStatus::kNotRun;
+      r.failure = "being run by " + start.held_by;
+      ++finished_now_;
+      progress_->say("experiment: " + plan_[i].directory + " left alone: it is " + r.failure);
+    } else {
+      fail(i, start.error);
+    }
+    return std::nullopt;
+  }
+
+  // A run that failed before it started.
+  void fail(std::size_t i, const std::string& why) {
+    results_[i].status = RunStatus::kFailed;
+    results_[i].failure = why;
+    ++failed_;
+    ++finished_now_;
+    progress_->say("experiment: " + plan_[i].directory + " failed (" + why + ")");
   }
 
   // A run's process ended: its result, and its done or failed marker.
@@ -357,7 +391,10 @@ class Scheduler {
     const fs::path dir = directoryOf(done.run);
     const double wall = secondsSince(done.start);
     finished_work_.push_back({progressOf(done.run), wall});
-    if (const std::string error = recordRunEnd(dir.string(), status, wall, stopping_, r); !error.empty()) halt(error);
+    if (const std::string error = recordRunEnd(dir.string(), status, wall, stopping_, plan_[done.run].end, r);
+        !error.empty()) {
+      halt(error);
+    }
     if (r.status != RunStatus::kFailed) return;
     ++failed_;
     const std::string last = lastLine(run_files::readTextFile(dir / run_files::kRunLog));
@@ -391,6 +428,7 @@ class Scheduler {
   const RunnerOptions& options_;
   std::vector<RunResult> results_;
   std::vector<std::size_t> pending_;              // runs to start, in plan order
+  std::map<std::size_t, RunCompletion> retry_reasons_;  // pending runs an earlier attempt left
   std::size_t next_ = 0;                          // the next of pending_ to start
   std::map<std::size_t, double> scene_length_s_;  // scene -> sim seconds, once known
   ChildProcesses children_;

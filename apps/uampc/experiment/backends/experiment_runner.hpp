@@ -3,9 +3,10 @@
 // slot (0 .. jobs-1), so parallel runs never see each other's topics; each writes into
 // OUT/runs/<scene>/<controller>/seed<K>/ with its stdout and stderr in run.log there.
 //
-// Resume: a run whose directory holds a `done` marker (written after `uampc launch` exited 0)
-// and a readable metrics.json (the evaluator writes it last) is not run again. Anything else in
-// a run directory is an unfinished or failed run: its directory is emptied and the run retried.
+// Resume: a done run (run_completion.hpp: `uampc launch` exited 0 and its metrics reached the
+// scene's end) is not run again. Anything else in a run directory is an unfinished, failed or cut
+// short run: its directory is emptied and the run retried, by an attempt that holds the run
+// (run_attempt.hpp), so that no other experiment or --run-task clears it meanwhile.
 #pragma once
 
 #include <sys/types.h>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "experiment/experiment_file.hpp"
+#include "experiment/run_completion.hpp"
 #include "experiment/run_results.hpp"
 #include "uampc/runtime/child_processes.hpp"
 
@@ -26,10 +28,12 @@ struct PlannedRun {
   std::uint64_t seed = 0;
   std::string directory;          // relative to the output directory
   std::vector<std::string> args;  // after `uampc`, without domain_id (given at start)
+  SceneEnd end;                   // where its sim time must reach to be done
 };
 
 // Every run in scene, controller, seed order. `extra_overrides` (the command line's --set) come
-// after the experiment's own, so they win.
+// after the experiment's own, so they win. Their ends are the loaded scenes' (sceneEndOf), set
+// when the scenes are validated.
 std::vector<PlannedRun> planRuns(const Experiment& experiment, const std::vector<std::string>& extra_overrides);
 
 struct RunnerOptions {
@@ -40,26 +44,23 @@ struct RunnerOptions {
   const std::atomic<bool>* interrupted = nullptr;  // set by Ctrl-C: start nothing more, stop runs
 };
 
-bool isRunComplete(const std::string& run_directory);
-
 // A run's result before anything is known of it: which scene, controller, seed and directory.
 RunResult plannedResult(const Experiment& experiment, const PlannedRun& run);
 
 // Starts one run as `executable launch ... --out directory --set domain_id=D`, its stdout and
-// stderr into the directory's run.log, after emptying the directory. Returns its pid; throws
-// std::filesystem::error naming the directory when it cannot be emptied or created, and
-// std::system_error when no process can be started.
+// stderr into the directory's run.log; the directory is an attempt's (beginAttempt, emptied and
+// held). Returns its pid; throws std::system_error when no process can be started.
 pid_t startRun(ChildProcesses& children, const std::string& executable, const PlannedRun& run,
                const std::string& directory, int domain_id);
 
 // A run's process ended with `wait_status` after `wall_time_s`: writes its done marker (exit 0 and
-// a readable metrics.json) or its failed marker, and fills result's status, exit code, failure and
-// figures. `interrupted`: the user stopped it (not a failure of the run).
+// metrics.json whose sim time reached `end`) or its failed marker, and fills result's status, exit
+// code, failure and figures. `interrupted`: the user stopped it (not a failure of the run).
 // Returns "" or, when the marker could not be written, why ("cannot write PATH: REASON"): the
 // marker is then absent (markers are written whole or not at all), and a run whose done marker
 // is missing counts as failed, to be run again (docs/decisions/run-files-whole-or-absent.md).
 std::string recordRunEnd(const std::string& directory, int wait_status, double wall_time_s, bool interrupted,
-                         RunResult& result);
+                         const SceneEnd& end, RunResult& result);
 
 struct RunnerOutcome {
   std::vector<RunResult> results;  // one per planned run, in plan order

@@ -128,11 +128,12 @@ std::string batchScript(const std::string& output_directory, int domain_base) {
          quoted(output_directory) + " --domain-base " + std::to_string(domain_base) + "\n";
 }
 
-// Runs not finished (no done marker with readable metrics): what a submission runs.
+// Runs not done (run_completion.hpp): what a submission runs.
 std::vector<std::size_t> unfinishedRuns(const ExperimentSnapshot& snapshot, const std::string& output_directory) {
   std::vector<std::size_t> indices;
   for (std::size_t i = 0; i < snapshot.plan.size(); ++i) {
-    if (!isRunComplete((fs::path(output_directory) / snapshot.plan[i].directory).string())) indices.push_back(i);
+    const PlannedRun& run = snapshot.plan[i];
+    if (!isRunComplete((fs::path(output_directory) / run.directory).string(), run.end)) indices.push_back(i);
   }
   return indices;
 }
@@ -201,9 +202,10 @@ DirectoryCounts countRuns(const ExperimentSnapshot& snapshot, const std::vector<
   DirectoryCounts c;
   for (std::size_t i : runs) {
     const std::string dir = (fs::path(output_directory) / snapshot.plan[i].directory).string();
-    if (isRunComplete(dir))
+    const RunState state = runCompletion(dir, snapshot.plan[i].end).state;
+    if (state == RunState::kDone)
       ++c.done;
-    else if (!run_files::readFailedMarker(dir).empty())
+    else if (state == RunState::kFailed)
       ++c.failed;
     else if (fs::exists(fs::path(dir) / run_files::kRunLog))
       ++c.started;

@@ -14,8 +14,11 @@
 //    it, and must keep its traffic on the host itself (a warning says so).
 //  - Progress: from the run directories (done and failed markers, run logs) and squeue; at the
 //    end, how the tasks ended from sacct where the cluster keeps accounting (slurmdbd), else squeue.
-//  - Resume: running the same command again submits only the runs without a done marker; it
-//    refuses while a job it submitted before is still queued or running.
+//  - Resume: running the same command again submits only the runs not done (run_completion.hpp);
+//    it refuses while a job it submitted before is still queued or running.
+//  - Whose DIR: the command holds DIR's --out lock while it submits, watches and collects (with
+//    --no-wait, until it has submitted); each task holds only its own run (experiment_task.hpp),
+//    so that no other experiment clears a run a task is running (output_lock.hpp).
 //  - Ctrl-C while watching stops watching, not the job (`scancel <job>` does that);
 //    `uampc experiment --collect DIR` builds the results later.
 #pragma once

@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 
 constexpr int kExitedWith0 = 0;       // a wait status: exited with code 0
 constexpr int kExitedWith1 = 1 << 8;  // exited with code 1 (WEXITSTATUS)
+const SceneEnd kThreeSeconds{3.0, 0.005};  // the end its metrics reach
 
 TEST(ExperimentRunner, AMarkerThatCannotBeWrittenIsReportedNotThrownAndNotLeft) {
   const std::string run = test::freshDirectory("experiment_runner_markers");
@@ -34,15 +35,15 @@ TEST(ExperimentRunner, AMarkerThatCannotBeWrittenIsReportedNotThrownAndNotLeft) 
   std::string finished_error, failed_error;
   {
     test::ScopedFileSizeLimit full_disk(0);
-    finished_error = recordRunEnd(run, kExitedWith0, 12.5, false, finished);
-    failed_error = recordRunEnd(run, kExitedWith1, 12.5, false, failed);
+    finished_error = recordRunEnd(run, kExitedWith0, 12.5, false, kThreeSeconds, finished);
+    failed_error = recordRunEnd(run, kExitedWith1, 12.5, false, kThreeSeconds, failed);
   }
   const std::string done = run_files::inDirectory(run, run_files::kDoneMarker);
   const std::string failed_marker = run_files::inDirectory(run, run_files::kFailedMarker);
   EXPECT_EQ(finished_error, "cannot write " + done + ": File too large");
   EXPECT_EQ(finished.status, RunStatus::kFailed);  // not done until its marker says so: run again next time
   EXPECT_NE(finished.failure.find("done marker could not be written"), std::string::npos) << finished.failure;
-  EXPECT_FALSE(isRunComplete(run));
+  EXPECT_FALSE(isRunComplete(run, kThreeSeconds));
   EXPECT_EQ(failed_error, "cannot write " + failed_marker + ": File too large");
   EXPECT_EQ(failed.status, RunStatus::kFailed);
   EXPECT_EQ(failed.failure, "exit code 1");
@@ -53,9 +54,9 @@ TEST(ExperimentRunner, AMarkerThatCannotBeWrittenIsReportedNotThrownAndNotLeft) 
 
   // With room again, the same run is recorded as done.
   RunResult again;
-  EXPECT_EQ(recordRunEnd(run, kExitedWith0, 12.5, false, again), "");
+  EXPECT_EQ(recordRunEnd(run, kExitedWith0, 12.5, false, kThreeSeconds, again), "");
   EXPECT_EQ(again.status, RunStatus::kOk);
-  EXPECT_TRUE(isRunComplete(run));
+  EXPECT_TRUE(isRunComplete(run, kThreeSeconds));
 }
 
 }  // namespace

@@ -38,11 +38,13 @@ const std::map<std::tuple<std::string, std::string, int>, FakeFigures> kFigures{
 
 // The ground truth's path length (trajectory.distance_m), the same for every run of a scene.
 constexpr double kAlphaDistance = 50.0, kBetaDistance = 200.0;
+constexpr double kSimTimeS = 10.0;  // every fake run's, its scene's whole length
+const app::SceneEnd kSceneEnd{kSimTimeS, 0.005};
 
 // metrics.json as the evaluator writes it, with the figures the report reads.
 run_files::MetricsDocument fakeMetrics(const FakeFigures& f, double distance) {
   run_files::MetricsDocument m;
-  m.sim_time = 10;
+  m.sim_time = kSimTimeS;
   m.trajectory.distance_m = distance;
   m.trajectory.ate.unaligned_m.rmse = f.ate;
   m.trajectory.ate.aligned_m.rmse = f.ate / 2;
@@ -141,7 +143,7 @@ FakeExperiment makeFakeExperiment(const std::string& directory) {
     } else {
       writeText(run_files::inDirectory(dir.string(), run_files::kRunLog), "something broke\n");
     }
-    if (app::isRunComplete(dir.string())) {
+    if (app::isRunComplete(dir.string(), kSceneEnd)) {
       r.status = app::RunStatus::kReused;
       r.exit_code = 0;
       app::readRunOutputs(dir.string(), r);

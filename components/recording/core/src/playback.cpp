@@ -83,7 +83,7 @@ void Playback::readAhead(Time until) {
     if (topic == topic_by_channel_.end()) continue;
     RecordedSample sample;
     sample.topic = topic->second;
-    sample.time = Time{static_cast<std::int64_t>(clock_ == RecordingClock::kLockstep ? m.publish_time : m.log_time)};
+    sample.time = dueTime(m);
     sample.data.data.assign(m.data, m.data + m.size);
     read_to_ = Time{static_cast<std::int64_t>(m.log_time)};
     // Due times may be out of log order (a lockstep sample delivered late); ties keep file order.
@@ -91,6 +91,22 @@ void Playback::readAhead(Time until) {
                                      [](Time t, const RecordedSample& s) { return t < s.time; });
     pending_.insert(at, std::move(sample));
   }
+}
+
+Time Playback::dueTime(const mcap::MessageView& message) const {
+  return Time{static_cast<std::int64_t>(clock_ == RecordingClock::kLockstep ? message.publish_time : message.log_time)};
+}
+
+std::uint64_t Playback::samplesDueFrom(Time from) {
+  std::uint64_t count = 0;
+  // From `from`'s log time, as seek() reads; a lockstep sample logged after `from` but published
+  // before it is read there and not played, so it is not counted either.
+  reader_->forEachMessage(topic_names_, static_cast<std::uint64_t>(std::max<std::int64_t>(from.ns, 0)),
+                          [&](const mcap::MessageView& m) {
+                            if (topic_by_channel_.count(m.channel->id) && dueTime(m) >= from) ++count;
+                            return true;
+                          });
+  return count;
 }
 
 bool Playback::next(Time until, RecordedSample& sample) {

@@ -41,7 +41,11 @@ class Playback {
   RecordingClock clock() const { return clock_; }
   Time start() const { return start_; }  // the first sample's time
   Time end() const { return end_; }      // the last sample's
-  std::uint64_t sampleCount() const { return sample_count_; }
+  std::uint64_t sampleCount() const { return sample_count_; }  // the whole recording's, every topic
+  // How many samples next() will give from a seek(from) on: those of topics() due at or after
+  // `from`, which is what a player announces (sampleCount() also holds the topics it does not
+  // play). One pass over the file, apart from the playing one.
+  std::uint64_t samplesDueFrom(Time from);
   // Complete chunks read from a damaged file (a recorder that was killed); empty when it was whole.
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -54,6 +58,7 @@ class Playback {
 
  private:
   void readAhead(Time until);
+  Time dueTime(const mcap::MessageView& message) const;
 
   std::string path_;
   std::unique_ptr<mcap::Reader> reader_;
