@@ -2,8 +2,9 @@
 // @foxglove/ws-protocol, with ROS 2 decoding by @foxglove/rosmsg2-serialization from the schemas
 // the server advertises (tests/foxglove_js/watch.mjs): real runs of the default scene, a real
 // recording, real sockets. Also: a run's outputs are the same bytes with a viewer subscribed to
-// every topic, a client that never reads costs the run nothing, and misbehaving clients are
-// answered and then disconnected while the server goes on.
+// every topic, a client that never reads costs the run nothing, misbehaving clients are answered
+// and then disconnected while the server goes on, and `--view` addresses are read as the viewer
+// reads them, a run failing with its viewer.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -49,6 +50,12 @@ json watch(const std::string& args) {
 
 bool waitUntilServing(const std::string& log) {
   return waitFor([&] { return logHas(log, "uampc view: serving"); }, std::chrono::seconds(30));
+}
+
+// The `uampc view` a `launch --view` on this domain started.
+pid_t viewerOf(int domain_id) {
+  const std::string pids = runShell("pgrep -f '[u]ampc view --domain " + std::to_string(domain_id) + " '").output;
+  return pids.empty() ? -1 : std::stoi(pids);
 }
 
 // A run's outputs, file by file, without what differs between any two runs: run_info.json (when
@@ -229,6 +236,39 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
   // From the start: play waited for the subscription, so every scan of the 3 s (10 Hz) arrives.
   EXPECT_GE(seen["topics"]["/lidar/points"]["decoded"].get<int>(), 25) << seen.dump();
   EXPECT_GT(seen["topics"]["/lo/odometry"]["decoded"].get<int>(), 0);
+}
+
+// What the viewer refuses, the start check of launch refuses: the resolver's shorthands for
+// IPv4 (127.1, 0, 0x7f000001) passed it, the run started, the viewer died and the launch exited 0.
+TEST(Viewer, LaunchRefusesAtItsStartTheAddressesTheViewerRefuses) {
+  for (const std::string address : {"127.1", "0", "0x7f000001"}) {
+    const CommandResult launch =
+        runUampc("launch " + defaultScene(10, 2) + viewOptions(10) + " --view-address " + address);
+    EXPECT_EQ(launch.exit_code, 1) << address << ": " << launch.output;
+    EXPECT_NE(launch.output.find("'" + address + "' is not an IP address"), std::string::npos) << launch.output;
+    EXPECT_NE(launch.output.find("nothing was started"), std::string::npos) << launch.output;
+    const CommandResult view = runUampc("view --address " + address + " --port 0 --duration 0.5");
+    EXPECT_EQ(view.exit_code, 1) << view.output;
+    EXPECT_NE(view.output.find("'" + address + "' is not an IP address"), std::string::npos) << view.output;
+  }
+  // IPv6, bracketed in the URL it prints.
+  const CommandResult v6 =
+      runUampc("view --domain " + std::to_string(domain(10)) + " --address ::1 --port 0 --duration 0.5");
+  EXPECT_EQ(v6.exit_code, 0) << v6.output;
+  EXPECT_TRUE(std::regex_search(v6.output, std::regex(R"(serving DDS domain [0-9]+ on ws://\[::1\]:[0-9]+ )")))
+      << v6.output;
+}
+
+// A run asked to be watched fails when its viewer does, naming it, instead of going on unwatched.
+TEST(Viewer, ARunFailsWhenItsViewerDies) {
+  const std::string log = freshDirectory("viewer_dies") + "/run.log";
+  const pid_t run = startLaunch(defaultScene(11, 20) + viewOptions(11), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const pid_t viewer = viewerOf(domain(11));
+  ASSERT_GT(viewer, 0) << runShell("ps -ef").output;
+  kill(viewer, SIGKILL);
+  EXPECT_EQ(exitCodeOf(run), 1) << readFile(log);
+  EXPECT_TRUE(logHas(log, "the viewer (uampc view) killed by signal 9")) << readFile(log);
 }
 
 }  // namespace

@@ -3,12 +3,15 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <thread>
 
 #include "cli/command_set.hpp"
 #include "topic/topic_discovery.hpp"
 #include "uampc/command_line/finite_number.hpp"
 #include "uampc/foxglove/server.hpp"
+#include "uampc/listen_address/listen_address.hpp"
 #include "uampc/runtime/dds_names.hpp"
 #include "uampc/runtime/stop_signals.hpp"
 #include "view/topic_bridge.hpp"
@@ -20,10 +23,6 @@ namespace {
 // Discovery and the clock are followed this often; samples go out as they arrive, not at this pace.
 constexpr auto kUpdatePeriod = std::chrono::milliseconds(20);
 
-bool isLoopback(const std::string& address) {
-  return address == "localhost" || address == "::1" || address.rfind("127.", 0) == 0;
-}
-
 void reportClients(std::size_t& known, const foxglove::ServerStatistics& now) {
   if (now.clients == known) return;
   std::cerr << "uampc view: " << now.clients << " client(s) connected\n";
@@ -32,9 +31,9 @@ void reportClients(std::size_t& known, const foxglove::ServerStatistics& now) {
 
 }  // namespace
 
-std::string exposureWarning(const std::string& address, int port) {
-  if (isLoopback(address)) return {};
-  return "uampc view: serving on " + address + ":" + std::to_string(port) +
+std::string exposureWarning(const net::ListenAddress& address, int port) {
+  if (address.loopback) return {};
+  return "uampc view: serving on " + net::hostAndPort(address, port) +
          ", not only this machine: anyone who reaches it sees every topic of the domain";
 }
 
@@ -42,17 +41,23 @@ int viewCommand(const ViewOptions& options) {
   try {
     const int domain = options.domain_id >= 0 ? options.domain_id : rosDomainIdFromEnvironment().value_or(0);
     catchStopSignals();
+    // The parser the launcher checks --view-address with, so that both read an address alike.
+    const std::optional<net::ListenAddress> address = net::parseListenAddress(options.address);
+    if (!address) {
+      throw std::runtime_error("cannot serve on " + net::hostAndPort(options.address, options.port) + ": " +
+                               net::listenAddressError(options.address));
+    }
     foxglove::ServerOptions server_options;
-    server_options.address = options.address == "localhost" ? "127.0.0.1" : options.address;
+    server_options.address = address->numeric;
     server_options.port = static_cast<std::uint16_t>(options.port);
     server_options.name = "uampc view (DDS domain " + std::to_string(domain) + ")";
     foxglove::Server server(server_options);
-    if (const std::string warning = exposureWarning(options.address, options.port); !warning.empty()) {
+    if (const std::string warning = exposureWarning(*address, server.port()); !warning.empty()) {
       std::cerr << warning << "\n";
     }
     TopicDiscovery discovery(domain, checkedSecurityIdentity(options.security_dir, kObserverIdentity));
     TopicBridge bridge(discovery, server);
-    std::cerr << "uampc view: serving DDS domain " << domain << " on ws://" << options.address << ":" << server.port()
+    std::cerr << "uampc view: serving DDS domain " << domain << " on " << net::webSocketUrl(*address, server.port())
               << " (Foxglove: Open connection; Ctrl-C stops)" << std::endl;
     const auto started = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
@@ -79,8 +84,9 @@ void addViewerOptions(CLI::App* sub, ViewerOptions& o) {
       ->check(CLI::Range(1, 65535))
       ->type_name("P");
   sub->add_option("--view-address", o.address,
-                  "The address the viewer binds (default 127.0.0.1, this machine only; another address is\n"
-                  "warned about: anyone who reaches it sees every topic).")
+                  "The address the viewer binds (default 127.0.0.1, this machine only; an IPv4 address as four\n"
+                  "numbers, an IPv6 one, or localhost, refused before anything starts otherwise; another address\n"
+                  "is warned about: anyone who reaches it sees every topic). A viewer that fails fails the run.")
       ->type_name("A");
 }
 
@@ -99,7 +105,8 @@ void addViewCommand(CommandSet& commands) {
       ->check(CLI::Range(0, 65535))
       ->type_name("P");
   sub->add_option("--address", o.address,
-                  "Address to bind (default 127.0.0.1, this machine only; another address is warned about).")
+                  "Address to bind (default 127.0.0.1, this machine only): an IPv4 address as four numbers, an\n"
+                  "IPv6 one (::1, served as ws://[::1]:P) or localhost; another address is warned about.")
       ->type_name("A");
   sub->add_option("--security", o.security_dir,
                   "Join a secured domain with the observer identity of DIR (uampc security init), which may\n"

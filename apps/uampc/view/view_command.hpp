@@ -4,6 +4,7 @@
 #pragma once
 
 #include "cli/command_set.hpp"
+#include "uampc/listen_address/listen_address.hpp"
 #include "uampc/runtime/viewer_process.hpp"
 
 #include <string>
@@ -19,7 +20,7 @@ struct ViewOptions {
 };
 
 // The warning for an address other than the loopback one; empty for a loopback address.
-std::string exposureWarning(const std::string& address, int port);
+std::string exposureWarning(const net::ListenAddress& address, int port);
 
 // Exit codes: 0 when stopped (Ctrl-C, SIGTERM, --duration), 1 when it cannot serve (the port is
 // in use, the address is not this machine's, the domain cannot be joined).

@@ -8,10 +8,12 @@
 #include <chrono>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "uampc/foxglove/send_queues.hpp"
+#include "uampc/listen_address/listen_address.hpp"
 
 namespace uampc::foxglove {
 
@@ -142,10 +144,16 @@ class Server::Impl {
 
  private:
   void listen() {
-    const std::string where = options_.address + ":" + std::to_string(options_.port);
+    // One parser for the server and for the launcher's check before a run (libs/listen_address).
+    const std::optional<net::ListenAddress> parsed = net::parseListenAddress(options_.address);
+    if (!parsed) {
+      throw std::runtime_error("cannot serve on " + net::hostAndPort(options_.address, options_.port) + ": " +
+                               net::listenAddressError(options_.address));
+    }
+    const std::string where = net::hostAndPort(*parsed, options_.port);
     std::error_code ec;
-    const asio::ip::address address = asio::ip::make_address(options_.address, ec);
-    if (ec) throw std::runtime_error("cannot serve on " + where + ": '" + options_.address + "' is not an IP address");
+    const asio::ip::address address = asio::ip::make_address(parsed->numeric, ec);
+    if (ec) throw std::runtime_error("cannot serve on " + where + ": " + net::listenAddressError(options_.address));
     server_.listen(asio::ip::tcp::endpoint(address, options_.port), ec);
     if (ec) throw std::runtime_error("cannot serve on " + where + ": " + ec.message());
     port_ = server_.get_local_endpoint(ec).port();

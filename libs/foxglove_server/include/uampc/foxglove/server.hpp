@@ -39,7 +39,8 @@ struct ServerStatistics {
 class Server {
  public:
   // Binds and starts serving. Throws std::runtime_error naming the address and port when it
-  // cannot (in use, not an address of this machine, a privileged port).
+  // cannot (not an address as libs/listen_address reads it, in use, not an address of this
+  // machine, a privileged port).
   explicit Server(const ServerOptions& options);
   ~Server();  // closes every connection and stops the thread
   Server(const Server&) = delete;
