@@ -123,8 +123,9 @@ void TopicBridge::readSubscribedTopics(const std::map<std::string, DiscoveredTop
       readers_[id] = std::make_unique<RawSubscription>(
           discovery_.participant(), topics.at(dds_name),
           [this, id](SerializedMessage&& sample, const SampleTimes& times) {
-            server_.publish(id, static_cast<std::uint64_t>(std::max<std::int64_t>(0, times.published.ns)),
-                            sample.data.data(), sample.data.size());
+            const auto time_ns = static_cast<std::uint64_t>(std::max<std::int64_t>(0, times.published.ns));
+            // The sample's own bytes, moved, not copied: every subscription shares them.
+            server_.publish(id, time_ns, std::make_shared<const std::vector<std::uint8_t>>(std::move(sample.data)));
           },
           ReaderPolicy::kNeverHoldWriters);
     } catch (const std::runtime_error& e) {
@@ -149,7 +150,7 @@ void TopicBridge::followClock(const std::map<std::string, DiscoveredTopic>& topi
             const std::int64_t channel = clock_channel_;
             if (channel >= 0) {
               server_.publish(static_cast<foxglove::ChannelId>(channel), static_cast<std::uint64_t>(t),
-                              sample.data.data(), sample.data.size());
+                              std::make_shared<const std::vector<std::uint8_t>>(std::move(sample.data)));
             }
           },
           ReaderPolicy::kNeverHoldWriters);

@@ -5,6 +5,7 @@
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <mutex>
@@ -27,11 +28,11 @@ constexpr long kDropReportPeriodMs = 2000;  // a lagging client hears of its dro
 constexpr long kCloseGraceMs = 200;         // for close frames to leave before the thread stops
 
 struct Client {
-  explicit Client(std::size_t depth) : queues(depth) {}
+  Client(std::size_t depth, std::size_t max_bytes) : queues(depth, max_bytes) {}
   SendQueues queues;
   std::map<SubscriptionId, ChannelId> subscriptions;
   int bad_requests = 0;
-  bool closing = false;  // disconnected for bad requests; gone when its close handler runs
+  bool closing = false;  // disconnected (bad requests, a bound); gone when its close handler runs
 };
 
 }  // namespace
@@ -95,14 +96,15 @@ class Server::Impl {
     sendToAll(unadvertiseJson({id}));
   }
 
-  void publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size) {
+  void publish(ChannelId channel, std::uint64_t time_ns, Payload payload) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       for (auto& [handle, client] : clients_) {
+        std::optional<std::size_t> socket_bytes;  // asked once, of the clients subscribed
         for (const auto& [subscription, subscribed_channel] : client.subscriptions) {
           if (subscribed_channel != channel) continue;
-          client.queues.push(subscription, std::make_shared<const std::vector<std::uint8_t>>(
-                                               messageDataFrame(subscription, time_ns, data, size)));
+          if (!socket_bytes) socket_bytes = bufferedBytes(handle);
+          client.queues.push({subscription, time_ns, payload}, *socket_bytes);
         }
       }
     }
@@ -120,7 +122,7 @@ class Server::Impl {
     asio::post(server_.get_io_service(), [this, frame] {
       std::lock_guard<std::mutex> lock(mutex_);
       for (auto& [handle, client] : clients_) {
-        if (hasRoom(handle)) send(handle, *frame);
+        if (socketTakes(handle, frame->size())) send(handle, *frame);
       }
     });
   }
@@ -137,8 +139,8 @@ class Server::Impl {
   ServerStatistics statistics() const {
     std::lock_guard<std::mutex> lock(mutex_);
     ServerStatistics s = statistics_;
-    s.clients = clients_.size();
     for (const auto& [handle, client] : clients_) s.frames_dropped += client.queues.totalDrops();
+    s.clients = std::count_if(clients_.begin(), clients_.end(), [](const auto& c) { return !c.second.closing; });
     return s;
   }
 
@@ -176,7 +178,18 @@ class Server::Impl {
   void onOpen(Handle handle) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (stopping_) return;
-    clients_.emplace(handle, Client(options_.queue_depth));
+    if (clients_.size() >= options_.max_clients) {
+      // Not one of the clients: what it costs ends with its close.
+      send(handle,
+           statusJson(StatusLevel::kError, "this viewer serves at most " + std::to_string(options_.max_clients) +
+                                               " clients at once (uampc view --max-clients); try again "
+                                               "when one has left"));
+      std::error_code ec;
+      server_.close(handle, websocketpp::close::status::try_again_later, "too many clients", ec);
+      ++statistics_.clients_refused;
+      return;
+    }
+    clients_.emplace(handle, Client(options_.queue_depth, options_.max_client_queued_bytes));
     send(handle, serverInfoJson(options_.name, session_id_));
     std::vector<Channel> all;
     for (const auto& [id, channel] : channels_) all.push_back(channel);
@@ -201,6 +214,15 @@ class Server::Impl {
     }
     const ClientRequest request = parseClientRequest(message->get_payload());
     if (const auto* subscribe = std::get_if<SubscribeRequest>(&request)) {
+      if (client->second.subscriptions.size() + subscribe->subscriptions.size() >
+          options_.max_subscriptions_per_client) {
+        disconnectOverBound(
+            handle, client->second,
+            "subscribe: " + std::to_string(subscribe->subscriptions.size()) + " subscriptions asked for beside the " +
+                std::to_string(client->second.subscriptions.size()) + " this client has; a client may have at most " +
+                std::to_string(options_.max_subscriptions_per_client) + " (uampc view --max-subscriptions-per-client)");
+        return;
+      }
       for (const Subscription& s : subscribe->subscriptions) addSubscription(handle, client->second, s);
     } else if (const auto* unsubscribe = std::get_if<UnsubscribeRequest>(&request)) {
       for (SubscriptionId id : unsubscribe->subscriptions) {
@@ -226,6 +248,22 @@ class Server::Impl {
     }
   }
 
+  // A client over one of the bounds on what clients cost: told why, then disconnected, its
+  // queues freed at once.
+  void disconnectOverBound(Handle handle, Client& client, const std::string& why) {
+    send(handle, statusJson(StatusLevel::kError, why));
+    std::error_code ec;
+    server_.close(handle, websocketpp::close::status::policy_violation, "over a bound of this viewer", ec);
+    ++statistics_.clients_refused;
+    stopServing(client);
+  }
+
+  void stopServing(Client& client) {
+    client.closing = true;
+    for (const auto& [subscription, channel] : client.subscriptions) client.queues.remove(subscription);
+    client.subscriptions.clear();
+  }
+
   // A status error for a bad request; a client that keeps sending them is disconnected.
   void refuse(Handle handle, Client& client, const std::string& why) {
     if (client.closing) return;
@@ -233,17 +271,27 @@ class Server::Impl {
       std::error_code ec;
       server_.close(handle, websocketpp::close::status::policy_violation, "too many bad requests", ec);
       ++statistics_.clients_disconnected_for_bad_requests;
-      client.closing = true;
-      client.subscriptions.clear();
+      stopServing(client);
       return;
     }
     send(handle, statusJson(StatusLevel::kError, why));
   }
 
-  bool hasRoom(Handle handle) {
+  // What the client's socket holds not yet written; 0 for a connection that is gone.
+  std::size_t bufferedBytes(Handle handle) {
     std::error_code ec;
     WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
-    return !ec && connection->get_buffered_amount() < options_.max_buffered_bytes;
+    return ec ? 0 : connection->get_buffered_amount();
+  }
+
+  // Whether the client's socket takes `bytes` more now: while it holds less than
+  // max_buffered_bytes with them, or anything when it is empty (a message larger than that).
+  bool socketTakes(Handle handle, std::size_t bytes) {
+    std::error_code ec;
+    WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
+    if (ec) return false;
+    const std::size_t buffered = connection->get_buffered_amount();
+    return buffered == 0 || buffered + bytes <= options_.max_buffered_bytes;
   }
 
   void send(Handle handle, const std::string& text) {
@@ -255,6 +303,18 @@ class Server::Impl {
     server_.send(handle, frame.data(), frame.size(), websocketpp::frame::opcode::binary, ec);
     if (!ec) ++statistics_.frames_sent;
   }
+  // Header and shared payload straight into the socket's one copy of the frame, which websocketpp
+  // frees once it is written.
+  void send(Handle handle, const QueuedMessage& message) {
+    std::error_code ec;
+    WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
+    if (ec) return;
+    const auto header = messageDataHeader(message.subscription, message.time_ns);
+    WsServer::message_ptr frame = connection->get_message(websocketpp::frame::opcode::binary, message.frameBytes());
+    frame->append_payload(header.data(), header.size());
+    frame->append_payload(message.payload->data(), message.payload->size());
+    if (!connection->send(frame)) ++statistics_.frames_sent;
+  }
   void sendToAll(const std::string& text) {
     for (auto& [handle, client] : clients_) send(handle, text);
   }
@@ -263,10 +323,11 @@ class Server::Impl {
   void pump() {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& [handle, client] : clients_) {
-      while (!client.closing && hasRoom(handle)) {
-        const Frame frame = client.queues.pop();
-        if (!frame) break;
-        send(handle, *frame);
+      while (!client.closing) {
+        const std::optional<QueuedMessage> message =
+            client.queues.pop([&](std::size_t bytes) { return socketTakes(handle, bytes); });
+        if (!message) break;
+        send(handle, *message);
       }
     }
   }
@@ -291,6 +352,10 @@ class Server::Impl {
   void reportDrops() {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& [handle, client] : clients_) {
+      // Only into a socket with room: the counts wait for it meanwhile, so that the warnings of a
+      // client that does not read never pile up.
+      constexpr std::size_t kWarningBytes = 200;
+      if (client.closing || !socketTakes(handle, kWarningBytes * client.subscriptions.size())) continue;
       for (const auto& [subscription, dropped] : client.queues.takeNewDrops()) {
         const auto channel = channels_.find(client.subscriptions[subscription]);
         const std::string topic = channel == channels_.end() ? "a withdrawn channel" : channel->second.topic;
@@ -321,8 +386,8 @@ Server::~Server() = default;
 std::uint16_t Server::port() const { return impl_->port(); }
 ChannelId Server::advertise(Channel channel) { return impl_->advertise(std::move(channel)); }
 void Server::unadvertise(ChannelId id) { impl_->unadvertise(id); }
-void Server::publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size) {
-  impl_->publish(channel, time_ns, data, size);
+void Server::publish(ChannelId channel, std::uint64_t time_ns, Payload payload) {
+  impl_->publish(channel, time_ns, std::move(payload));
 }
 void Server::broadcastTime(std::uint64_t time_ns) { impl_->broadcastTime(time_ns); }
 std::set<ChannelId> Server::subscribedChannels() const { return impl_->subscribedChannels(); }
