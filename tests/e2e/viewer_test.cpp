@@ -4,8 +4,8 @@
 // recording, real sockets. Also: a run's outputs are the same bytes with a viewer subscribed to
 // every topic, a client that never reads costs the run nothing, misbehaving clients are answered
 // and then disconnected while the server goes on, clients over the viewer's bounds are told and
-// disconnected and its memory stays within them, and `--view` addresses are read as the viewer
-// reads them, a run failing with its viewer.
+// disconnected and its memory stays within them, a client that comes late still gets the latched
+// topics, and `--view` addresses are read as the viewer reads them, a run failing with its viewer.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -320,6 +320,21 @@ TEST(Viewer, MemoryStaysWithinTheBoundAndComesBackAfterTheClientsLeave) {
   EXPECT_LT(served.peak, 400ll << 20) << "peak RSS " << (served.peak >> 20) << " MiB";
   EXPECT_LT(left.rss, 150ll << 20) << "RSS after the clients left " << (left.rss >> 20) << " MiB, peak "
                                    << (served.peak >> 20) << " MiB";
+}
+
+// A latched topic's kept samples reach the viewer's one reader once, when the first client
+// subscribes; a client that subscribes while another is subscribed gets them from the viewer.
+TEST(Viewer, AClientThatComesLateGetsTheLatchedTopics) {
+  const std::string log = freshDirectory("viewer_latched") + "/run.log";
+  const pid_t run = startLaunch(defaultScene(9, 10) + viewOptions(9), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const json seen = watch(url(9) + " --topics /tf_static,/world/points,/world/mesh --late-client --until-closed");
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+  for (const char* topic : {"/tf_static", "/world/points", "/world/mesh"}) {
+    EXPECT_GT(seen["topics"][topic]["received"].get<int>(), 0) << topic << " " << seen.dump().substr(0, 2000);
+    ASSERT_TRUE(seen["late_client"].is_object()) << seen.dump().substr(0, 2000);
+    EXPECT_GT(seen["late_client"]["topics"].value(topic, 0), 0) << topic << " " << seen["late_client"].dump();
+  }
 }
 
 // What the viewer refuses, the start check of launch refuses: the resolver's shorthands for

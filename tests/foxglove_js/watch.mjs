@@ -7,6 +7,7 @@
 //                      [--bad-requests N] [--huge-frame] [--duplicate-subscription] [--churn N]
 //                      [--subscriptions-per-topic N] [--stop-reading]
 //                      [--hold-clients N [--held-subscribe [--held-reading]]]
+//                      [--late-client]
 //
 // --topics      what to subscribe to (all: every channel advertised, also those advertised later)
 // --seconds     how long to watch (default 10); --until-closed: until the server closes instead
@@ -20,10 +21,12 @@
 // --hold-clients N  first connect N clients that stay until the end; with --held-subscribe each
 //               subscribes to the wanted topics and stops reading (N slow clients); with
 //               --held-reading it reads on, without decoding
+// --late-client a second client that subscribes to the wanted topics once the first has received
+//               a message of each: what it receives is in "late_client"
 //
 // Prints one JSON object: per topic the messages received and decoded and a digest of the first
 // one; the status messages; time messages; decode errors (each names topic and error); what held
-// clients saw. Exits 1 on a connection that fails or any message that does not decode.
+// and late clients saw. Exits 1 on a connection that fails or any message that does not decode.
 import { parse } from "@foxglove/rosmsg";
 import { MessageReader } from "@foxglove/rosmsg2-serialization";
 import wsProtocol from "@foxglove/ws-protocol";
@@ -33,7 +36,7 @@ const { FoxgloveClient } = wsProtocol;
 
 function options(argv) {
   const o = { url: argv[0], topics: "all", seconds: 10, untilClosed: false, lazy: false, bad: 0, huge: false, duplicate: false, churn: 0,
-              perTopic: 1, stopReading: false, hold: 0, heldSubscribe: false, heldReading: false };
+              perTopic: 1, stopReading: false, hold: 0, heldSubscribe: false, heldReading: false, late: false };
   for (let i = 1; i < argv.length; ++i) {
     const a = argv[i];
     if (a === "--topics") o.topics = argv[++i];
@@ -49,6 +52,7 @@ function options(argv) {
     else if (a === "--hold-clients") o.hold = Number(argv[++i]);
     else if (a === "--held-subscribe") o.heldSubscribe = true;
     else if (a === "--held-reading") o.heldReading = true;
+    else if (a === "--late-client") o.late = true;
     else throw new Error(`unknown argument ${a}`);
   }
   return o;
@@ -123,6 +127,24 @@ async function holdClients(n, subscribe, reading) {
     });
   }
   return held;
+}
+
+// A client that subscribes to the wanted topics when asked, and counts what it receives by topic.
+function lateClient() {
+  const late = { topics: {}, statuses: [] };
+  const ws = connect();
+  const client = new FoxgloveClient({ ws });
+  const topicOf = new Map();
+  client.on("error", () => {});
+  client.on("status", (s) => late.statuses.push({ level: s.level, message: s.message }));
+  client.on("advertise", (channels) => {
+    for (const c of channels) if (!wanted || wanted.has(c.topic)) topicOf.set(client.subscribe(c.id), c.topic);
+  });
+  client.on("message", ({ subscriptionId }) => {
+    const topic = topicOf.get(subscriptionId);
+    late.topics[topic] = (late.topics[topic] ?? 0) + 1;
+  });
+  return { late, ws };
 }
 
 function badRequests(ws, n) {
@@ -228,12 +250,21 @@ async function main() {
   }
 
   const deadline = Date.now() + opts.seconds * 1000;
-  while (!closed && (opts.untilClosed || Date.now() < deadline)) await sleep(50);
+  let late = null;
+  while (!closed && (opts.untilClosed || Date.now() < deadline)) {
+    await sleep(50);
+    // Late: once every wanted topic has reached the first client, which stays subscribed.
+    if (opts.late && !late && wanted && [...wanted].every((t) => result.topics[t]?.received > 0)) late = lateClient();
+  }
   if (lazy) {
     result.lazy_client = { still_open: lazy.readyState === WebSocket.OPEN };
     lazy.terminate();
   }
   if (!closed) client.close();
+  if (late) {
+    result.late_client = late.late;
+    late.ws.terminate();
+  }
   if (held) {
     result.held_clients = { closed_by_server: held.clients.filter((c) => c.closed).length, statuses: held.statuses };
     for (const c of held.clients) c.ws.terminate();

@@ -2,6 +2,11 @@
 
 namespace uampc::foxglove {
 
+void SendQueues::add(SubscriptionId id, std::size_t depth) {
+  Queue& queue = queues_[id];
+  queue.depth = depth > depth_ ? depth : depth_;
+}
+
 void SendQueues::remove(SubscriptionId id) {
   const auto queue = queues_.find(id);
   if (queue == queues_.end()) return;
@@ -32,7 +37,7 @@ bool SendQueues::push(QueuedMessage message, std::size_t socket_bytes) {
   const std::uint64_t order = next_order_++;
   queued_bytes_ += message.frameBytes();
   queue.messages.push_back({std::move(message), order});
-  while (queue.messages.size() > depth_) dropFront(queue);
+  while (queue.messages.size() > queue.depth) dropFront(queue);
   while (queued_bytes_ + socket_bytes > max_bytes_) {
     Queue* oldest = oldestExcept(order);
     if (!oldest) break;  // only this message is left: it goes, however large

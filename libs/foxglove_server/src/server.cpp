@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "uampc/foxglove/latched_messages.hpp"
 #include "uampc/foxglove/send_queues.hpp"
 #include "uampc/listen_address/listen_address.hpp"
 
@@ -93,12 +94,14 @@ class Server::Impl {
         s = client.subscriptions.erase(s);
       }
     }
+    latched_.forget(id);
     sendToAll(unadvertiseJson({id}));
   }
 
-  void publish(ChannelId channel, std::uint64_t time_ns, Payload payload) {
+  void publish(ChannelId channel, std::uint64_t time_ns, Payload payload, std::size_t keep) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      if (keep > 0 && channels_.count(channel)) latched_.keep(channel, time_ns, payload, keep);
       for (auto& [handle, client] : clients_) {
         std::optional<std::size_t> socket_bytes;  // asked once, of the clients subscribed
         for (const auto& [subscription, subscribed_channel] : client.subscriptions) {
@@ -115,6 +118,11 @@ class Server::Impl {
         pump();
       });
     }
+  }
+
+  void forgetLatched(ChannelId channel) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latched_.forget(channel);
   }
 
   void broadcastTime(std::uint64_t time_ns) {
@@ -243,8 +251,13 @@ class Server::Impl {
     } else if (client.subscriptions.count(s.id)) {
       refuse(handle, client, "subscribe: subscription id " + std::to_string(s.id) + " is in use");
     } else {
+      // A latched channel's subscription starts with its kept messages, all of them, within the
+      // client's byte bound.
+      const auto& kept = latched_.of(s.channel);
       client.subscriptions[s.id] = s.channel;
-      client.queues.add(s.id);
+      client.queues.add(s.id, kept.size());
+      const std::size_t socket_bytes = bufferedBytes(handle);
+      for (const KeptMessage& m : kept) client.queues.push({s.id, m.time_ns, m.payload}, socket_bytes);
     }
   }
 
@@ -376,6 +389,7 @@ class Server::Impl {
 
   mutable std::mutex mutex_;  // everything below
   std::map<ChannelId, Channel> channels_;
+  LatchedMessages latched_;
   ChannelId next_channel_ = 1;
   std::map<Handle, Client, std::owner_less<Handle>> clients_;
   ServerStatistics statistics_;
@@ -387,8 +401,12 @@ std::uint16_t Server::port() const { return impl_->port(); }
 ChannelId Server::advertise(Channel channel) { return impl_->advertise(std::move(channel)); }
 void Server::unadvertise(ChannelId id) { impl_->unadvertise(id); }
 void Server::publish(ChannelId channel, std::uint64_t time_ns, Payload payload) {
-  impl_->publish(channel, time_ns, std::move(payload));
+  impl_->publish(channel, time_ns, std::move(payload), 0);
 }
+void Server::publishLatched(ChannelId channel, std::uint64_t time_ns, Payload payload, std::size_t keep) {
+  impl_->publish(channel, time_ns, std::move(payload), keep);
+}
+void Server::forgetLatched(ChannelId channel) { impl_->forgetLatched(channel); }
 void Server::broadcastTime(std::uint64_t time_ns) { impl_->broadcastTime(time_ns); }
 std::set<ChannelId> Server::subscribedChannels() const { return impl_->subscribedChannels(); }
 ServerStatistics Server::statistics() const { return impl_->statistics(); }

@@ -110,6 +110,14 @@ TEST(SendQueues, AMessageLargerThanTheBoundGoesAlone) {
   EXPECT_EQ(q.totalDrops(), 1u);
 }
 
+TEST(SendQueues, ASubscriptionMayKeepMoreThanTheUsualDepth) {
+  SendQueues q(2, kNoByteBound);
+  q.add(1, 5);  // a latched topic's kept samples, all of them
+  for (std::uint8_t i = 0; i < 5; ++i) q.push(message(1, i));
+  EXPECT_EQ(q.queuedFrames(), 5u);
+  EXPECT_EQ(q.totalDrops(), 0u);
+}
+
 TEST(SendQueues, AMessageTheSocketCannotTakeWaitsFirstInLine) {
   SendQueues q(10, kNoByteBound);
   q.add(1);

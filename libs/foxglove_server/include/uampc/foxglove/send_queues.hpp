@@ -38,7 +38,9 @@ class SendQueues {
   SendQueues(std::size_t depth_per_subscription, std::size_t max_bytes)
       : depth_(depth_per_subscription), max_bytes_(max_bytes) {}
 
-  void add(SubscriptionId id) { queues_.try_emplace(id); }
+  // depth: this subscription's own, for one that starts with more kept messages than the usual
+  // depth (a latched topic's); 0: the usual.
+  void add(SubscriptionId id, std::size_t depth = 0);
   void remove(SubscriptionId id);
   bool has(SubscriptionId id) const { return queues_.count(id) > 0; }
   std::size_t subscriptions() const { return queues_.size(); }
@@ -72,6 +74,7 @@ class SendQueues {
   };
   struct Queue {
     std::deque<Waiting> messages;
+    std::size_t depth = 0;
     std::uint64_t new_drops = 0;
   };
   void dropFront(Queue& queue);

@@ -69,6 +69,12 @@ class Server {
   // them. time_ns: the message's time in the server's time base (broadcastTime's). Any thread;
   // never blocks on a client.
   void publish(ChannelId channel, std::uint64_t time_ns, Payload payload);
+  // The same for a latched channel (a transient-local topic): its latest `keep` messages are kept
+  // too, and every later subscription to it starts with them, as a late DDS reader would get them.
+  void publishLatched(ChannelId channel, std::uint64_t time_ns, Payload payload, std::size_t keep);
+  // Forgets what publishLatched kept of a channel: its owner stopped reading it, and the next
+  // reader brings the kept samples anew.
+  void forgetLatched(ChannelId channel);
   // The server's current time, to every client (skipped for a client whose socket is full).
   void broadcastTime(std::uint64_t time_ns);
 
