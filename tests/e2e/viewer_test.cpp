@@ -2,13 +2,17 @@
 // @foxglove/ws-protocol, with ROS 2 decoding by @foxglove/rosmsg2-serialization from the schemas
 // the server advertises (tests/foxglove_js/watch.mjs): real runs of the default scene, a real
 // recording, real sockets. Also: a run's outputs are the same bytes with a viewer subscribed to
-// every topic, a client that never reads costs the run nothing, and misbehaving clients are
-// answered and then disconnected while the server goes on.
+// every topic, a client that never reads costs the run nothing, misbehaving clients are answered
+// and then disconnected while the server goes on, clients over the viewer's bounds are told and
+// disconnected and its memory stays within them, a client that comes late still gets the latched
+// topics, and `--view` addresses are read as the viewer reads them, a run failing with its viewer.
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -49,6 +53,28 @@ json watch(const std::string& args) {
 
 bool waitUntilServing(const std::string& log) {
   return waitFor([&] { return logHas(log, "uampc view: serving"); }, std::chrono::seconds(30));
+}
+
+// A process's resident memory, now and at its peak (VmRSS, VmHWM of /proc/PID/status), in bytes.
+struct Memory {
+  long long rss = -1;
+  long long peak = -1;
+};
+Memory memoryOf(pid_t pid) {
+  Memory m;
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(status, line);) {
+    long long kib = 0;
+    if (std::sscanf(line.c_str(), "VmRSS: %lld kB", &kib) == 1) m.rss = kib * 1024;
+    if (std::sscanf(line.c_str(), "VmHWM: %lld kB", &kib) == 1) m.peak = kib * 1024;
+  }
+  return m;
+}
+
+// The `uampc view` a `launch --view` on this domain started.
+pid_t viewerOf(int domain_id) {
+  const std::string pids = runShell("pgrep -f '[u]ampc view --domain " + std::to_string(domain_id) + " '").output;
+  return pids.empty() ? -1 : std::stoi(pids);
 }
 
 // A run's outputs, file by file, without what differs between any two runs: run_info.json (when
@@ -229,6 +255,119 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
   // From the start: play waited for the subscription, so every scan of the 3 s (10 Hz) arrives.
   EXPECT_GE(seen["topics"]["/lidar/points"]["decoded"].get<int>(), 25) << seen.dump();
   EXPECT_GT(seen["topics"]["/lo/odometry"]["decoded"].get<int>(), 0);
+}
+
+// The bounds on what clients cost (docs/decisions/viewer-memory-bounds.md), at their defaults: a
+// client asking for more subscriptions than one may hold, and one client more than the viewer
+// serves, are each told in a status error and disconnected; the others are served on.
+TEST(Viewer, ClientsOverTheViewersBoundsAreToldAndDisconnected) {
+  const std::string log = freshDirectory("viewer_bounds") + "/run.log";
+  const pid_t run = startLaunch(defaultScene(6, 20) + viewOptions(6), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+
+  const json greedy = watch(url(6) + " --topics /tf --subscriptions-per-topic 1025 --seconds 10");
+  EXPECT_TRUE(greedy["closed_by_server"].get<bool>()) << greedy.dump();
+  ASSERT_EQ(greedy["statuses"].size(), 1u) << greedy.dump();
+  EXPECT_EQ(greedy["statuses"][0]["level"], 2);
+  EXPECT_NE(greedy["statuses"][0]["message"].get<std::string>().find("at most 1024"), std::string::npos)
+      << greedy.dump();
+  EXPECT_FALSE(greedy["topics"].contains("/tf")) << "nothing was served to it";
+
+  // 16 clients connected and staying: the 17th is one too many.
+  const json one_more = watch(url(6) + " --topics /tf --hold-clients 16 --seconds 10");
+  EXPECT_TRUE(one_more["closed_by_server"].get<bool>()) << one_more.dump();
+  ASSERT_EQ(one_more["statuses"].size(), 1u) << one_more.dump();
+  EXPECT_EQ(one_more["statuses"][0]["level"], 2);
+  EXPECT_NE(one_more["statuses"][0]["message"].get<std::string>().find("at most 16 clients"), std::string::npos);
+  EXPECT_EQ(one_more["held_clients"]["closed_by_server"], 0) << one_more.dump();
+
+  // When they have gone, a client is served again.
+  const json after = watch(url(6) + " --topics /tf --seconds 2");
+  EXPECT_FALSE(after["closed_by_server"].get<bool>()) << after.dump();
+  EXPECT_GT(after["topics"]["/tf"]["decoded"].get<int>(), 0) << after.dump();
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+}
+
+// 500 subscriptions to the scans in one request, by a client that never reads, beside 15 slow
+// clients on the scans: without a copy of each scan per subscription and client, the viewer stays
+// within its bound (docs/user/viewing.md), far below the 1.1 GB the single client cost it when
+// every queue held copies, and gives its memory back once they have left.
+TEST(Viewer, MemoryStaysWithinTheBoundAndComesBackAfterTheClientsLeave) {
+  const std::string log = freshDirectory("viewer_memory") + "/view.log";
+  const pid_t view =
+      startUampc("view --domain " + std::to_string(domain(8)) + " --port " + std::to_string(port(8)), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const std::string run_log = freshDirectory("viewer_memory_run") + "/run.log";
+  const pid_t run = startLaunch(defaultScene(8, 30), run_log);
+  const json seen = watch(url(8) +
+                          " --topics /lidar/points --subscriptions-per-topic 500 --stop-reading"
+                          " --hold-clients 15 --held-subscribe --seconds 6");
+  EXPECT_FALSE(seen["closed_by_server"].get<bool>()) << seen.dump();
+  const Memory served = memoryOf(view);
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(run_log);
+  // After the clients and the run: what the clients' queues held is given back.
+  ASSERT_TRUE(waitFor([&] { return logHas(log, "0 client(s) connected"); }, std::chrono::seconds(10))) << readFile(log);
+  const Memory left = memoryOf(view);
+  kill(view, SIGTERM);
+  EXPECT_EQ(exitCodeOf(view), 0) << readFile(log);
+  ASSERT_GT(served.peak, 0);
+  std::cout << "viewer: peak RSS " << (served.peak >> 20) << " MiB, " << (left.rss >> 20)
+            << " MiB after the clients left\n";
+  // The bound of docs/user/viewing.md with the defaults is about 560 MiB, counting every shared
+  // payload in full for each client. For one topic the payloads held are the latest 10 scans and
+  // the reader's 100 at most, shared, so that what a client really holds is the 8 MiB its socket
+  // takes and a scan: 16 x 8.2 MiB over the idle viewer's 21 MiB and the 110 scans, about 170 MiB.
+  EXPECT_LT(served.peak, 400ll << 20) << "peak RSS " << (served.peak >> 20) << " MiB";
+  EXPECT_LT(left.rss, 150ll << 20) << "RSS after the clients left " << (left.rss >> 20) << " MiB, peak "
+                                   << (served.peak >> 20) << " MiB";
+}
+
+// A latched topic's kept samples reach the viewer's one reader once, when the first client
+// subscribes; a client that subscribes while another is subscribed gets them from the viewer.
+TEST(Viewer, AClientThatComesLateGetsTheLatchedTopics) {
+  const std::string log = freshDirectory("viewer_latched") + "/run.log";
+  const pid_t run = startLaunch(defaultScene(9, 10) + viewOptions(9), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const json seen = watch(url(9) + " --topics /tf_static,/world/points,/world/mesh --late-client --until-closed");
+  ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
+  for (const char* topic : {"/tf_static", "/world/points", "/world/mesh"}) {
+    EXPECT_GT(seen["topics"][topic]["received"].get<int>(), 0) << topic << " " << seen.dump().substr(0, 2000);
+    ASSERT_TRUE(seen["late_client"].is_object()) << seen.dump().substr(0, 2000);
+    EXPECT_GT(seen["late_client"]["topics"].value(topic, 0), 0) << topic << " " << seen["late_client"].dump();
+  }
+}
+
+// What the viewer refuses, the start check of launch refuses: the resolver's shorthands for
+// IPv4 (127.1, 0, 0x7f000001) passed it, the run started, the viewer died and the launch exited 0.
+TEST(Viewer, LaunchRefusesAtItsStartTheAddressesTheViewerRefuses) {
+  for (const std::string address : {"127.1", "0", "0x7f000001"}) {
+    const CommandResult launch =
+        runUampc("launch " + defaultScene(10, 2) + viewOptions(10) + " --view-address " + address);
+    EXPECT_EQ(launch.exit_code, 1) << address << ": " << launch.output;
+    EXPECT_NE(launch.output.find("'" + address + "' is not an IP address"), std::string::npos) << launch.output;
+    EXPECT_NE(launch.output.find("nothing was started"), std::string::npos) << launch.output;
+    const CommandResult view = runUampc("view --address " + address + " --port 0 --duration 0.5");
+    EXPECT_EQ(view.exit_code, 1) << view.output;
+    EXPECT_NE(view.output.find("'" + address + "' is not an IP address"), std::string::npos) << view.output;
+  }
+  // IPv6, bracketed in the URL it prints.
+  const CommandResult v6 =
+      runUampc("view --domain " + std::to_string(domain(10)) + " --address ::1 --port 0 --duration 0.5");
+  EXPECT_EQ(v6.exit_code, 0) << v6.output;
+  EXPECT_TRUE(std::regex_search(v6.output, std::regex(R"(serving DDS domain [0-9]+ on ws://\[::1\]:[0-9]+ )")))
+      << v6.output;
+}
+
+// A run asked to be watched fails when its viewer does, naming it, instead of going on unwatched.
+TEST(Viewer, ARunFailsWhenItsViewerDies) {
+  const std::string log = freshDirectory("viewer_dies") + "/run.log";
+  const pid_t run = startLaunch(defaultScene(11, 20) + viewOptions(11), log);
+  ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  const pid_t viewer = viewerOf(domain(11));
+  ASSERT_GT(viewer, 0) << runShell("ps -ef").output;
+  kill(viewer, SIGKILL);
+  EXPECT_EQ(exitCodeOf(run), 1) << readFile(log);
+  EXPECT_TRUE(logHas(log, "the viewer (uampc view) killed by signal 9")) << readFile(log);
 }
 
 }  // namespace

@@ -67,7 +67,9 @@ class Player {
     }
   }
 
-  // False when stopped by a signal first.
+  // The viewer beside the playing (--view): if it fails, so does the playing.
+  void watchViewer(ViewerProcess* viewer) { viewer_ = viewer; }
+
   // every_topic false: until one topic has a reader (a viewer's client that subscribed). False
   // when stopped by a signal.
   bool waitForReaders(bool every_topic) const {
@@ -84,6 +86,7 @@ class Player {
       }
       if (every_topic ? missing.empty() : some_read) return true;
       if (stopRequested()) return false;
+      throwIfViewerFailed();
       if (SteadyClock::now() > next_report) {
         if (every_topic) {
           std::cerr << "uampc play: waiting for readers of" << missing << "\n";
@@ -109,6 +112,7 @@ class Player {
     recording::RecordedSample sample;
     while (!playback_.finished()) {
       if (stopRequested()) return false;
+      throwIfViewerFailed();
       const auto now = SteadyClock::now();
       const double elapsed_s = std::chrono::duration<double>(now - started).count() * options_.rate;
       const Time until = origin + Time::fromSeconds(elapsed_s);
@@ -145,6 +149,12 @@ class Player {
   }
 
  private:
+  // A play asked to be watched fails without its viewer (docs/decisions/run-fails-with-its-viewer.md).
+  void throwIfViewerFailed() const {
+    if (!viewer_) return;
+    if (const std::string problem = viewer_->poll(); !problem.empty()) throw std::runtime_error(problem);
+  }
+
   void publish(recording::RecordedSample& sample) {
     DataWriter* writer = writers_[sample.topic];
     if (!writer) return;
@@ -169,6 +179,7 @@ class Player {
   DataWriter* clock_writer_ = nullptr;
   std::vector<PublishCost> costs_;
   recording::Restamper restamper_{Time{0}};
+  ViewerProcess* viewer_ = nullptr;
 };
 
 // Recorded /clock and lockstep protocol topics are never played: on a live domain, the run there
@@ -202,6 +213,7 @@ int playCommand(const PlayOptions& options) {
     catchStopSignals();
     std::unique_ptr<ViewerProcess> viewer;
     if (options.viewer.enabled) viewer = std::make_unique<ViewerProcess>(options.viewer, domain, options.security_dir);
+    player.watchViewer(viewer.get());
     if (options.wait_for_readers || viewer) {
       // With a viewer: from when its client looks, not before (the user is still opening it).
       if (!player.waitForReaders(options.wait_for_readers)) return 130;

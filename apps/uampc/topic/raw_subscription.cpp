@@ -16,28 +16,31 @@ using namespace eprosima::fastdds::dds;
 
 namespace {
 
-// Keeps up to this many samples not yet taken: enough for bursts, bounded for large ones.
-constexpr std::int32_t kHistoryDepth = 100;
+bool allReliable(const DiscoveredTopic& topic) {
+  return std::all_of(topic.writers.begin(), topic.writers.end(), [](const auto& w) { return w.reliable; });
+}
 
 DataReaderQos readerQos(Subscriber* subscriber, const DiscoveredTopic& topic, ReaderPolicy policy) {
-  const auto& writers = topic.writers;
-  const bool writers_reliable =
-      std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.reliable; });
-  const bool transient_local =
-      writers_reliable &&
-      std::all_of(writers.begin(), writers.end(), [](const auto& w) { return w.transient_local; });
+  const bool writers_reliable = allReliable(topic);
+  const bool transient_local = isLatched(topic);
   const bool reliable = policy == ReaderPolicy::kLikeTheWriters ? writers_reliable : transient_local;
   DataReaderQos qos = subscriber->get_default_datareader_qos();
   qos.reliability().kind = reliable ? RELIABLE_RELIABILITY_QOS : BEST_EFFORT_RELIABILITY_QOS;
   qos.durability().kind = transient_local ? TRANSIENT_LOCAL_DURABILITY_QOS : VOLATILE_DURABILITY_QOS;
   qos.history().kind = KEEP_LAST_HISTORY_QOS;
-  qos.history().depth = kHistoryDepth;
+  // Enough for bursts, bounded for large samples.
+  qos.history().depth = RawSubscription::kHistoryDepth;
   // Samples larger than the type's hint are reallocated rather than refused.
   qos.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
   return qos;
 }
 
 }  // namespace
+
+bool isLatched(const DiscoveredTopic& topic) {
+  return allReliable(topic) &&
+         std::all_of(topic.writers.begin(), topic.writers.end(), [](const auto& w) { return w.transient_local; });
+}
 
 RawSubscription::RawSubscription(DomainParticipant* participant, const DiscoveredTopic& topic, OnSample on_sample,
                                  ReaderPolicy policy)

@@ -31,8 +31,15 @@ enum class ReaderPolicy {
   kNeverHoldWriters,
 };
 
+// Whether `topic` is latched: every writer reliable and transient-local, so that a reader that
+// asks for it gets the samples they keep when it matches (ROS 2's /tf_static, uampc's maps).
+bool isLatched(const DiscoveredTopic& topic);
+
 class RawSubscription {
  public:
+  // Samples a reader keeps not yet taken; also how many kept samples of a latched topic it takes.
+  static constexpr std::int32_t kHistoryDepth = 100;
+
   // Called on Fast DDS's thread for every sample.
   using OnSample = std::function<void(SerializedMessage&& sample, const SampleTimes& times)>;
 

@@ -103,7 +103,7 @@ void TopicBridge::withdrawGoneTopics(const std::map<std::string, DiscoveredTopic
       continue;
     }
     readers_.erase(it->second.id);
-    server_.unadvertise(it->second.id);
+    server_.unadvertise(it->second.id);  // and what it kept of the topic
     it = advertised_.erase(it);
   }
 }
@@ -111,7 +111,15 @@ void TopicBridge::withdrawGoneTopics(const std::map<std::string, DiscoveredTopic
 void TopicBridge::readSubscribedTopics(const std::map<std::string, DiscoveredTopic>& topics) {
   const std::set<foxglove::ChannelId> wanted = server_.subscribedChannels();
   for (auto it = readers_.begin(); it != readers_.end();) {
-    it = wanted.count(it->first) ? std::next(it) : readers_.erase(it);
+    if (wanted.count(it->first)) {
+      ++it;
+      continue;
+    }
+    const foxglove::ChannelId id = it->first;
+    it = readers_.erase(it);
+    // After the reader: none of its samples can come in after this. The next reader brings the
+    // kept samples of a latched topic anew.
+    server_.forgetLatched(id);
   }
   const auto clock = advertised_.find(kClockTopic);
   clock_channel_ = clock != advertised_.end() && wanted.count(clock->second.id) ? std::int64_t(clock->second.id) : -1;
@@ -119,12 +127,22 @@ void TopicBridge::readSubscribedTopics(const std::map<std::string, DiscoveredTop
     // /clock has its reader for good (followClock), which also forwards it.
     if (!wanted.count(advertised.id) || readers_.count(advertised.id) || dds_name == kClockTopic) continue;
     const foxglove::ChannelId id = advertised.id;
+    const DiscoveredTopic& topic = topics.at(dds_name);
+    // A latched topic's kept samples reach this reader once: the server keeps them for the
+    // clients that subscribe later (docs/decisions/viewer-latched-topics.md).
+    const std::size_t keep = isLatched(topic) ? RawSubscription::kHistoryDepth : 0;
     try {
       readers_[id] = std::make_unique<RawSubscription>(
-          discovery_.participant(), topics.at(dds_name),
-          [this, id](SerializedMessage&& sample, const SampleTimes& times) {
-            server_.publish(id, static_cast<std::uint64_t>(std::max<std::int64_t>(0, times.published.ns)),
-                            sample.data.data(), sample.data.size());
+          discovery_.participant(), topic,
+          [this, id, keep](SerializedMessage&& sample, const SampleTimes& times) {
+            const auto time_ns = static_cast<std::uint64_t>(std::max<std::int64_t>(0, times.published.ns));
+            // The sample's own bytes, moved, not copied: every subscription shares them.
+            auto payload = std::make_shared<const std::vector<std::uint8_t>>(std::move(sample.data));
+            if (keep > 0) {
+              server_.publishLatched(id, time_ns, std::move(payload), keep);
+            } else {
+              server_.publish(id, time_ns, std::move(payload));
+            }
           },
           ReaderPolicy::kNeverHoldWriters);
     } catch (const std::runtime_error& e) {
@@ -149,7 +167,7 @@ void TopicBridge::followClock(const std::map<std::string, DiscoveredTopic>& topi
             const std::int64_t channel = clock_channel_;
             if (channel >= 0) {
               server_.publish(static_cast<foxglove::ChannelId>(channel), static_cast<std::uint64_t>(t),
-                              sample.data.data(), sample.data.size());
+                              std::make_shared<const std::vector<std::uint8_t>>(std::move(sample.data)));
             }
           },
           ReaderPolicy::kNeverHoldWriters);

@@ -1,11 +1,14 @@
-// `uampc view [--domain N] [--port P] [--address A]`: serves what a DDS domain publishes to
+// `uampc view [--domain N] [--port P] [--address A] [--max-clients N] ...`: serves what a DDS domain publishes to
 // Foxglove over its WebSocket protocol, live, until Ctrl-C (docs/user/viewing.md). `uampc launch
 // --view` and `uampc play --view` run it beside a run or a replay.
 #pragma once
 
 #include "cli/command_set.hpp"
+#include "uampc/foxglove/server.hpp"
+#include "uampc/listen_address/listen_address.hpp"
 #include "uampc/runtime/viewer_process.hpp"
 
+#include <cstddef>
 #include <string>
 
 namespace uampc::app {
@@ -16,10 +19,14 @@ struct ViewOptions {
   int port = 8765;
   std::string security_dir;  // a secured domain: DIR of uampc security init (its observer identity)
   double duration_s = 0.0;   // 0: until Ctrl-C or SIGTERM
+  // What clients may cost (docs/decisions/viewer-memory-bounds.md); the defaults are the server's.
+  std::size_t max_clients = foxglove::ServerOptions{}.max_clients;
+  std::size_t max_subscriptions_per_client = foxglove::ServerOptions{}.max_subscriptions_per_client;
+  std::size_t max_queued_bytes_per_client = foxglove::ServerOptions{}.max_client_queued_bytes;
 };
 
 // The warning for an address other than the loopback one; empty for a loopback address.
-std::string exposureWarning(const std::string& address, int port);
+std::string exposureWarning(const net::ListenAddress& address, int port);
 
 // Exit codes: 0 when stopped (Ctrl-C, SIGTERM, --duration), 1 when it cannot serve (the port is
 // in use, the address is not this machine's, the domain cannot be joined).

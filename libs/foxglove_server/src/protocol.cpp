@@ -89,13 +89,19 @@ std::string unadvertiseJson(const std::vector<ChannelId>& channel_ids) {
   return json{{"op", "unadvertise"}, {"channelIds", channel_ids}}.dump();
 }
 
+std::array<std::uint8_t, kMessageDataHeaderBytes> messageDataHeader(SubscriptionId subscription,
+                                                                    std::uint64_t time_ns) {
+  std::array<std::uint8_t, kMessageDataHeaderBytes> header{};
+  header[0] = 1;
+  for (int i = 0; i < 4; ++i) header[1 + i] = static_cast<std::uint8_t>(subscription >> (8 * i));
+  for (int i = 0; i < 8; ++i) header[5 + i] = static_cast<std::uint8_t>(time_ns >> (8 * i));
+  return header;
+}
+
 std::vector<std::uint8_t> messageDataFrame(SubscriptionId subscription, std::uint64_t time_ns,
                                            const std::uint8_t* payload, std::size_t size) {
-  std::vector<std::uint8_t> frame;
-  frame.reserve(1 + 4 + 8 + size);
-  frame.push_back(1);
-  appendLittleEndian(frame, subscription, 4);
-  appendLittleEndian(frame, time_ns, 8);
+  const auto header = messageDataHeader(subscription, time_ns);
+  std::vector<std::uint8_t> frame(header.begin(), header.end());
   frame.insert(frame.end(), payload, payload + size);
   return frame;
 }

@@ -5,13 +5,17 @@
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
+#include "uampc/foxglove/latched_messages.hpp"
 #include "uampc/foxglove/send_queues.hpp"
+#include "uampc/listen_address/listen_address.hpp"
 
 namespace uampc::foxglove {
 
@@ -25,11 +29,11 @@ constexpr long kDropReportPeriodMs = 2000;  // a lagging client hears of its dro
 constexpr long kCloseGraceMs = 200;         // for close frames to leave before the thread stops
 
 struct Client {
-  explicit Client(std::size_t depth) : queues(depth) {}
+  Client(std::size_t depth, std::size_t max_bytes) : queues(depth, max_bytes) {}
   SendQueues queues;
   std::map<SubscriptionId, ChannelId> subscriptions;
   int bad_requests = 0;
-  bool closing = false;  // disconnected for bad requests; gone when its close handler runs
+  bool closing = false;  // disconnected (bad requests, a bound); gone when its close handler runs
 };
 
 }  // namespace
@@ -90,17 +94,20 @@ class Server::Impl {
         s = client.subscriptions.erase(s);
       }
     }
+    latched_.forget(id);
     sendToAll(unadvertiseJson({id}));
   }
 
-  void publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size) {
+  void publish(ChannelId channel, std::uint64_t time_ns, Payload payload, std::size_t keep) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      if (keep > 0 && channels_.count(channel)) latched_.keep(channel, time_ns, payload, keep);
       for (auto& [handle, client] : clients_) {
+        std::optional<std::size_t> socket_bytes;  // asked once, of the clients subscribed
         for (const auto& [subscription, subscribed_channel] : client.subscriptions) {
           if (subscribed_channel != channel) continue;
-          client.queues.push(subscription, std::make_shared<const std::vector<std::uint8_t>>(
-                                               messageDataFrame(subscription, time_ns, data, size)));
+          if (!socket_bytes) socket_bytes = bufferedBytes(handle);
+          client.queues.push({subscription, time_ns, payload}, *socket_bytes);
         }
       }
     }
@@ -113,12 +120,17 @@ class Server::Impl {
     }
   }
 
+  void forgetLatched(ChannelId channel) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latched_.forget(channel);
+  }
+
   void broadcastTime(std::uint64_t time_ns) {
     auto frame = std::make_shared<const std::vector<std::uint8_t>>(timeFrame(time_ns));
     asio::post(server_.get_io_service(), [this, frame] {
       std::lock_guard<std::mutex> lock(mutex_);
       for (auto& [handle, client] : clients_) {
-        if (hasRoom(handle)) send(handle, *frame);
+        if (socketTakes(handle, frame->size())) send(handle, *frame);
       }
     });
   }
@@ -135,17 +147,23 @@ class Server::Impl {
   ServerStatistics statistics() const {
     std::lock_guard<std::mutex> lock(mutex_);
     ServerStatistics s = statistics_;
-    s.clients = clients_.size();
     for (const auto& [handle, client] : clients_) s.frames_dropped += client.queues.totalDrops();
+    s.clients = std::count_if(clients_.begin(), clients_.end(), [](const auto& c) { return !c.second.closing; });
     return s;
   }
 
  private:
   void listen() {
-    const std::string where = options_.address + ":" + std::to_string(options_.port);
+    // One parser for the server and for the launcher's check before a run (libs/listen_address).
+    const std::optional<net::ListenAddress> parsed = net::parseListenAddress(options_.address);
+    if (!parsed) {
+      throw std::runtime_error("cannot serve on " + net::hostAndPort(options_.address, options_.port) + ": " +
+                               net::listenAddressError(options_.address));
+    }
+    const std::string where = net::hostAndPort(*parsed, options_.port);
     std::error_code ec;
-    const asio::ip::address address = asio::ip::make_address(options_.address, ec);
-    if (ec) throw std::runtime_error("cannot serve on " + where + ": '" + options_.address + "' is not an IP address");
+    const asio::ip::address address = asio::ip::make_address(parsed->numeric, ec);
+    if (ec) throw std::runtime_error("cannot serve on " + where + ": " + net::listenAddressError(options_.address));
     server_.listen(asio::ip::tcp::endpoint(address, options_.port), ec);
     if (ec) throw std::runtime_error("cannot serve on " + where + ": " + ec.message());
     port_ = server_.get_local_endpoint(ec).port();
@@ -168,7 +186,18 @@ class Server::Impl {
   void onOpen(Handle handle) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (stopping_) return;
-    clients_.emplace(handle, Client(options_.queue_depth));
+    if (clients_.size() >= options_.max_clients) {
+      // Not one of the clients: what it costs ends with its close.
+      send(handle,
+           statusJson(StatusLevel::kError, "this viewer serves at most " + std::to_string(options_.max_clients) +
+                                               " clients at once (uampc view --max-clients); try again "
+                                               "when one has left"));
+      std::error_code ec;
+      server_.close(handle, websocketpp::close::status::try_again_later, "too many clients", ec);
+      ++statistics_.clients_refused;
+      return;
+    }
+    clients_.emplace(handle, Client(options_.queue_depth, options_.max_client_queued_bytes));
     send(handle, serverInfoJson(options_.name, session_id_));
     std::vector<Channel> all;
     for (const auto& [id, channel] : channels_) all.push_back(channel);
@@ -193,6 +222,15 @@ class Server::Impl {
     }
     const ClientRequest request = parseClientRequest(message->get_payload());
     if (const auto* subscribe = std::get_if<SubscribeRequest>(&request)) {
+      if (client->second.subscriptions.size() + subscribe->subscriptions.size() >
+          options_.max_subscriptions_per_client) {
+        disconnectOverBound(
+            handle, client->second,
+            "subscribe: " + std::to_string(subscribe->subscriptions.size()) + " subscriptions asked for beside the " +
+                std::to_string(client->second.subscriptions.size()) + " this client has; a client may have at most " +
+                std::to_string(options_.max_subscriptions_per_client) + " (uampc view --max-subscriptions-per-client)");
+        return;
+      }
       for (const Subscription& s : subscribe->subscriptions) addSubscription(handle, client->second, s);
     } else if (const auto* unsubscribe = std::get_if<UnsubscribeRequest>(&request)) {
       for (SubscriptionId id : unsubscribe->subscriptions) {
@@ -213,9 +251,30 @@ class Server::Impl {
     } else if (client.subscriptions.count(s.id)) {
       refuse(handle, client, "subscribe: subscription id " + std::to_string(s.id) + " is in use");
     } else {
+      // A latched channel's subscription starts with its kept messages, all of them, within the
+      // client's byte bound.
+      const auto& kept = latched_.of(s.channel);
       client.subscriptions[s.id] = s.channel;
-      client.queues.add(s.id);
+      client.queues.add(s.id, kept.size());
+      const std::size_t socket_bytes = bufferedBytes(handle);
+      for (const KeptMessage& m : kept) client.queues.push({s.id, m.time_ns, m.payload}, socket_bytes);
     }
+  }
+
+  // A client over one of the bounds on what clients cost: told why, then disconnected, its
+  // queues freed at once.
+  void disconnectOverBound(Handle handle, Client& client, const std::string& why) {
+    send(handle, statusJson(StatusLevel::kError, why));
+    std::error_code ec;
+    server_.close(handle, websocketpp::close::status::policy_violation, "over a bound of this viewer", ec);
+    ++statistics_.clients_refused;
+    stopServing(client);
+  }
+
+  void stopServing(Client& client) {
+    client.closing = true;
+    for (const auto& [subscription, channel] : client.subscriptions) client.queues.remove(subscription);
+    client.subscriptions.clear();
   }
 
   // A status error for a bad request; a client that keeps sending them is disconnected.
@@ -225,17 +284,27 @@ class Server::Impl {
       std::error_code ec;
       server_.close(handle, websocketpp::close::status::policy_violation, "too many bad requests", ec);
       ++statistics_.clients_disconnected_for_bad_requests;
-      client.closing = true;
-      client.subscriptions.clear();
+      stopServing(client);
       return;
     }
     send(handle, statusJson(StatusLevel::kError, why));
   }
 
-  bool hasRoom(Handle handle) {
+  // What the client's socket holds not yet written; 0 for a connection that is gone.
+  std::size_t bufferedBytes(Handle handle) {
     std::error_code ec;
     WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
-    return !ec && connection->get_buffered_amount() < options_.max_buffered_bytes;
+    return ec ? 0 : connection->get_buffered_amount();
+  }
+
+  // Whether the client's socket takes `bytes` more now: while it holds less than
+  // max_buffered_bytes with them, or anything when it is empty (a message larger than that).
+  bool socketTakes(Handle handle, std::size_t bytes) {
+    std::error_code ec;
+    WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
+    if (ec) return false;
+    const std::size_t buffered = connection->get_buffered_amount();
+    return buffered == 0 || buffered + bytes <= options_.max_buffered_bytes;
   }
 
   void send(Handle handle, const std::string& text) {
@@ -247,6 +316,18 @@ class Server::Impl {
     server_.send(handle, frame.data(), frame.size(), websocketpp::frame::opcode::binary, ec);
     if (!ec) ++statistics_.frames_sent;
   }
+  // Header and shared payload straight into the socket's one copy of the frame, which websocketpp
+  // frees once it is written.
+  void send(Handle handle, const QueuedMessage& message) {
+    std::error_code ec;
+    WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
+    if (ec) return;
+    const auto header = messageDataHeader(message.subscription, message.time_ns);
+    WsServer::message_ptr frame = connection->get_message(websocketpp::frame::opcode::binary, message.frameBytes());
+    frame->append_payload(header.data(), header.size());
+    frame->append_payload(message.payload->data(), message.payload->size());
+    if (!connection->send(frame)) ++statistics_.frames_sent;
+  }
   void sendToAll(const std::string& text) {
     for (auto& [handle, client] : clients_) send(handle, text);
   }
@@ -255,10 +336,11 @@ class Server::Impl {
   void pump() {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& [handle, client] : clients_) {
-      while (!client.closing && hasRoom(handle)) {
-        const Frame frame = client.queues.pop();
-        if (!frame) break;
-        send(handle, *frame);
+      while (!client.closing) {
+        const std::optional<QueuedMessage> message =
+            client.queues.pop([&](std::size_t bytes) { return socketTakes(handle, bytes); });
+        if (!message) break;
+        send(handle, *message);
       }
     }
   }
@@ -283,6 +365,10 @@ class Server::Impl {
   void reportDrops() {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& [handle, client] : clients_) {
+      // Only into a socket with room: the counts wait for it meanwhile, so that the warnings of a
+      // client that does not read never pile up.
+      constexpr std::size_t kWarningBytes = 200;
+      if (client.closing || !socketTakes(handle, kWarningBytes * client.subscriptions.size())) continue;
       for (const auto& [subscription, dropped] : client.queues.takeNewDrops()) {
         const auto channel = channels_.find(client.subscriptions[subscription]);
         const std::string topic = channel == channels_.end() ? "a withdrawn channel" : channel->second.topic;
@@ -303,6 +389,7 @@ class Server::Impl {
 
   mutable std::mutex mutex_;  // everything below
   std::map<ChannelId, Channel> channels_;
+  LatchedMessages latched_;
   ChannelId next_channel_ = 1;
   std::map<Handle, Client, std::owner_less<Handle>> clients_;
   ServerStatistics statistics_;
@@ -313,9 +400,13 @@ Server::~Server() = default;
 std::uint16_t Server::port() const { return impl_->port(); }
 ChannelId Server::advertise(Channel channel) { return impl_->advertise(std::move(channel)); }
 void Server::unadvertise(ChannelId id) { impl_->unadvertise(id); }
-void Server::publish(ChannelId channel, std::uint64_t time_ns, const std::uint8_t* data, std::size_t size) {
-  impl_->publish(channel, time_ns, data, size);
+void Server::publish(ChannelId channel, std::uint64_t time_ns, Payload payload) {
+  impl_->publish(channel, time_ns, std::move(payload), 0);
 }
+void Server::publishLatched(ChannelId channel, std::uint64_t time_ns, Payload payload, std::size_t keep) {
+  impl_->publish(channel, time_ns, std::move(payload), keep);
+}
+void Server::forgetLatched(ChannelId channel) { impl_->forgetLatched(channel); }
 void Server::broadcastTime(std::uint64_t time_ns) { impl_->broadcastTime(time_ns); }
 std::set<ChannelId> Server::subscribedChannels() const { return impl_->subscribedChannels(); }
 ServerStatistics Server::statistics() const { return impl_->statistics(); }

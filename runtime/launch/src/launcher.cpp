@@ -63,15 +63,6 @@ std::string stopSignalName() {
   }
 }
 
-std::string describeStatus(int status) {
-  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    return "killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
-  }
-  return "status " + std::to_string(status);
-}
-
 Scene loadOrReport(const LaunchOptions& options, ComponentCatalog& catalog, bool& ok) {
   try {
     ok = true;
@@ -117,7 +108,7 @@ class ProcessSupervisor {
     if (stopRequested() && stoppedAsAsked(exit->status)) return {};
     killed_ = killed_ || WIFSIGNALED(exit->status);
     const std::string what =
-        "process '" + process + "' (pid " + std::to_string(exit->pid) + ") " + describeStatus(exit->status);
+        "process '" + process + "' (pid " + std::to_string(exit->pid) + ") " + describeExitStatus(exit->status);
     if (scene_.on_crash == CrashPolicy::kRestart && !stopRequested() && restarts_[process] < scene_.max_restarts) {
       ++restarts_[process];
       std::cerr << "uampc: " << what << "; restarting it (" << restarts_[process] << " of " << scene_.max_restarts
@@ -145,7 +136,8 @@ class ProcessSupervisor {
       killed_ = killed_ || (WIFSIGNALED(exit->status) && !stoppedAsAsked(exit->status));
       const bool clean = WIFEXITED(exit->status) && WEXITSTATUS(exit->status) == 0;
       if (!clean && !(stopRequested() && stoppedAsAsked(exit->status))) {
-        std::cerr << "uampc: process '" << exit->name << "' " << describeStatus(exit->status) << " while stopping\n";
+        std::cerr << "uampc: process '" << exit->name << "' " << describeExitStatus(exit->status)
+                  << " while stopping\n";
         failed_ = true;
       }
     }
@@ -289,12 +281,13 @@ int launch(const LaunchOptions& options) {
   ProcessSupervisor supervisor(scene, options);
   for (const auto& process : scene.processes()) supervisor.start(process);
 
-  // What ends a run early: a process that failed, or the output directory gone.
+  // What ends a run early: a process or the viewer that failed, or the output directory gone.
   // The directory once a second: the clock asks every step, and a stat per step would be waste.
   auto next_directory_check = std::chrono::steady_clock::now();
   auto problem = [&] {
-    if (viewer) viewer->poll();
-    std::string what = supervisor.poll();
+    // A run asked to be watched fails without its viewer (docs/decisions/run-fails-with-its-viewer.md).
+    std::string what = viewer ? viewer->poll() : std::string();
+    if (what.empty()) what = supervisor.poll();
     if (what.empty() && std::chrono::steady_clock::now() >= next_directory_check) {
       next_directory_check = std::chrono::steady_clock::now() + std::chrono::seconds(1);
       what = outputDirectoryProblem(options.output_directory);

@@ -7,19 +7,26 @@
 #include <unistd.h>
 
 #include <cstring>
-#include <iostream>
+#include <optional>
+
+#include "uampc/listen_address/listen_address.hpp"
 
 namespace uampc {
 
 std::string viewerAddressProblem(const ViewerOptions& options) {
-  const std::string where = options.address + ":" + std::to_string(options.port);
+  // The viewer's own parser: what it would refuse is refused here, before the run starts.
+  const std::optional<net::ListenAddress> address = net::parseListenAddress(options.address);
+  if (!address) {
+    return "cannot serve on " + net::hostAndPort(options.address, options.port) + ": " +
+           net::listenAddressError(options.address);
+  }
+  const std::string where = net::hostAndPort(*address, options.port);
   addrinfo hints{};
   hints.ai_flags = AI_NUMERICHOST | AI_PASSIVE;
   hints.ai_socktype = SOCK_STREAM;
   addrinfo* found = nullptr;
-  const std::string host = options.address == "localhost" ? "127.0.0.1" : options.address;
-  if (getaddrinfo(host.c_str(), std::to_string(options.port).c_str(), &hints, &found) != 0 || !found) {
-    return "cannot serve on " + where + ": '" + options.address + "' is not an IP address";
+  if (getaddrinfo(address->numeric.c_str(), std::to_string(options.port).c_str(), &hints, &found) != 0 || !found) {
+    return "cannot serve on " + where + ": " + net::listenAddressError(options.address);
   }
   std::string problem;
   const int fd = socket(found->ai_family, SOCK_STREAM, 0);
@@ -54,12 +61,14 @@ ViewerProcess::~ViewerProcess() {
   if (!child_.waitForExit(ChildProcesses::Clock::now() + std::chrono::seconds(3))) child_.killAll();
 }
 
-void ViewerProcess::poll() {
-  if (ended_) return;
+std::string ViewerProcess::poll() {
+  if (!failure_.empty() || child_.empty()) return failure_;
   const auto exit = child_.pollExit();
-  if (!exit) return;
-  ended_ = true;
-  std::cerr << "uampc: the viewer ended before the run (status " << exit->status << "); the run goes on without it\n";
+  if (!exit) return {};
+  // It serves until it is stopped, so any end of its own is a failure, exit 0 included.
+  failure_ = "the viewer (uampc view) " + describeExitStatus(exit->status) +
+             " before the run ended; its own messages above say why";
+  return failure_;
 }
 
 }  // namespace uampc

@@ -5,6 +5,7 @@
 // uampc serves with it: docs/user/viewing.md.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <variant>
@@ -36,6 +37,10 @@ std::string advertiseJson(const std::vector<Channel>& channels);
 std::string unadvertiseJson(const std::vector<ChannelId>& channel_ids);
 
 // Server -> client, binary: opcode 1, subscription id, receive time (ns), payload; all little endian.
+inline constexpr std::size_t kMessageDataHeaderBytes = 1 + 4 + 8;
+// The part of a message data frame before its payload: all that differs between the subscriptions
+// one message goes to, so that the payload is kept once and the header made at sending.
+std::array<std::uint8_t, kMessageDataHeaderBytes> messageDataHeader(SubscriptionId subscription, std::uint64_t time_ns);
 std::vector<std::uint8_t> messageDataFrame(SubscriptionId subscription, std::uint64_t time_ns,
                                            const std::uint8_t* payload, std::size_t size);
 // Opcode 2: the server's current time (sim time when the domain has /clock).

@@ -61,4 +61,7 @@ class ChildProcesses {
   std::map<pid_t, std::string> running_;
 };
 
+// How a child ended, from its waitpid status: "exited with status 1", "killed by signal 9 (Killed)".
+std::string describeExitStatus(int status);
+
 }  // namespace uampc

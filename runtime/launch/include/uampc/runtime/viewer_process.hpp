@@ -1,7 +1,7 @@
 // The live viewer beside a run or a replay (`uampc launch --view`, `uampc play --view`): a child
 // `uampc view` on the run's DDS domain, so that whatever a viewer's clients do stays outside the
 // processes of the run (docs/decisions/live-viewer.md). It is stopped with the run; if it ends
-// early, that is said and the run goes on.
+// early, the run fails (docs/decisions/run-fails-with-its-viewer.md).
 #pragma once
 
 #include <memory>
@@ -17,9 +17,9 @@ struct ViewerOptions {
   int port = 8765;
 };
 
-// Why the viewer could not serve on its address and port (in use, not an address of this
-// machine); empty when it can. Checked before a run starts, so that a run with --view does not
-// start without its viewer.
+// Why the viewer could not serve on its address and port (not an address as the viewer reads it,
+// libs/listen_address; in use; not an address of this machine); empty when it can. Checked before
+// a run starts, so that a run with --view does not start without its viewer.
 std::string viewerAddressProblem(const ViewerOptions& options);
 
 class ViewerProcess {
@@ -30,12 +30,13 @@ class ViewerProcess {
   ViewerProcess(const ViewerProcess&) = delete;
   ViewerProcess& operator=(const ViewerProcess&) = delete;
 
-  // Says, once, that the viewer ended before the run; never fails the run.
-  void poll();
+  // Why the run must fail: the viewer ended before it was stopped (how it ended, named); empty
+  // while it serves. Never blocks.
+  std::string poll();
 
  private:
   ChildProcesses child_;
-  bool ended_ = false;
+  std::string failure_;
 };
 
 }  // namespace uampc
