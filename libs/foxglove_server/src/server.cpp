@@ -34,6 +34,11 @@ struct Client {
   std::map<SubscriptionId, ChannelId> subscriptions;
   int bad_requests = 0;
   bool closing = false;  // disconnected (bad requests, a bound); gone when its close handler runs
+  // Its socket's unwritten bytes as the server's thread last saw them (every pump), for publish
+  // on other threads, where websocketpp's count may not be read. Messages are sent on that thread
+  // and it is updated after them, so it is off by what the socket wrote since (then it is higher
+  // than the count) and by the owner's advertisements, a few KB.
+  std::size_t socket_bytes = 0;
 };
 
 }  // namespace
@@ -103,11 +108,8 @@ class Server::Impl {
       std::lock_guard<std::mutex> lock(mutex_);
       if (keep > 0 && channels_.count(channel)) latched_.keep(channel, time_ns, payload, keep);
       for (auto& [handle, client] : clients_) {
-        std::optional<std::size_t> socket_bytes;  // asked once, of the clients subscribed
         for (const auto& [subscription, subscribed_channel] : client.subscriptions) {
-          if (subscribed_channel != channel) continue;
-          if (!socket_bytes) socket_bytes = bufferedBytes(handle);
-          client.queues.push({subscription, time_ns, payload}, *socket_bytes);
+          if (subscribed_channel == channel) client.queues.push({subscription, time_ns, payload}, client.socket_bytes);
         }
       }
     }
@@ -256,8 +258,8 @@ class Server::Impl {
       const auto& kept = latched_.of(s.channel);
       client.subscriptions[s.id] = s.channel;
       client.queues.add(s.id, kept.size());
-      const std::size_t socket_bytes = bufferedBytes(handle);
-      for (const KeptMessage& m : kept) client.queues.push({s.id, m.time_ns, m.payload}, socket_bytes);
+      client.socket_bytes = bufferedBytes(handle);
+      for (const KeptMessage& m : kept) client.queues.push({s.id, m.time_ns, m.payload}, client.socket_bytes);
     }
   }
 
@@ -290,7 +292,8 @@ class Server::Impl {
     send(handle, statusJson(StatusLevel::kError, why));
   }
 
-  // What the client's socket holds not yet written; 0 for a connection that is gone.
+  // What the client's socket holds not yet written; 0 for a connection that is gone. On the
+  // server's thread only: websocketpp counts them there, unguarded.
   std::size_t bufferedBytes(Handle handle) {
     std::error_code ec;
     WsServer::connection_ptr connection = server_.get_con_from_hdl(handle, ec);
@@ -342,6 +345,7 @@ class Server::Impl {
         if (!message) break;
         send(handle, *message);
       }
+      client.socket_bytes = bufferedBytes(handle);
     }
   }
 
