@@ -73,8 +73,14 @@ TEST(SceneRig, ARotationAndATiltTogetherAreRefusedWithWhereTheyAre) {
   EXPECT_NE(r.output.find(scene + ":4:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("rig.lidar_rotation_rpy_deg and rig.tilt_deg are both given"), std::string::npos) << r.output;
 
+  // The default scene without its tilt_deg line takes a rotation from --set.
+  std::ifstream default_scene(sourcePath("config/scenes/default.yaml"));
+  std::ofstream untilted(dir + "/untilted.yaml");
+  for (std::string line; std::getline(default_scene, line);)
+    if (line.find("tilt_deg:") == std::string::npos) untilted << line << "\n";
+  untilted.close();
   ComponentCatalog catalog = installedComponents();
-  const Scene rotated = loadScene(sourcePath("config/scenes/default.yaml"),
+  const Scene rotated = loadScene(dir + "/untilted.yaml",
                                   {parseOverride("rig.lidar_rotation_rpy_deg=[30, 0.5, -1]"),
                                    parseOverride("rig.encoder_offset_deg=2"), parseOverride("rig.time_offset=0.003")},
                                   catalog);

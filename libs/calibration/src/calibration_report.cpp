@@ -19,6 +19,7 @@ Kind kindOf(const ParameterEstimate& p) {
 
 // Each kind in the unit a reader thinks in: degrees, millimetres, milliseconds.
 std::string shown(const ParameterEstimate& p, double value, int extra_digits = 0) {
+  if (std::abs(value) < 1e-9) value = 0.0;  // no "-0.000"
   std::ostringstream s;
   s.setf(std::ios::fixed);
   switch (kindOf(p)) {

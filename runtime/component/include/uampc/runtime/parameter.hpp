@@ -62,10 +62,7 @@ struct ParameterSpec {
   ParameterSpec& oneOf(std::vector<std::string> allowed) { choices = std::move(allowed); return *this; }
   ParameterSpec& ofLength(std::size_t n) { list_length = n; return *this; }
   ParameterSpec& partOfRig() { rig = true; return *this; }
-  ParameterSpec& notWith(std::string other) {
-    not_with = std::move(other);
-    return *this;
-  }
+  ParameterSpec& notWith(std::string other) { not_with = std::move(other); return *this; }
 };
 
 }  // namespace uampc
