@@ -3,6 +3,7 @@
 // that `uampc --help` and `uampc COMMAND --help` print what the code next to the command says.
 #include "bag/play_command.hpp"
 #include "bag/record_command.hpp"
+#include "calibrate/calibrate_command.hpp"
 #include "cli/command_set.hpp"
 #include "commands/components_command.hpp"
 #include "commands/scene_commands.hpp"
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   addTopicCommand(commands);
   addRecordCommand(commands);
   addPlayCommand(commands);
+  addCalibrateCommand(commands);
   addViewCommand(commands);
   addSecurityCommand(commands);
   return commands.run(argc, argv);

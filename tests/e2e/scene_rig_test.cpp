@@ -61,5 +61,40 @@ TEST(SceneRig, RigValuesAreValidatedLikeParameters) {
   EXPECT_NE(r.output.find("uses rig parameter 'tilt_dg'; did you mean 'tilt_deg'?"), std::string::npos) << r.output;
 }
 
+// The full rotation and the tilt say one thing two ways: both given is an error at file:line, one
+// alone is taken, and a rotation of three angles only.
+TEST(SceneRig, ARotationAndATiltTogetherAreRefusedWithWhereTheyAre) {
+  const std::string dir = freshDirectory("scene_rig_rotation");
+  const std::string scene = dir + "/both.yaml";
+  std::ofstream(scene) << "extends: " << sourcePath("config/scenes/default.yaml") << "\n"
+                       << "rig:\n  tilt_deg: 30\n  lidar_rotation_rpy_deg: [30, 0, 1]\n";
+  CommandResult r = runUampc("validate " + scene);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(scene + ":4:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("rig.lidar_rotation_rpy_deg and rig.tilt_deg are both given"), std::string::npos) << r.output;
+
+  // The default scene without its tilt_deg line takes a rotation from --set.
+  std::ifstream default_scene(sourcePath("config/scenes/default.yaml"));
+  std::ofstream untilted(dir + "/untilted.yaml");
+  for (std::string line; std::getline(default_scene, line);)
+    if (line.find("tilt_deg:") == std::string::npos) untilted << line << "\n";
+  untilted.close();
+  ComponentCatalog catalog = installedComponents();
+  const Scene rotated = loadScene(dir + "/untilted.yaml",
+                                  {parseOverride("rig.lidar_rotation_rpy_deg=[30, 0.5, -1]"),
+                                   parseOverride("rig.encoder_offset_deg=2"), parseOverride("rig.time_offset=0.003")},
+                                  catalog);
+  const auto rotations = valuesOf(rotated, "lidar_rotation_rpy_deg");
+  EXPECT_EQ(rotations.size(), 5u);
+  for (const auto& [instance, value] : rotations)
+    EXPECT_EQ(std::get<std::vector<double>>(value), (std::vector<double>{30, 0.5, -1})) << instance;
+  EXPECT_EQ(valuesOf(rotated, "encoder_offset_deg").size(), 5u);
+  EXPECT_EQ(valuesOf(rotated, "time_offset").size(), 5u);
+
+  r = runUampc("validate " + sourcePath("config/scenes/default.yaml") + " --set 'rig.lidar_rotation_rpy_deg=[30, 0]'");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("must be a list of 3 numbers, not 2"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace uampc::test

@@ -3,6 +3,7 @@
 // (Eq. 1), lands on the corridor's planes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -22,37 +23,58 @@ double distanceToCorridor(const Eigen::Vector3d& p) {
                    std::abs(p.x() - 300.0)});
 }
 
+// A run's recorded scans, encoder states and ground truth (the csv_recorder's files).
+struct RecordedRun {
+  world::Trajectory ground_truth;
+  std::vector<frames::MotorReading> encoder;
+  run_files::CsvTable scans;  // stamp, x, y, z, intensity, t, ...
+};
+
+RecordedRun readRun(const std::string& out) {
+  std::vector<world::TimedPose> poses;
+  for (const auto& row : run_files::readCsv(out + "/recorder_ground_truth.csv").rows) {
+    poses.push_back({row[0], {row[1], row[2], row[3]}, Eigen::Quaterniond(row[7], row[4], row[5], row[6])});
+  }
+  RecordedRun run{world::Trajectory(poses), {}, run_files::readCsv(out + "/recorder_scans.csv")};
+  for (const auto& row : run_files::readCsv(out + "/recorder_motor_states.csv").rows)
+    run.encoder.push_back({row[0], row[1], row[2]});
+  return run;
+}
+
+// Every point de-rotated with `calibration` (its encoder zero and clock offset taken out of the
+// recorded encoder states, Eq. 1): the distance of each to the corridor's planes.
+std::vector<double> distancesToCorridor(const RecordedRun& run, const frames::MotorLidarCalibration& calibration) {
+  frames::MotorAngleTrack motor(1000.0);
+  for (const auto& reading : run.encoder) motor.add(frames::rotorReading(reading, calibration));
+  std::vector<double> distances;
+  for (const auto& row : run.scans.rows) {
+    const double t = row[0] + row[5];
+    const auto theta = motor.thetaAt(t);
+    if (!theta) continue;  // a clock offset moves the encoder's span off the first points
+    const Eigen::Vector3d p_W =
+        frames::lidarToWorld({row[1], row[2], row[3]}, *theta, calibration, run.ground_truth.poseAt(t));
+    distances.push_back(distanceToCorridor(p_W));
+  }
+  return distances;
+}
+
 TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
   const std::string out = freshDirectory("simulator_corridor");
   const CommandResult r = runUampc("launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out +
                                    domainOverride(DomainBlock::kSimulator, 0));
   ASSERT_EQ(r.exit_code, 0) << r.output;
-
-  std::vector<world::TimedPose> poses;
-  for (const auto& row : run_files::readCsv(out + "/recorder_ground_truth.csv").rows) {
-    poses.push_back({row[0], {row[1], row[2], row[3]}, Eigen::Quaterniond(row[7], row[4], row[5], row[6])});
-  }
-  const world::Trajectory ground_truth(poses);
-  frames::MotorAngleTrack motor(1000.0);
-  for (const auto& row : run_files::readCsv(out + "/recorder_motor_states.csv").rows)
-    motor.add({row[0], row[1], row[2]});
-  const auto calibration = frames::MotorLidarCalibration::referenceRig();
-
+  const RecordedRun run = readRun(out);
   std::map<double, int> points_per_frame;
-  double worst = 0;
-  for (const auto& row : run_files::readCsv(out + "/recorder_scans.csv").rows) {
-    const double stamp = row[0], t = stamp + row[5];
-    ++points_per_frame[stamp];
+  for (const auto& row : run.scans.rows) {
+    ++points_per_frame[row[0]];
     ASSERT_GE(row[5], 0.0);
     ASSERT_LT(row[5], 0.1);
     const Eigen::Vector3d p_L(row[1], row[2], row[3]);
     ASSERT_GE(p_L.norm(), 1.5 - 1e-4);  // Mid-360 range limits
     ASSERT_LE(p_L.norm(), 40.0 + 1e-4);
-    const auto theta = motor.thetaAt(t);
-    ASSERT_TRUE(theta.has_value()) << "no encoder state around t=" << t;
-    const Eigen::Vector3d p_W = frames::lidarToWorld(p_L, *theta, calibration, ground_truth.poseAt(t));
-    worst = std::max(worst, distanceToCorridor(p_W));
   }
+  const std::vector<double> distances = distancesToCorridor(run, frames::MotorLidarCalibration::referenceRig());
+  ASSERT_EQ(distances.size(), run.scans.rows.size()) << "points without an encoder state around them";
   // The frames of [0, 0.5) s, at their start times; each with a plausible number of returns.
   ASSERT_EQ(points_per_frame.size(), 5u);
   int k = 0;
@@ -61,7 +83,52 @@ TEST(Simulator, ScansDeRotatedWithRecordedStatesLandOnTheSurfaces) {
     EXPECT_GT(count, 5000);
     EXPECT_LE(count, 20000);
   }
+  const double worst = *std::max_element(distances.begin(), distances.end());
   EXPECT_LT(worst, 1e-3) << "a de-rotated point is " << worst << " m off the corridor's planes";
+}
+
+// A simulated rig off the believed one (the raycaster's mounting_error_*): de-rotated with the
+// rig the scene describes, the points miss the corridor's planes; with the true rig (the believed
+// one composed with the error), they land on them.
+TEST(Simulator, AMountingErrorPutsPointsOffThePlanesUnlessTheTrueRigDeRotatesThem) {
+  const std::string out = freshDirectory("simulator_mounting_error");
+  const CommandResult r = runUampc(
+      "launch " + sourcePath("tests/scenes/corridor_sim.yaml") + " --out " + out +
+      domainOverride(DomainBlock::kSimulator, 3) +
+      " --set 'lidar.mounting_error_rpy_deg=[1.0, -0.5, 2.0]' --set 'lidar.mounting_error_offset=[0.02, -0.01, 0.03]'"
+      " --set lidar.mounting_error_encoder_deg=1.5 --set lidar.mounting_error_time_offset=0.004");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const RecordedRun run = readRun(out);
+  const auto believed = frames::MotorLidarCalibration::referenceRig();
+  frames::MountingError error;
+  error.rotation_rpy = Eigen::Vector3d(1.0, -0.5, 2.0) * M_PI / 180.0;
+  error.offset = {0.02, -0.01, 0.03};
+  error.encoder_offset = 1.5 * M_PI / 180.0;
+  error.time_offset = 0.004;
+  const auto truth = frames::withMountingError(believed, error);
+
+  const std::vector<double> with_truth = distancesToCorridor(run, truth);
+  ASSERT_GT(with_truth.size(), 0.95 * run.scans.rows.size());
+  EXPECT_LT(*std::max_element(with_truth.begin(), with_truth.end()), 1e-3);
+  const std::vector<double> with_belief = distancesToCorridor(run, believed);
+  ASSERT_GT(with_belief.size(), 0.95 * run.scans.rows.size());
+  const auto off = std::count_if(with_belief.begin(), with_belief.end(), [](double d) { return d > 0.01; });
+  EXPECT_GT(off, static_cast<long>(with_belief.size() / 2)) << off << " of " << with_belief.size() << " points off";
+  // Each part of the error alone moves the points too: none is dropped on the way to the caster.
+  for (int part = 0; part < 4; ++part) {
+    frames::MountingError one;
+    if (part == 0) one.rotation_rpy = error.rotation_rpy;
+    if (part == 1) one.offset = error.offset;
+    if (part == 2) one.encoder_offset = error.encoder_offset;
+    if (part == 3) one.time_offset = error.time_offset;
+    frames::MountingError rest = error;
+    rest.rotation_rpy -= one.rotation_rpy;
+    rest.offset -= one.offset;
+    rest.encoder_offset -= one.encoder_offset;
+    rest.time_offset -= one.time_offset;
+    const std::vector<double> d = distancesToCorridor(run, frames::withMountingError(believed, rest));
+    EXPECT_GT(*std::max_element(d.begin(), d.end()), 5e-3) << "part " << part << " of the error is not cast";
+  }
 }
 
 // The raycaster's IMU on a straight path at constant speed, the motor at 3.6 rad/s: every sample

@@ -18,5 +18,15 @@ TEST(ConstantSpeedControllerComponent, CommandsItsSpeedEveryPeriodFromTheStart) 
   }
 }
 
+TEST(ConstantSpeedControllerComponent, StepsThroughItsSpeedsEachForItsPeriod) {
+  testing::TestContext ctx("constant_speed_controller",
+                           {{"speeds", "[2.0, 5.0, -1.0]"}, {"speed_period", "0.5"}, {"rate", "5"}});
+  ctx.advanceTo(Time::fromSeconds(1.6));
+  const auto commands = ctx.published<msg::MotorCommand>("command");
+  ASSERT_EQ(commands.size(), 9u);  // 0, 0.2, ..., 1.6 s
+  const double expected[] = {2.0, 2.0, 2.0, 5.0, 5.0, -1.0, -1.0, -1.0, 2.0};
+  for (std::size_t i = 0; i < commands.size(); ++i) EXPECT_EQ(commands[i].velocity(), expected[i]) << i;
+}
+
 }  // namespace
 }  // namespace uampc

@@ -161,7 +161,7 @@ class EvaluatorComponent : public Component {
       if (m.position().empty()) return;
       const double t = fromMsg(m.header().stamp()).seconds();
       const double omega = m.velocity().empty() ? 0.0 : m.velocity()[0];
-      motor_.add({t, m.position()[0], omega});
+      motor_.add(frames::rotorReading({t, m.position()[0], omega}, calibration_));  // Eq. 1's theta(t)
       motor_activity_.add(t, omega, command_);
       if (motor_csv_) writeOutput([&] { motor_csv_->add({t, m.position()[0], omega, command_}); });
       flush();

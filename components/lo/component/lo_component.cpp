@@ -74,7 +74,10 @@ class LoComponent : public Component {
       if (s.position().empty() || !std::isfinite(s.position()[0])) {
         throw std::runtime_error("motor state without a finite position on " + ctx_.topicOf("motor_state"));
       }
-      motor_.add({fromMsg(s.header().stamp()).seconds(), s.position()[0], s.velocity().empty() ? 0.0 : s.velocity()[0]});
+      // The rotor's angle on the LiDAR's clock: the rig's encoder zero and clock offset taken out.
+      motor_.add(frames::rotorReading(
+          {fromMsg(s.header().stamp()).seconds(), s.position()[0], s.velocity().empty() ? 0.0 : s.velocity()[0]},
+          config_.calibration));
       processReady();
     });
     // Subscribed whatever use_imu says: every declared port must be opened.

@@ -47,6 +47,7 @@ class MpcComponent : public Component {
 
   explicit MpcComponent(Context& ctx)
       : ctx_(ctx),
+        calibration_(adapters::rigCalibration(ctx)),
         controller_(configFrom(ctx)),
         stale_after_(Time::fromSeconds(ctx.paramDouble("stale_after"))),
         omega_pre_(ctx.paramDouble("omega_pre")),
@@ -59,7 +60,10 @@ class MpcComponent : public Component {
     ctx.subscribe<sensor_msgs::msg::PointCloud2>("local_map",
                                                  [this](const sensor_msgs::msg::PointCloud2& m) { onLocalMap(m); });
     ctx.subscribe<sensor_msgs::msg::JointState>("motor_state", [this](const sensor_msgs::msg::JointState& m) {
-      if (!m.position().empty() && std::isfinite(m.position()[0])) theta_ = m.position()[0];
+      // U(theta) is planned over the rotor's angle: the encoder's zero taken out (the control step
+      // uses the newest angle, so the clock offset does not matter here).
+      if (!m.position().empty() && std::isfinite(m.position()[0]))
+        theta_ = frames::rotorReading({0.0, m.position()[0], 0.0}, calibration_).theta;
     });
     ctx.timer(1.0 / ctx.paramDouble("rate"), [this] { control(); });
   }
@@ -183,6 +187,7 @@ class MpcComponent : public Component {
   }
 
   Context& ctx_;
+  frames::MotorLidarCalibration calibration_;
   mpc::UaMpcController controller_;
   Time stale_after_;
   double omega_pre_;

@@ -49,6 +49,7 @@ class RaycasterComponent : public Component {
                "(livox_ros_driver2's PointCloud2: x, y, z, intensity, tag, line, timestamp in absolute ns)")
         .oneOf({"uampc", "livox"});
     spec.param("imu", false, "publish the LiDAR's IMU (angular velocity and specific force in the LiDAR frame)");
+    declareMountingErrorParameters(spec);
     raycaster::RayCasterConfig scan_defaults = sceneScanDefaults();
     raycaster::ImuSimulatorConfig imu_defaults;  // the Mid-360's IMU, an ICM-40609
     ParameterBinding binding(spec);
@@ -95,10 +96,41 @@ class RaycasterComponent : public Component {
         .between(0.0, 10.0);
   }
 
+  // A simulated rig that differs from the one the scene's rig: block describes, which every other
+  // component believes: the raycaster casts with the believed rig composed with this error
+  // (frames::withMountingError), so that a calibration has something to find
+  // (docs/user/calibration.md).
+  static void declareMountingErrorParameters(ComponentSpec& spec) {
+    spec.param("mounting_error_rpy_deg", std::vector<double>{0.0, 0.0, 0.0},
+               "simulated rig: the true R_ML is the rig's times R(roll, pitch, yaw) of these, in the LiDAR "
+               "frame, degrees")
+        .ofLength(3)
+        .between(-180.0, 180.0);
+    spec.param("mounting_error_offset", std::vector<double>{0.0, 0.0, 0.0},
+               "simulated rig: the true r_ML is the rig's plus this, in the motor frame, m")
+        .ofLength(3)
+        .between(-10.0, 10.0);
+    spec.param("mounting_error_encoder_deg", 0.0,
+               "simulated rig: the true encoder zero is the rig's encoder_offset_deg plus this, degrees")
+        .between(-180.0, 180.0);
+    spec.param("mounting_error_time_offset", 0.0,
+               "simulated rig: the true LiDAR-to-encoder clock offset is the rig's time_offset plus this, s")
+        .between(-1.0, 1.0);
+  }
+
+  static frames::MountingError mountingErrorFrom(const Context& ctx) {
+    frames::MountingError e;
+    e.rotation_rpy = adapters::degreesToRadians(adapters::vector3Param(ctx, "mounting_error_rpy_deg"));
+    e.offset = adapters::vector3Param(ctx, "mounting_error_offset");
+    e.encoder_offset = ctx.paramDouble("mounting_error_encoder_deg") * M_PI / 180.0;
+    e.time_offset = ctx.paramDouble("mounting_error_time_offset");
+    return e;
+  }
+
   static raycaster::RayCasterConfig configFrom(const Context& ctx) {
     raycaster::RayCasterConfig c;
     c.model = adapters::lidarModel(ctx);
-    c.calibration = adapters::rigCalibration(ctx);
+    c.calibration = frames::withMountingError(adapters::rigCalibration(ctx), mountingErrorFrom(ctx));
     c.seed = ctx.seed();
     ParameterBinding binding(ctx);
     bindScanParameters(binding, c);
@@ -165,8 +197,11 @@ class RaycasterComponent : public Component {
     if (s.position().empty() || !std::isfinite(s.position()[0])) {
       throw std::runtime_error("motor state without a finite position on " + ctx_.topicOf("motor_state"));
     }
-    const frames::MotorReading reading{fromMsg(s.header().stamp()).seconds(), s.position()[0],
-                                       s.velocity().empty() ? 0.0 : s.velocity()[0]};
+    // The rotor's true angle on the LiDAR's clock: the simulated rig's encoder zero and clock offset
+    // (the believed rig's composed with mounting_error_*) taken out.
+    const frames::MotorReading reading = frames::rotorReading(
+        {fromMsg(s.header().stamp()).seconds(), s.position()[0], s.velocity().empty() ? 0.0 : s.velocity()[0]},
+        config_.calibration);
     if (!motor_.add(reading) || !imu_) return;
     // The IMU takes the motor's rate from the encoder's velocity: its angle is quantised.
     if (s.velocity().empty() || !std::isfinite(s.velocity()[0])) {

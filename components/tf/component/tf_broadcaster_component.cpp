@@ -7,8 +7,10 @@
 //   base_link -> motor   static, identity: the motor axis is base_link's z axis by definition
 //                        (Eq. 1 has R_BM(theta) and no offset; adapters/rig_parameters.hpp)
 //   rotor -> lidar       static, the rig's calibration (R_ML, r_ML), through adapters::rigCalibration
-//   motor -> rotor       every /motor/state: R_BM(theta) of Eq. 1 (frames::motorRotation), stamped
-//                        with the state's stamp; tf2 interpolates it at each point's own time
+//   motor -> rotor       every /motor/state: R_BM(theta) of Eq. 1 (frames::motorRotation), theta the
+//                        encoder's angle less the rig's encoder_offset_deg, stamped with the state's
+//                        stamp less the rig's time_offset (the LiDAR's clock, frames::rotorReading);
+//                        tf2 interpolates it at each point's own time
 //   odom -> base_link    every /lo/odometry, with map -> odom (identity: the LO starts at the
 //                        ground-truth pose, so its odometry frame is the map frame; lo/start_poses.hpp)
 //   map -> ground_truth  every /ground_truth/pose
@@ -101,10 +103,11 @@ class TfBroadcaster : public Component {
         lidar_(frameParam(ctx, "lidar_frame")),
         ground_truth_(frameParam(ctx, "ground_truth_frame")),
         map_to_odom_(ctx.paramBool("map_to_odom")),
+        calibration_(adapters::rigCalibration(ctx)),
         tf_pub_(ctx.publisher<tf2_msgs::msg::TFMessage>("tf")),
         tf_static_pub_(ctx.publisher<tf2_msgs::msg::TFMessage>("tf_static")) {
     checkDistinct();
-    publishStatic(adapters::rigCalibration(ctx));
+    publishStatic(calibration_);
     ctx.subscribe<sensor_msgs::msg::JointState>("motor_state",
                                                 [this](const sensor_msgs::msg::JointState& s) { onMotorState(s); });
     ctx.subscribe<nav_msgs::msg::Odometry>("odometry", [this](const nav_msgs::msg::Odometry& o) { onOdometry(o); });
@@ -152,9 +155,14 @@ class TfBroadcaster : public Component {
                           " without a finite position are skipped (said once)");
       return;
     }
+    // The rotor's angle (Eq. 1's theta) stamped on the LiDAR's clock, so that a viewer interpolating
+    // motor -> rotor at a point's stamp gets the angle Eq. 1 uses. The stamp is shifted in whole
+    // nanoseconds: a zero time_offset leaves it as the encoder stamped it.
+    const frames::MotorReading rotor = frames::rotorReading({0.0, s.position()[0], 0.0}, calibration_);
     Eigen::Isometry3d T_motor_rotor = Eigen::Isometry3d::Identity();
-    T_motor_rotor.linear() = frames::motorRotation(s.position()[0]);
-    publish({transformMessage(T_motor_rotor, fromMsg(s.header().stamp()), motor_, rotor_)});
+    T_motor_rotor.linear() = frames::motorRotation(rotor.theta);
+    const Time stamp = fromMsg(s.header().stamp()) - Time::fromSeconds(calibration_.time_offset);
+    publish({transformMessage(T_motor_rotor, stamp, motor_, rotor_)});
   }
 
   void onOdometry(const nav_msgs::msg::Odometry& o) {
@@ -188,6 +196,7 @@ class TfBroadcaster : public Component {
   Context& ctx_;
   const std::string map_, odom_, base_, motor_, rotor_, lidar_, ground_truth_;
   const bool map_to_odom_;
+  const frames::MotorLidarCalibration calibration_;
   Publisher<tf2_msgs::msg::TFMessage> tf_pub_;
   Publisher<tf2_msgs::msg::TFMessage> tf_static_pub_;
   RateLimitedLog bad_state_log_ = RateLimitedLog::once();

@@ -9,8 +9,24 @@ void declareRigParameters(ComponentSpec& spec) {
   spec.param("tilt_deg", 30.0, "LiDAR tilt about its own x axis on the motor, degrees (reference rig: 30)")
       .between(-180.0, 180.0)
       .partOfRig();
+  spec.param("lidar_rotation_rpy_deg", std::vector<double>{},
+             "LiDAR rotation on the motor (R_ML) as roll, pitch, yaw about the motor's fixed x, y, z axes, "
+             "R = Rz(yaw) Ry(pitch) Rx(roll), degrees; empty: tilt_deg about x (give one of the two)")
+      .ofLength(3)
+      .between(-180.0, 180.0)
+      .partOfRig()
+      .notWith("tilt_deg");
   spec.param("lidar_offset", std::vector<double>{0.0, 0.0, 0.0}, "LiDAR origin in the motor frame (r_ML), m")
       .ofLength(3)
+      .partOfRig();
+  spec.param("encoder_offset_deg", 0.0,
+             "the encoder's zero: it reads the rotor's angle theta of Eq. 1 plus this, degrees")
+      .between(-180.0, 180.0)
+      .partOfRig();
+  spec.param("time_offset", 0.0,
+             "LiDAR-to-encoder clock offset: a point stamped t was measured when the encoder's clock read "
+             "t + time_offset, s")
+      .between(-1.0, 1.0)
       .partOfRig();
 }
 
@@ -48,15 +64,53 @@ lidar::LidarModel lidarModel(const Context& ctx) {
                               ctx.paramDouble("lidar_max_range"));
 }
 
+Eigen::Vector3d degreesToRadians(const Eigen::Vector3d& degrees) { return degrees * (M_PI / 180.0); }
+
 Eigen::Vector3d vector3Param(const Context& ctx, const std::string& name) {
   const auto v = ctx.paramDoubleList(name);
   if (v.size() != 3) throw std::runtime_error(name + " must have three values (x, y, z)");
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
+namespace {
+
+// The calibration from the rig parameters, however they are looked up (a component's context, a
+// scene's rig block).
+template <typename Double, typename List>
+frames::MotorLidarCalibration calibrationFrom(const Double& number, const List& list) {
+  auto vector3 = [&](const std::string& name) {
+    const auto v = list(name);
+    if (v.size() != 3) throw std::runtime_error(name + " must have three values (x, y, z)");
+    return Eigen::Vector3d(v[0], v[1], v[2]);
+  };
+  frames::MotorLidarCalibration c =
+      frames::MotorLidarCalibration::tiltedAboutX(number("tilt_deg") * M_PI / 180.0, vector3("lidar_offset"));
+  // Not given (the empty default): tilt_deg alone, computed as before so that every output stays
+  // the same bit for bit.
+  if (!list("lidar_rotation_rpy_deg").empty()) {
+    c.R_ML = frames::rotationFromRollPitchYaw(degreesToRadians(vector3("lidar_rotation_rpy_deg")));
+  }
+  c.encoder_offset = number("encoder_offset_deg") * M_PI / 180.0;
+  c.time_offset = number("time_offset");
+  return c;
+}
+
+}  // namespace
+
 frames::MotorLidarCalibration rigCalibration(const Context& ctx) {
-  return frames::MotorLidarCalibration::tiltedAboutX(ctx.paramDouble("tilt_deg") * M_PI / 180.0,
-                                                     vector3Param(ctx, "lidar_offset"));
+  return calibrationFrom([&](const std::string& name) { return ctx.paramDouble(name); },
+                         [&](const std::string& name) { return ctx.paramDoubleList(name); });
+}
+
+frames::MotorLidarCalibration rigCalibration(const std::map<std::string, ParameterValue>& rig) {
+  ComponentSpec spec;  // the declared defaults, for what the rig block leaves out
+  declareRigParameters(spec);
+  auto value = [&](const std::string& name) -> ParameterValue {
+    if (const auto it = rig.find(name); it != rig.end()) return it->second;
+    return *spec.findParameter(name)->default_value;
+  };
+  return calibrationFrom([&](const std::string& name) { return std::get<double>(value(name)); },
+                         [&](const std::string& name) { return std::get<std::vector<double>>(value(name)); });
 }
 
 }  // namespace uampc::adapters

@@ -1,5 +1,6 @@
 #include "uampc/frames/motorized_lidar.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace uampc::frames {
@@ -15,6 +16,33 @@ MotorLidarCalibration MotorLidarCalibration::tiltedAboutX(double tilt_rad,
 MotorLidarCalibration MotorLidarCalibration::referenceRig() {
   constexpr double kThirtyDegrees = 30.0 * M_PI / 180.0;
   return tiltedAboutX(kThirtyDegrees);
+}
+
+MotorReading rotorReading(const MotorReading& encoder, const MotorLidarCalibration& calibration) {
+  return {encoder.time - calibration.time_offset, encoder.theta - calibration.encoder_offset, encoder.omega};
+}
+
+Eigen::Matrix3d rotationFromRollPitchYaw(const Eigen::Vector3d& rpy) {
+  return (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
+}
+
+Eigen::Vector3d rollPitchYawFromRotation(const Eigen::Matrix3d& R) {
+  // R = Rz Ry Rx: R(2,0) = -sin(pitch), R(2,1) / R(2,2) = tan(roll), R(1,0) / R(0,0) = tan(yaw).
+  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
+}
+
+MotorLidarCalibration withMountingError(const MotorLidarCalibration& believed, const MountingError& error) {
+  // No error leaves the believed calibration untouched bit for bit (even a -0.0 stays one), so
+  // that a scene without one renders exactly as before.
+  MotorLidarCalibration truth = believed;
+  if (!error.rotation_rpy.isZero(0.0)) truth.R_ML = believed.R_ML * rotationFromRollPitchYaw(error.rotation_rpy);
+  if (!error.offset.isZero(0.0)) truth.r_ML = believed.r_ML + error.offset;
+  if (error.encoder_offset != 0.0) truth.encoder_offset = believed.encoder_offset + error.encoder_offset;
+  if (error.time_offset != 0.0) truth.time_offset = believed.time_offset + error.time_offset;
+  return truth;
 }
 
 Eigen::Matrix3d motorRotation(double theta) {

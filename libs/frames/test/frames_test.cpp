@@ -34,6 +34,46 @@ TEST(MotorizedLidar, Eq1ComposesMotorCalibrationAndBasePose) {
   EXPECT_TRUE((T_BL * Eigen::Vector3d(1, 0, 0)).isApprox(Eigen::Vector3d(0, 1.1, 0), 1e-12));
 }
 
+TEST(MotorizedLidar, RotorReadingTakesOutTheEncoderZeroAndTheClockOffset) {
+  MotorLidarCalibration c;
+  const MotorReading encoder{10.0, 2.0, 3.6};
+  const MotorReading same = rotorReading(encoder, c);  // zero offsets: the reading bit for bit
+  EXPECT_EQ(std::memcmp(&same, &encoder, sizeof(MotorReading)), 0);
+  c.encoder_offset = 0.25;  // the encoder reads theta + 0.25
+  c.time_offset = 0.004;    // a point stamped t was measured when the encoder's clock read t + 4 ms
+  const MotorReading rotor = rotorReading(encoder, c);
+  EXPECT_DOUBLE_EQ(rotor.theta, 1.75);
+  EXPECT_DOUBLE_EQ(rotor.time, 9.996);
+  EXPECT_DOUBLE_EQ(rotor.omega, 3.6);
+}
+
+TEST(MotorizedLidar, RollPitchYawIsZyxAboutFixedAxesAndRoundTrips) {
+  const Eigen::Vector3d rpy(0.3, -0.2, 1.1);
+  const Eigen::Matrix3d R = rotationFromRollPitchYaw(rpy);
+  const Eigen::Matrix3d expected =
+      (Eigen::AngleAxisd(1.1, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
+  EXPECT_TRUE(R.isApprox(expected, 1e-14));
+  EXPECT_TRUE(rollPitchYawFromRotation(R).isApprox(rpy, 1e-12));
+  // A roll alone is the reference rig's tilt about x.
+  EXPECT_TRUE(rotationFromRollPitchYaw({M_PI / 6, 0, 0}).isApprox(MotorLidarCalibration::referenceRig().R_ML, 1e-15));
+}
+
+TEST(MotorizedLidar, MountingErrorTurnsInTheLidarFrameAndShiftsInTheMotorFrame) {
+  const auto believed = MotorLidarCalibration::referenceRig();
+  MountingError error;
+  error.rotation_rpy = {0.0, 0.0, 0.1};  // about the LiDAR's own z axis
+  error.offset = {0.01, 0.0, 0.0};
+  error.encoder_offset = 0.02;
+  error.time_offset = 0.003;
+  const auto truth = withMountingError(believed, error);
+  EXPECT_TRUE(truth.R_ML.isApprox(believed.R_ML * Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ()), 1e-15));
+  EXPECT_TRUE(truth.r_ML.isApprox(Eigen::Vector3d(0.01, 0, 0)));
+  EXPECT_DOUBLE_EQ(truth.encoder_offset, 0.02);
+  EXPECT_DOUBLE_EQ(truth.time_offset, 0.003);
+}
+
 TEST(MotorAngleTrack, InterpolatesLinearlyInsideAndRefusesOutside) {
   MotorAngleTrack track;
   ASSERT_TRUE(track.add({0.0, 0.0, 1.0}));

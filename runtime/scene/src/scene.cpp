@@ -660,11 +660,20 @@ void SceneValidator::readRigParameter(const ParameterSpec& p, ComponentInstance&
 }
 
 // A rig key no component of the scene declares is a typo or a leftover: an error, with the
-// closest declared name.
+// closest declared name. Two keys that say one fact two ways (ParameterSpec::not_with) are an
+// error too: which one would win is not for the reader to guess.
 void SceneValidator::checkRigKeys(const Scene& scene) {
   if (!rig_node_) return;
+  const YAML::Node& rig = rig_node_;  // const: a lookup must not add the key
   std::vector<std::string> names;
-  for (const auto& [name, declared] : rig_declared_) names.push_back(name);
+  for (const auto& [name, declared] : rig_declared_) {
+    names.push_back(name);
+    const std::string& other = declared.first->not_with;
+    if (!other.empty() && rig[name] && rig[other]) {
+      error(rig[name], "rig." + name + " and rig." + other + " are both given, and both set the same thing (" +
+                           declared.first->doc + "): give one");
+    }
+  }
   for (const auto& kv : rig_node_) {
     const std::string name = kv.first.as<std::string>();
     if (rig_declared_.count(name)) continue;
@@ -738,7 +747,9 @@ std::optional<ParameterValue> SceneValidator::readValue(const YAML::Node& node, 
         if (!checkBounds(*v, item.Scalar())) return std::nullopt;
         values.push_back(*v);
       }
-      if (spec.list_length > 0 && values.size() != spec.list_length) {
+      const auto* default_list = spec.default_value ? std::get_if<std::vector<double>>(&*spec.default_value) : nullptr;
+      const bool none_given = values.empty() && default_list && default_list->empty();
+      if (spec.list_length > 0 && values.size() != spec.list_length && !none_given) {
         error(node, what + " must be a list of " + std::to_string(spec.list_length) + " numbers, not " +
                         std::to_string(values.size()));
         return std::nullopt;

@@ -4,17 +4,29 @@
 //   M: motor frame, rotated about the base z axis by the encoder angle theta.
 //   L: LiDAR frame, fixed on the motor by the calibration (R_ML, r_ML).
 //
+// theta(t) is the rotor's angle at the point's time on the LiDAR's clock. The encoder measures it
+// with a zero of its own (encoder_offset) and on a clock of its own (time_offset); rotorReading
+// below is the one place both are taken out (docs/decisions/rig-calibration-conventions.md).
+//
 //   p_W = R_WB(t) * ( R_BM(theta(t)) * ( R_ML * p_L + r_ML ) ) + r_WB(t)          (Eq. 1)
 #pragma once
 
 #include <Eigen/Geometry>
 
+#include "uampc/frames/motor_angle_track.hpp"
+
 namespace uampc::frames {
 
-// LiDAR-to-motor calibration: p_M = R_ML * p_L + r_ML.
+// The rig's calibration: the LiDAR on the rotor, p_M = R_ML * p_L + r_ML, and how the encoder's
+// readings relate to Eq. 1's theta(t).
 struct MotorLidarCalibration {
   Eigen::Matrix3d R_ML = Eigen::Matrix3d::Identity();
   Eigen::Vector3d r_ML = Eigen::Vector3d::Zero();
+  // The encoder's zero, rad: the encoder reads theta_encoder = theta + encoder_offset.
+  double encoder_offset = 0.0;
+  // The LiDAR-to-encoder clock offset, s: a point stamped t on the LiDAR's clock was measured when
+  // the encoder's clock read t + time_offset (its angle is the encoder's theta(t + time_offset)).
+  double time_offset = 0.0;
 
   // The reference rig: the LiDAR tilted about its own x axis by tilt_rad (30 degrees there).
   static MotorLidarCalibration tiltedAboutX(double tilt_rad,
@@ -22,6 +34,26 @@ struct MotorLidarCalibration {
   // Same tilt as the reference rig: 30 degrees about the LiDAR x axis.
   static MotorLidarCalibration referenceRig();
 };
+
+// An encoder reading as Eq. 1 needs it: the rotor's angle theta_encoder - encoder_offset, at the
+// time on the LiDAR's clock, time - time_offset (the rate is unchanged). Zero offsets give the
+// reading back bit for bit.
+MotorReading rotorReading(const MotorReading& encoder, const MotorLidarCalibration& calibration);
+
+// R = Rz(yaw) Ry(pitch) Rx(roll), rad: roll about x first, then pitch about the fixed y, then yaw
+// about the fixed z (ROS's fixed-axis roll, pitch, yaw). rpy = (roll, pitch, yaw).
+Eigen::Matrix3d rotationFromRollPitchYaw(const Eigen::Vector3d& rpy);
+// The inverse, with pitch in [-pi/2, pi/2].
+Eigen::Vector3d rollPitchYawFromRotation(const Eigen::Matrix3d& R);
+
+// A mounting error of the rig: the true calibration is the believed one composed with it.
+struct MountingError {
+  Eigen::Vector3d rotation_rpy = Eigen::Vector3d::Zero();  // rad, in the LiDAR frame: R_ML R(rpy)
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();        // m, in the motor frame: r_ML + offset
+  double encoder_offset = 0.0;                             // rad, added to encoder_offset
+  double time_offset = 0.0;                                // s, added to time_offset
+};
+MotorLidarCalibration withMountingError(const MotorLidarCalibration& believed, const MountingError& error);
 
 // R_BM(theta): rotation about the base z axis by the encoder angle theta (rad).
 Eigen::Matrix3d motorRotation(double theta);

@@ -33,8 +33,9 @@ namespace uampc {
 
 // Bumped whenever Component, Context or the plugin entry change in a way that breaks libraries
 // built against an older runtime. The loader refuses a library built for another version.
-// 2: ParameterSpec::rig; 3: ports decided by the scene, serialized ports, string-list parameters.
-constexpr std::uint32_t kComponentAbiVersion = 3;
+// 2: ParameterSpec::rig; 3: ports decided by the scene, serialized ports, string-list parameters;
+// 4: ParameterSpec::not_with.
+constexpr std::uint32_t kComponentAbiVersion = 4;
 
 namespace detail {
 // The runtime's side of a typed port; components use Publisher<T> and Context::subscribe<T>.

@@ -39,9 +39,13 @@ struct ParameterSpec {
   bool zero_is_off = false;                     // 0 is allowed besides [min, max]: it switches off
   std::vector<std::string> choices;             // allowed strings; empty: any
   std::size_t list_length = 0;                  // a list of numbers of exactly this many; 0: any
+                                                // (or none, when the default is the empty list)
   // Part of the rig (the LiDAR, its model and its mounting on the motor): set once in the scene's
   // rig: block and given to every component that declares it, never in one component's params.
   bool rig = false;
+  // A rig parameter this one may not be given beside in a rig: block: two ways to say one fact
+  // (lidar_rotation_rpy_deg and tilt_deg). Empty: none.
+  std::string not_with;
 
   bool required() const { return !default_value.has_value(); }
   // Whether a number lies within [min, max], or is 0 where 0 switches off: the one bounds rule of
@@ -58,6 +62,7 @@ struct ParameterSpec {
   ParameterSpec& oneOf(std::vector<std::string> allowed) { choices = std::move(allowed); return *this; }
   ParameterSpec& ofLength(std::size_t n) { list_length = n; return *this; }
   ParameterSpec& partOfRig() { rig = true; return *this; }
+  ParameterSpec& notWith(std::string other) { not_with = std::move(other); return *this; }
 };
 
 }  // namespace uampc
