@@ -26,3 +26,5 @@ BENCHMARK(BM_Calibrate30sOfMid360)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace uampc::calibration
+
+BENCHMARK_MAIN();
