@@ -669,7 +669,12 @@ void SceneValidator::checkRigKeys(const Scene& scene) {
   for (const auto& [name, declared] : rig_declared_) {
     names.push_back(name);
     const std::string& other = declared.first->not_with;
-    if (!other.empty() && rig[name] && rig[other]) {
+    // An empty list is the parameter's "not set" (a resolved scene writes every rig key, the
+    // unset one as []), so it does not count as given.
+    const auto given = [&](const std::string& key) {
+      return rig[key] && !(rig[key].IsSequence() && rig[key].size() == 0);
+    };
+    if (!other.empty() && given(name) && given(other)) {
       error(rig[name], "rig." + name + " and rig." + other + " are both given, and both set the same thing (" +
                            declared.first->doc + "): give one");
     }
