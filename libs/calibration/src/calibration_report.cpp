@@ -39,14 +39,6 @@ std::string shown(const ParameterEstimate& p, double value, int extra_digits = 0
   return s.str();
 }
 
-std::string millimetres(double metres) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(1);
-  s << metres * 1e3 << " mm";
-  return s.str();
-}
-
 std::string number(double value) {
   std::ostringstream s;
   s.precision(10);

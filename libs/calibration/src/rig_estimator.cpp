@@ -107,14 +107,6 @@ double quantileAbsolute(std::vector<double> values, double q) {
 
 double medianAbsolute(const std::vector<double>& values) { return quantileAbsolute(values, 0.5); }
 
-std::string millimetres(double metres) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(1);
-  s << metres * 1e3 << " mm";
-  return s.str();
-}
-
 // One Ceres problem over the terms, each with a Huber loss; the clock offset held unless asked.
 struct Solve {
   ceres::Problem problem;
@@ -225,6 +217,14 @@ bool converged(const ObservableRig& a, const ObservableRig& b) {
 }
 
 }  // namespace
+
+std::string millimetres(double metres) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << metres * 1e3 << " mm";
+  return s.str();
+}
 
 CalibrationResult estimateRig(const RigRecording& recording, const frames::MotorLidarCalibration& believed,
                               const EstimatorConfig& config, const Progress& progress) {

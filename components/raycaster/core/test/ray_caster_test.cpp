@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "uampc/frames/motorized_lidar.hpp"
 
@@ -106,12 +107,19 @@ TEST(RayCaster, BoxRoomRangesAreExact) {
   }
 }
 
+// Frame 3, at 5 s, of the moving base and spinning motor, from their recorded histories.
+struct RecordedFrame {
+  double start = 5.0;
+  world::Trajectory trajectory = movingTrajectory(4.9, 5.2);
+  MotorAngleTrack motor = motorTrack(4.9, 5.2);
+  Scan castBy(RayCaster& caster) const { return caster.castFrame(3, start, trajectory, motor); }
+};
+
 TEST(RayCaster, WorksFromTrajectoryAndEncoderTrackAndTheMotorTurnsDuringTheFrame) {
   RayCaster caster(groundPlane(), RayCasterConfig{});
-  const double start = 5.0;
-  const world::Trajectory trajectory = movingTrajectory(4.9, 5.2);
-  const MotorAngleTrack motor = motorTrack(4.9, 5.2);
-  const Scan scan = caster.castFrame(3, start, trajectory, motor);
+  const RecordedFrame frame;
+  const auto& [start, trajectory, motor] = std::tie(frame.start, frame.trajectory, frame.motor);
+  const Scan scan = frame.castBy(caster);
   ASSERT_GT(scan.points.size(), 1000u);
   const auto calibration = MotorLidarCalibration::referenceRig();
   double worst_frozen = 0.0;
@@ -138,10 +146,9 @@ TEST(RayCaster, SnapshotFramesCastEveryRayFromThePoseAtTheStamp) {
   RayCasterConfig config;
   config.frame_timing = FrameTiming::kSnapshot;
   RayCaster caster(groundPlane(), config);
-  const double start = 5.0;
-  const world::Trajectory trajectory = movingTrajectory(4.9, 5.2);
-  const MotorAngleTrack motor = motorTrack(4.9, 5.2);
-  const Scan scan = caster.castFrame(3, start, trajectory, motor);
+  const RecordedFrame frame;
+  const auto& [start, trajectory, motor] = std::tie(frame.start, frame.trajectory, frame.motor);
+  const Scan scan = frame.castBy(caster);
   ASSERT_GT(scan.points.size(), 1000u);
   const auto calibration = MotorLidarCalibration::referenceRig();
   for (const auto& p : scan.points) {

@@ -68,4 +68,7 @@ using Progress = std::function<void(const std::string& line)>;
 CalibrationResult estimateRig(const RigRecording& recording, const frames::MotorLidarCalibration& believed,
                               const EstimatorConfig& config = {}, const Progress& progress = {});
 
+// A length as the estimator's messages and the report give it: "12.3 mm".
+std::string millimetres(double metres);
+
 }  // namespace uampc::calibration
