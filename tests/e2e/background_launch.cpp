@@ -29,6 +29,13 @@ pid_t startUampc(const std::string& args, const std::string& log, const std::str
   return pid;
 }
 
+KilledIfStillRunning::~KilledIfStillRunning() {
+  int status = 0;
+  if (waitpid(pid_, &status, WNOHANG) != 0) return;  // exited (or reaped by exitCodeOf) already
+  kill(-pid_, SIGKILL);
+  waitpid(pid_, &status, 0);
+}
+
 bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds limit) {
   const auto deadline = std::chrono::steady_clock::now() + limit;
   while (!condition()) {

@@ -16,6 +16,20 @@ pid_t startLaunch(const std::string& args, const std::string& log, const std::st
 // The same for any command: `uampc ARGS`.
 pid_t startUampc(const std::string& args, const std::string& log, const std::string& environment = "");
 
+// Kills the process group of a command started above if it still runs when the guard goes out of
+// scope: a test that stops half-way at a failed ASSERT leaves no viewer holding its port, nor a run
+// its domain, for the test's retry or the next test.
+class KilledIfStillRunning {
+ public:
+  explicit KilledIfStillRunning(pid_t pid) : pid_(pid) {}
+  KilledIfStillRunning(const KilledIfStillRunning&) = delete;
+  KilledIfStillRunning& operator=(const KilledIfStillRunning&) = delete;
+  ~KilledIfStillRunning();
+
+ private:
+  pid_t pid_;
+};
+
 // Waits for condition, at most `limit` (a test that hangs is a failure, not a stall).
 bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds limit);
 

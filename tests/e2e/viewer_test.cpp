@@ -28,6 +28,15 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// AddressSanitizer's allocator holds freed blocks in its quarantine and its shadow memory beside
+// every block, and gives nothing back on malloc_trim: there a process's resident memory does not
+// measure the viewer's bounds.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kResidentMemoryIsTheViewers = false;
+#else
+constexpr bool kResidentMemoryIsTheViewers = true;
+#endif
+
 int domain(int index) { return testDomain(DomainBlock::kTopicTools, index); }
 // A port per test, beside the domain, so that tests running in parallel do not meet.
 int port(int index) { return 18760 + domain(index); }
@@ -114,6 +123,7 @@ TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
   // run's viewer does.
   const std::string log = freshDirectory("viewer_viewed_log") + "/launch.log";
   const pid_t run = startLaunch(defaultScene(1, 8) + viewOptions(1) + " --out " + viewed, log);
+  const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   // Every topic, until the run ends and its viewer closes the connection.
   const json seen = watch(url(1) + " --topics all --until-closed");
@@ -161,6 +171,7 @@ TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
 TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
   const std::string log = freshDirectory("viewer_lazy") + "/run.log";
   const pid_t run = startLaunch(defaultScene(2, 16) + viewOptions(2), log);
+  const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const json seen =
       watch(url(2) + " --topics /lidar/points,/lo/local_map,/lo/registered,/world/points,/tf --lazy-client --until-closed");
@@ -178,6 +189,7 @@ TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
 TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
   const std::string log = freshDirectory("viewer_bad_clients") + "/run.log";
   const pid_t view = startUampc("view --domain " + std::to_string(domain(3)) + " --port " + std::to_string(port(3)), log);
+  const KilledIfStillRunning view_guard(view);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
 
   const json some = watch(url(3) + " --seconds 1 --bad-requests 6");
@@ -204,6 +216,7 @@ TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
 TEST(Viewer, APortInUseIsAClearErrorBeforeAnythingStarts) {
   const std::string log = freshDirectory("viewer_port") + "/run.log";
   const pid_t view = startUampc("view --domain " + std::to_string(domain(4)) + " --port " + std::to_string(port(4)), log);
+  const KilledIfStillRunning view_guard(view);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const std::string where = "cannot serve on 127.0.0.1:" + std::to_string(port(4));
 
@@ -244,6 +257,7 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
   const std::string log = freshDirectory("viewer_play") + "/run.log";
   const pid_t play = startUampc(
       "play " + file + " --rate 2 --domain " + std::to_string(domain(5)) + viewOptions(5), log);
+  const KilledIfStillRunning play_guard(play);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const json seen = watch(url(5) + " --topics /lidar/points,/lo/odometry --until-closed --duplicate-subscription");
   ASSERT_EQ(exitCodeOf(play), 0) << readFile(log);
@@ -263,6 +277,7 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
 TEST(Viewer, ClientsOverTheViewersBoundsAreToldAndDisconnected) {
   const std::string log = freshDirectory("viewer_bounds") + "/run.log";
   const pid_t run = startLaunch(defaultScene(6, 20) + viewOptions(6), log);
+  const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
 
   const json greedy = watch(url(6) + " --topics /tf --subscriptions-per-topic 1025 --seconds 10");
@@ -296,9 +311,11 @@ TEST(Viewer, MemoryStaysWithinTheBoundAndComesBackAfterTheClientsLeave) {
   const std::string log = freshDirectory("viewer_memory") + "/view.log";
   const pid_t view =
       startUampc("view --domain " + std::to_string(domain(8)) + " --port " + std::to_string(port(8)), log);
+  const KilledIfStillRunning view_guard(view);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const std::string run_log = freshDirectory("viewer_memory_run") + "/run.log";
   const pid_t run = startLaunch(defaultScene(8, 30), run_log);
+  const KilledIfStillRunning run_guard(run);
   const json seen = watch(url(8) +
                           " --topics /lidar/points --subscriptions-per-topic 500 --stop-reading"
                           " --hold-clients 15 --held-subscribe --seconds 6");
@@ -313,6 +330,7 @@ TEST(Viewer, MemoryStaysWithinTheBoundAndComesBackAfterTheClientsLeave) {
   ASSERT_GT(served.peak, 0);
   std::cout << "viewer: peak RSS " << (served.peak >> 20) << " MiB, " << (left.rss >> 20)
             << " MiB after the clients left\n";
+  if (!kResidentMemoryIsTheViewers) return;  // under ASan: the behaviour above is checked, not the bytes
   // The bound of docs/user/viewing.md with the defaults is about 560 MiB, counting every shared
   // payload in full for each client. For one topic the payloads held are the latest 10 scans and
   // the reader's 100 at most, shared, so that what a client really holds is the 8 MiB its socket
@@ -327,6 +345,7 @@ TEST(Viewer, MemoryStaysWithinTheBoundAndComesBackAfterTheClientsLeave) {
 TEST(Viewer, AClientThatComesLateGetsTheLatchedTopics) {
   const std::string log = freshDirectory("viewer_latched") + "/run.log";
   const pid_t run = startLaunch(defaultScene(9, 10) + viewOptions(9), log);
+  const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const json seen = watch(url(9) + " --topics /tf_static,/world/points,/world/mesh --late-client --until-closed");
   ASSERT_EQ(exitCodeOf(run), 0) << readFile(log);
@@ -362,6 +381,7 @@ TEST(Viewer, LaunchRefusesAtItsStartTheAddressesTheViewerRefuses) {
 TEST(Viewer, ARunFailsWhenItsViewerDies) {
   const std::string log = freshDirectory("viewer_dies") + "/run.log";
   const pid_t run = startLaunch(defaultScene(11, 20) + viewOptions(11), log);
+  const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const pid_t viewer = viewerOf(domain(11));
   ASSERT_GT(viewer, 0) << runShell("ps -ef").output;

@@ -129,8 +129,10 @@ void LockstepProtocol::deliverFailure() {
 
 bool LockstepProtocol::awaitAcks(std::int64_t step, TopicCounts& expected, const std::atomic<bool>& stop) {
   // A little before the clock gives up: the clock then hears from this process which peer it
-  // waited for (a stopped process), instead of naming every process as late.
-  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(0.9 * scene_.clock.ack_timeout_s);
+  // waited for (a stopped process), instead of naming every process as late. At the start (step
+  // -1) the clock waits for discovery as long as startupTimeout() says, and so must this side.
+  const double patience_s = 0.9 * (step < 0 ? scene_.clock.startupTimeout() : scene_.clock.ack_timeout_s);
+  const auto deadline = SteadyClock::now() + std::chrono::duration<double>(patience_s);
   for (;;) {
     takeAcks();
     const std::string missing = notAcknowledged(step);
@@ -138,7 +140,7 @@ bool LockstepProtocol::awaitAcks(std::int64_t step, TopicCounts& expected, const
     if (stop || anotherRunStops()) return false;
     if (SteadyClock::now() > deadline) {
       state_.failure = "acknowledgements of step " + std::to_string(step) + " from process(es) " + missing +
-                       " did not arrive within " + std::to_string(0.9 * scene_.clock.ack_timeout_s) + " s" +
+                       " did not arrive within " + std::to_string(patience_s) + " s" +
                        (step < 0 ? securedStartHint(scene_) : std::string());
       log_.error(state_.failure);
       return false;
