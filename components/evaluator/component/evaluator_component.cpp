@@ -276,6 +276,7 @@ class EvaluatorComponent : public Component {
     if (first_lost_time_ >= 0.0) metrics.lo.first_lost_time = first_lost_time_;
     metrics.lo.lost_frames = lost_frames_;
     metrics.lo.rejected_updates = rejected_updates_;
+    metrics.lo.velocity_resets = velocity_resets_;
     metrics.lo.frames = lo_frames_;
     metrics.lo.degenerate_frames = degenerate_frames_;
     metrics.run = run_info_;
@@ -331,6 +332,8 @@ class EvaluatorComponent : public Component {
         ++lost_frames_;
       } else if (v.name() == "rejected_updates") {
         rejected_updates_ = static_cast<long>(v.value());
+      } else if (v.name() == "velocity_resets") {
+        velocity_resets_ = static_cast<long>(v.value());
       } else if (v.name() == "degenerate_directions" && v.value() > 0.5) {
         ++degenerate_frames_;
       }
@@ -460,6 +463,7 @@ class EvaluatorComponent : public Component {
   long lo_frames_ = 0;          // /lo/metrics messages
   long degenerate_frames_ = 0;  // of them, with a degenerate pose direction
   long rejected_updates_ = 0;
+  long velocity_resets_ = 0;
   std::unique_ptr<run_files::UncertaintyWriter> uncertainty_;
   double command_ = 0.0;
   double panorama_period_ = 0.0;

@@ -256,6 +256,7 @@ class LoComponent : public Component {
     add("status", static_cast<double>(r.status), "");
     add("lost", r.lost ? 1.0 : 0.0, "");
     add("rejected_updates", static_cast<double>(r.rejected_updates), "");
+    add("velocity_resets", static_cast<double>(r.velocity_resets), "");
     add("min_information_eigenvalue", r.min_information_eigenvalue, "");
     // Every eigenvalue of the scaled pose information (effective points, ascending), and each
     // degenerate direction as [rotation * degeneracy length, translation] (unit vector, m).

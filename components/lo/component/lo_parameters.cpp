@@ -53,6 +53,15 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
          "that stands still at the start, map_provider's start_hold; 0: the first scan alone)")
       .between(0.0, 60.0);
   b.bind("lost_after", c.lost_after, "lost: no registration accepted for longer than this, s").between(0.0, 3600.0);
+  b.bind("velocity_reset_window", c.velocity_reset_window,
+         "after a rejected update or at a loss of track, the velocity is reset to the accepted poses' mean motion "
+         "over this long, s; 0: off (see docs/decisions/lo-velocity-reset.md)")
+      .between(0.0, 10.0);
+  b.bind("max_speed", c.max_speed, "an update leaving the speed above this is rejected, lost or not, m/s")
+      .between(0.1, 1000.0);
+  b.bind("max_angular_speed", c.max_angular_speed,
+         "an update leaving the angular speed above this is rejected, lost or not, rad/s")
+      .between(0.1, 1000.0);
   b.bind("use_imu", c.use_imu,
          "LiDAR-inertial mode: the IMU on the imu port replaces the constant-velocity prediction (beyond the "
          "paper, whose LO is LiDAR-only)");

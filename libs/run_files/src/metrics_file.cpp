@@ -88,6 +88,7 @@ void eachField(S& s, Visit&& visit) {
   visit("first_lost_time", s.first_lost_time);
   visit("lost_frames", s.lost_frames);
   visit("rejected_updates", s.rejected_updates);
+  visit("velocity_resets", s.velocity_resets);
   visit("frames", s.frames);
   visit("degenerate_frames", s.degenerate_frames);
 }

@@ -129,7 +129,7 @@ TEST(MetricsFile, PrintsAsTheEvaluatorAlwaysHas) {
   EXPECT_NE(text.find("\"mean_speed\": 3.6,"), std::string::npos) << text;
   EXPECT_EQ(text.find("first_lost_time"), std::string::npos) << text;
   const std::string tail =
-      "  \"lo\": {\n    \"lost_frames\": 2,\n    \"rejected_updates\": -1,\n    \"frames\": 900,\n"
+      "  \"lo\": {\n    \"lost_frames\": 2,\n    \"rejected_updates\": -1,\n    \"velocity_resets\": 0,\n    \"frames\": 900,\n"
       "    \"degenerate_frames\": 850\n  }\n}\n";
   EXPECT_EQ(text.substr(text.size() - tail.size()), tail) << text;
 }

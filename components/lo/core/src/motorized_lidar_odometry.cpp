@@ -91,7 +91,9 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
 }
 
 MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
-    : config_(config), map_(config.map_voxel_size, config.map_radius, config.map_mean_points) {}
+    : config_(config),
+      map_(config.map_voxel_size, config.map_radius, config.map_mean_points),
+      accepted_poses_(config.velocity_reset_window) {}
 
 OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const frames::MotorAngleTrack& motor) {
   OdometryResult result;
@@ -111,6 +113,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
     fillState(result);
     return result;
   }
+  const IteratedEkf before_prediction = *filter_;
   predict(end_time, dt, motor, result);
   if (end_time <= first_time_ + config_.initial_map_time) return extendInitialMap(derotated, end_time, result);
   const IteratedEkf predicted = *filter_;
@@ -121,7 +124,12 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
   result.points_used = keypoints.size();
   const double sampled_fraction =
       keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled);
-  const UpdateSummary summary = correct(keypoints, sampled_fraction, predicted, end_time, dt, result);
+  const UpdateSummary summary =
+      correct(keypoints, sampled_fraction, before_prediction, predicted, end_time, dt, result);
+  const bool lost = end_time - last_accepted_time_ > config_.lost_after;
+  if (lost && !lost_ && velocityResets(result)) resetVelocityAtLoss(end_time, result);
+  lost_ = lost;
+  result.velocity_resets = velocity_resets_;
   reportStatus(summary, keypoints.empty(), end_time, result);
   last_weakest_information_ = summary.applied ? std::max(0.0, result.min_information_eigenvalue) : 0.0;
 
@@ -199,6 +207,9 @@ OdometryResult MotorizedLidarOdometry::extendInitialMap(const DerotatedScan& der
 // The scan, deskewed with the filter's state, into the map; reported as part of the initial map.
 OdometryResult MotorizedLidarOdometry::addToInitialMap(const DerotatedScan& derotated, OdometryResult result) {
   const BaseState& x = filter_->state();
+  // The initial state is known (docs/decisions/lo-initial-map.md): as good as an accepted pose.
+  accepted_poses_.add(last_time_, x);
+  last_accepted_.emplace(*filter_);
   const std::vector<Eigen::Vector3d> points_W = deskewToWorld(derotated.points, x);
   map_.insert(points_W, last_time_, x.r_WB);
   map_.removeFarFrom(x.r_WB);
@@ -241,8 +252,8 @@ std::size_t MotorizedLidarOdometry::registrationBudget(std::size_t downsampled_p
 
 // The iterated update against the local map, undone if it needs an implausible acceleration.
 UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
-                                              const IteratedEkf& predicted, double end_time, double dt,
-                                              OdometryResult& result) {
+                                              const IteratedEkf& before_prediction, const IteratedEkf& predicted,
+                                              double end_time, double dt, OdometryResult& result) {
   UpdateSummary summary;
   if (!keypoints.empty()) {
     UpdateOptions options = updateOptionsFrom(config_);
@@ -260,15 +271,52 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
   // correction and keep the wrong velocity for good (KTH at 324.4 s: 100 deg/s held;
   // docs/results/lo-degenerate-geometry.md, "The mechanism").
   const bool lost_before = end_time - last_accepted_time_ > config_.lost_after;
-  if (summary.applied && !lost_before && implausibleMotion(predicted, filter_->state(), dt)) {
+  if (summary.applied &&
+      (beyondSpeedLimits(filter_->state(), config_.max_speed, config_.max_angular_speed) ||
+       (!lost_before && implausibleMotion(predicted, filter_->state(), dt)))) {
     *filter_ = predicted;
     summary.applied = false;
     result.implausible_motion = true;
     ++rejected_updates_;
+    if (velocityResets(result)) resetVelocityAfterRejection(before_prediction, dt, result);
   }
-  if (summary.applied) last_accepted_time_ = end_time;
+  if (summary.applied) {
+    last_accepted_time_ = end_time;
+    accepted_poses_.add(end_time, filter_->state());
+    last_accepted_.emplace(*filter_);
+  }
   result.rejected_updates = rejected_updates_;
   return summary;
+}
+
+void MotorizedLidarOdometry::resetVelocityAfterRejection(const IteratedEkf& before_prediction, double dt,
+                                                         OdometryResult& result) {
+  const std::optional<Motion> motion = accepted_poses_.meanMotion();
+  if (!motion) return;
+  IteratedEkf repredicted = withVelocity(before_prediction, *motion, std::nullopt);
+  repredicted.predict(dt, config_.linear_process_noise, config_.angular_process_noise);
+  *filter_ = repredicted;
+  result.velocity_reset = true;
+  ++velocity_resets_;
+  std::ostringstream why;
+  why << "velocity reset to the accepted poses' motion over " << config_.velocity_reset_window << " s ("
+      << motion->v_W.norm() << " m/s, " << motion->w_B.norm() << " rad/s)";
+  addWarning(result.warning, why.str());
+}
+
+void MotorizedLidarOdometry::resetVelocityAtLoss(double end_time, OdometryResult& result) {
+  const std::optional<Motion> motion = accepted_poses_.meanMotion();
+  if (!motion || !last_accepted_) return;
+  IteratedEkf resumed = withVelocity(*last_accepted_, *motion, config_.initial_velocity_variance);
+  resumed.predict(end_time - last_accepted_time_, config_.linear_process_noise, config_.angular_process_noise);
+  *filter_ = resumed;
+  result.velocity_reset = true;
+  ++velocity_resets_;
+  std::ostringstream why;
+  why << "lost track: going on from the last accepted pose (" << last_accepted_time_
+      << " s) with the accepted poses' motion (" << motion->v_W.norm() << " m/s, " << motion->w_B.norm()
+      << " rad/s)";
+  addWarning(result.warning, why.str());
 }
 
 // The scan's status (tracking, degenerate, predicted only, lost) and the warnings that explain it.
@@ -281,7 +329,8 @@ void MotorizedLidarOdometry::reportStatus(const UpdateSummary& summary, bool no_
       why << "no usable points";
     } else if (result.implausible_motion) {
       why << "registration rejected: it needs an acceleration beyond " << config_.max_linear_acceleration
-          << " m/s^2 or " << config_.max_angular_acceleration << " rad/s^2";
+          << " m/s^2 or " << config_.max_angular_acceleration << " rad/s^2, or a speed beyond " << config_.max_speed
+          << " m/s or " << config_.max_angular_speed << " rad/s";
     } else {
       why << "only " << summary.correspondences << " plane correspondences (need " << config_.min_correspondences
           << ")";

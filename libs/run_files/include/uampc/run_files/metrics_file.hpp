@@ -73,6 +73,9 @@ struct LoSummary {
   std::optional<double> first_lost_time;  // s; absent: never lost
   std::int64_t lost_frames = 0;
   std::int64_t rejected_updates = 0;
+  // Times the LO reset its velocity after a rejected update or at a loss (its velocity_resets on
+  // /lo/metrics): a run that held with resets recovered, one without held outright.
+  std::int64_t velocity_resets = 0;
   std::int64_t frames = 0;             // frames the LO reported on (/lo/metrics)
   std::int64_t degenerate_frames = 0;  // of them, with a degenerate pose direction
 };

@@ -24,6 +24,7 @@
 #include "uampc/lo/iterated_ekf.hpp"
 #include "uampc/lo/local_map.hpp"
 #include "uampc/lo/scan.hpp"
+#include "uampc/lo/velocity_reset.hpp"
 
 namespace uampc::lo {
 
@@ -140,6 +141,17 @@ struct OdometryConfig {
   // Lost: no registration accepted for longer than this. The estimate then rests on the motion
   // model alone; the status says so until a scan registers again.
   double lost_after = 1.0;  // s
+  // Velocity resets (velocity_reset.hpp, docs/decisions/lo-velocity-reset.md): when an update is
+  // rejected for its acceleration or speed, the frame is predicted again from the previous one with
+  // the mean motion of the accepted poses over this window, instead of with the velocity that the
+  // scan disagreed with; at the start of a loss of track the LO goes back to the last accepted pose
+  // and carries it to now with that motion, its velocity's variance initial_velocity_variance.
+  // Not after an IMU prediction (the IMU measured the motion). 0: off (the LO before).
+  double velocity_reset_window = 1.0;  // s
+  // An update that leaves the velocity above these is rejected, lost or not: no rig we model moves
+  // so (a hand-held turn reaches ~2 rad/s); a registration that says so is a wrong one.
+  double max_speed = 40.0;          // m/s
+  double max_angular_speed = 10.0;  // rad/s
 };
 
 enum class OdometryStatus {
@@ -180,10 +192,12 @@ struct OdometryResult {
   std::size_t correspondences = 0;
   int iterations = 0;
   int associations = 0;  // plane searches of the update (IteratedEkf's UpdateSummary)
-  bool implausible_motion = false;   // this scan's update was rejected for its acceleration
+  bool implausible_motion = false;   // this scan's update was rejected for its acceleration or speed
   std::size_t rejected_updates = 0;  // such rejections since the start
   bool inertial_prediction = false;  // predicted with the IMU (else: constant velocity)
   bool lost = false;                 // see OdometryStatus::kLost
+  bool velocity_reset = false;       // this frame's velocity was reset (OdometryConfig::velocity_reset_window)
+  std::size_t velocity_resets = 0;   // such resets since the start
 
   std::size_t points_in = 0;
   std::size_t points_used = 0;  // after downsampling, fed to the filter
@@ -226,8 +240,17 @@ class MotorizedLidarOdometry {
   OdometryResult addToInitialMap(const DerotatedScan& derotated, OdometryResult result);
   void predict(double end_time, double dt, const frames::MotorAngleTrack& motor, OdometryResult& result);
   // sampled_fraction: the share of the downsampled scan that keypoints are (below 1 with a budget).
+  // before_prediction: the filter at the previous frame's end, for a velocity reset.
   UpdateSummary correct(const std::vector<TimedPoint>& keypoints, double sampled_fraction,
-                        const IteratedEkf& predicted, double end_time, double dt, OdometryResult& result);
+                        const IteratedEkf& before_prediction, const IteratedEkf& predicted, double end_time, double dt,
+                        OdometryResult& result);
+  // The update was rejected: the frame predicted again with the accepted poses' motion.
+  void resetVelocityAfterRejection(const IteratedEkf& before_prediction, double dt, OdometryResult& result);
+  // A loss of track begins: back to the last accepted pose, carried to end_time with their motion.
+  void resetVelocityAtLoss(double end_time, OdometryResult& result);
+  bool velocityResets(const OdometryResult& result) const {
+    return config_.velocity_reset_window > 0.0 && !result.inertial_prediction;
+  }
   std::size_t registrationBudget(std::size_t downsampled_points) const;
   void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
   void fillState(OdometryResult& result) const;
@@ -244,6 +267,10 @@ class MotorizedLidarOdometry {
   // scan); 0 after a frame that registered nothing.
   double last_weakest_information_ = 0.0;
   std::size_t rejected_updates_ = 0;
+  AcceptedPoses accepted_poses_;
+  std::optional<IteratedEkf> last_accepted_;  // the filter after the last accepted registration
+  bool lost_ = false;                         // the previous frame was lost
+  std::size_t velocity_resets_ = 0;
   std::deque<ImuReading> imu_;
 };
 
