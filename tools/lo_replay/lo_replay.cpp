@@ -15,7 +15,8 @@
 // position error against ground truth, the estimated and true yaw rate, and the LO's figures
 // (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
 // degenerate directions of the 12-dimensional state; the weakest pose direction, rotation scaled
-// at 10 m); then a summary line. --set lo.use_imu=true simulates the Mid-360's IMU (the
+// at 10 m); then a summary line (with the evaluator's runaway test, speed_error.hpp).
+// --set lo.use_imu=true simulates the Mid-360's IMU (the
 // raycaster's simulator) and runs the LO LiDAR-inertial. LO_REPLAY_DEBUG=T prints every
 // eigenvalue, the velocities and their standard deviations from T s on.
 #include <CLI/CLI.hpp>
@@ -35,6 +36,7 @@
 #include "simulated_lidar.hpp"
 #include "tool_main.hpp"
 #include "uampc/command_line/finite_number.hpp"
+#include "uampc/evaluator/speed_error.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -120,6 +122,8 @@ int replay(int argc, char** argv) {
   double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
   double squared_position_sum = 0.0, registration_seconds = 0.0;  // for the RMS error and the LO's time
   std::size_t frames = 0, degenerate_frames = 0;  // registered frames, and those with a degenerate pose direction
+  std::size_t velocity_resets = 0;
+  std::vector<evaluator::TimedPose> estimates, truths;  // for the evaluator's runaway test
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
   std::printf(
       "#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y "
@@ -152,6 +156,9 @@ int replay(int argc, char** argv) {
     const double w_true = degrees(Eigen::AngleAxisd(previous_truth.linear().transpose() * T.linear()).angle()) / frame;
     previous_estimate = r.T_WB;
     previous_truth = T;
+    estimates.push_back({r.time, r.T_WB});
+    truths.push_back({r.time, T});
+    velocity_resets = r.velocity_resets;
     worst_position = std::max(worst_position, pos_err);
     squared_position_sum += pos_err * pos_err;
     worst_rotation = std::max(worst_rotation, rot_err);
@@ -177,11 +184,15 @@ int replay(int argc, char** argv) {
           weakest(4), weakest(5), lo::toString(r.status));
     }
   }
+  const evaluator::SpeedErrorReport runaway = evaluator::speedError(estimates, truths);
   std::printf(
       "summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at "
-      "%s, degenerate frames %zu of %zu, RMS position %.3f m, LO %.2f ms per frame\n",
+      "%s, runaway at %s (the evaluator's test: speed over 1 s off by more than 1 m/s; worst %.2f m/s), velocity "
+      "resets %zu, degenerate frames %zu of %zu, RMS position %.3f m, LO %.2f ms per frame\n",
       source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
-      lost_at < 0 ? "never" : std::to_string(lost_at).c_str(), degenerate_frames, frames,
+      lost_at < 0 ? "never" : std::to_string(lost_at).c_str(),
+      runaway.first_runaway_time ? std::to_string(*runaway.first_runaway_time).c_str() : "never", runaway.max,
+      velocity_resets, degenerate_frames, frames,
       frames > 0 ? std::sqrt(squared_position_sum / static_cast<double>(frames)) : 0.0,
       frames > 0 ? 1e3 * registration_seconds / static_cast<double>(frames) : 0.0);
   return 0;

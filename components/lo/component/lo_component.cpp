@@ -66,6 +66,7 @@ class LoComponent : public Component {
         local_map_pub_(ctx.publisher<sensor_msgs::msg::PointCloud2>("local_map")),
         metrics_pub_(ctx.publisher<msg::Metrics>("metrics")) {
     config_ = configFrom(ctx);
+    acceleration_unit_ = lo::AccelerationUnitDetector(config_.imu_acceleration_unit);
     ctx.subscribe<sensor_msgs::msg::PointCloud2>("scan", [this](const sensor_msgs::msg::PointCloud2& m) {
       onScan(m);
       processReady();
@@ -131,6 +132,22 @@ class LoComponent : public Component {
     const auto& w = m.angular_velocity();
     const auto& a = m.linear_acceleration();
     const lo::ImuReading reading{fromMsg(m.header().stamp()).seconds(), {w.x(), w.y(), w.z()}, {a.x(), a.y(), a.z()}};
+    if (acceleration_unit_.scale()) return takeImu(scaled(reading));
+    // Until the unit is known (acceleration_unit.hpp) the readings wait, as published.
+    if (!reading.specific_force_L.allFinite()) return takeImu(reading);  // refused there, and said
+    unit_pending_.push_back(reading);
+    if (!acceleration_unit_.observe(reading.specific_force_L)) return;
+    ctx_.log().info(acceleration_unit_.decision());
+    for (const lo::ImuReading& r : unit_pending_) takeImu(scaled(r));
+    unit_pending_.clear();
+  }
+
+  lo::ImuReading scaled(lo::ImuReading reading) const {
+    reading.specific_force_L *= *acceleration_unit_.scale();
+    return reading;
+  }
+
+  void takeImu(const lo::ImuReading& reading) {
     bool taken = false;
     if (odometry_) {
       taken = odometry_->addImu(reading);
@@ -257,6 +274,8 @@ class LoComponent : public Component {
     add("lost", r.lost ? 1.0 : 0.0, "");
     add("rejected_updates", static_cast<double>(r.rejected_updates), "");
     add("velocity_resets", static_cast<double>(r.velocity_resets), "");
+    // With use_imu: m/s^2 per unit of the IMU's acceleration as read (1, or 9.80665 for g), once known.
+    if (acceleration_unit_.scale()) add("imu_acceleration_scale", *acceleration_unit_.scale(), "");
     add("min_information_eigenvalue", r.min_information_eigenvalue, "");
     // Every eigenvalue of the scaled pose information (effective points, ascending), and each
     // degenerate direction as [rotation * degeneracy length, translation] (unit vector, m).
@@ -294,6 +313,8 @@ class LoComponent : public Component {
   frames::MotorAngleTrack motor_{2.0};
   std::deque<lo::Scan> pending_;
   std::deque<lo::ImuReading> pending_imu_;  // readings before the odometry starts
+  lo::AccelerationUnitDetector acceleration_unit_{lo::AccelerationUnit::kAuto};  // set from config_
+  std::vector<lo::ImuReading> unit_pending_;  // readings before their unit is known (at most 50)
   RateLimitedLog bad_imu_log_ = RateLimitedLog::once();
   lo::StartPoses start_poses_;  // initial_pose samples until the odometry starts
   std::string layout_;

@@ -84,6 +84,12 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
                "which time places each point in the deskew: 'time', its own; 'index', its place in the frame spread "
                "from the previous scan's end to this one's (I2EKF-LO's with the reference simulator); 'none', the "
                "scan's end");
+  b.bindChoice("imu_acceleration_unit", c.imu_acceleration_unit,
+               {{"auto", lo::AccelerationUnit::kAuto},
+                {"m/s^2", lo::AccelerationUnit::kMetresPerSecondSquared},
+                {"g", lo::AccelerationUnit::kStandardGravity}},
+               "use_imu: the unit of the IMU's acceleration: 'm/s^2' as sensor_msgs/Imu says, 'g' as "
+               "livox_ros_driver2 publishes it, 'auto' told apart by the first 50 readings' mean (about 1 or 9.8)");
   b.bindChoice("association_gate", c.association_gate,
                {{"residual", lo::AssociationGate::kResidual}, {"range_scaled", lo::AssociationGate::kRangeScaled}},
                "which correspondences register: 'residual', all until converged, then within 3 robust standard "

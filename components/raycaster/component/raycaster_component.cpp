@@ -19,6 +19,7 @@
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/msgs/uampc.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
+#include "uampc/frames/gravity.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
 #include "uampc/runtime/component.hpp"
@@ -46,7 +47,8 @@ class RaycasterComponent : public Component {
     // LiDAR of config/scenes/rig_mid360.yaml (docs/user/rig.md).
     spec.param("point_layout", "uampc",
                "layout of the published scans: 'uampc' (x, y, z, intensity, t, ring) or 'livox' "
-               "(livox_ros_driver2's PointCloud2: x, y, z, intensity, tag, line, timestamp in absolute ns)")
+               "(livox_ros_driver2's PointCloud2: x, y, z, intensity, tag, line, timestamp in absolute ns; the IMU's "
+               "acceleration in g)")
         .oneOf({"uampc", "livox"});
     spec.param("imu", false, "publish the LiDAR's IMU (angular velocity and specific force in the LiDAR frame)");
     declareMountingErrorParameters(spec);
@@ -300,13 +302,17 @@ class RaycasterComponent : public Component {
     m.angular_velocity().x(sample.angular_velocity.x());
     m.angular_velocity().y(sample.angular_velocity.y());
     m.angular_velocity().z(sample.angular_velocity.z());
-    m.linear_acceleration().x(sample.linear_acceleration.x());
-    m.linear_acceleration().y(sample.linear_acceleration.y());
-    m.linear_acceleration().z(sample.linear_acceleration.z());
+    // The driver's layout gives acceleration in g, as livox_ros_driver2 does (docs/user/rig.md).
+    const Eigen::Vector3d a = livox_layout_ ? Eigen::Vector3d(sample.linear_acceleration / frames::kStandardGravity)
+                                            : Eigen::Vector3d(sample.linear_acceleration);
+    m.linear_acceleration().x(a.x());
+    m.linear_acceleration().y(a.y());
+    m.linear_acceleration().z(a.z());
     // The white noise of one sample (the bias drifts, unknown to a user, as on the real sensor).
     for (const int diagonal : {0, 4, 8}) {
       m.angular_velocity_covariance()[diagonal] = imu_->gyroNoiseVariance();
-      m.linear_acceleration_covariance()[diagonal] = imu_->accelNoiseVariance();
+      m.linear_acceleration_covariance()[diagonal] =
+          imu_->accelNoiseVariance() / (livox_layout_ ? frames::kStandardGravity * frames::kStandardGravity : 1.0);
     }
     imu_pub_.publish(m);
   }

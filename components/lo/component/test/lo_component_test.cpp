@@ -6,6 +6,7 @@
 #include <random>
 
 #include "uampc/msgs/geometry_msgs.hpp"
+#include "uampc/msgs/uampc.hpp"
 #include "uampc/msgs/nav_msgs.hpp"
 #include "uampc/msgs/sensor_msgs.hpp"
 #include "uampc/pointcloud/scan_cloud.hpp"
@@ -86,6 +87,37 @@ TEST(LoComponent, StartsFromInitialPoseWithItsVelocity) {
   EXPECT_NEAR(odometry[0].twist().twist().linear().x(), 2.0, 0.05);
   // The covariance is in ROS order: a variance on the diagonal of both blocks.
   for (int i = 0; i < 6; ++i) EXPECT_GT(odometry[0].pose().covariance()[7 * i], 0.0) << i;
+}
+
+sensor_msgs::msg::Imu imuAtRest(double t, double gravity) {
+  sensor_msgs::msg::Imu m;
+  m.header().stamp(toMsg(Time::fromSeconds(t)));
+  m.linear_acceleration().z(gravity);
+  return m;
+}
+
+// m/s^2 per unit of the IMU's acceleration, as the LO's metrics say with its first odometry.
+double accelerationScaleAfterAScan(const std::string& unit, double gravity) {
+  testing::TestContext ctx("lo", {{"init_from_pose", "false"}, {"use_imu", "true"}, {"imu_acceleration_unit", unit}});
+  for (int k = 0; k <= 240; ++k) ctx.inject("imu", imuAtRest(0.9 + 0.005 * k, gravity));  // 200 Hz to 2.1 s
+  injectEncoderStates(ctx, 180, 230);
+  ctx.inject("scan", roomScan(1.0));
+  const auto metrics = ctx.published<msg::Metrics>("metrics");
+  if (metrics.size() != 1u) return -1.0;
+  for (const auto& v : metrics[0].values()) {
+    if (v.name() == "imu_acceleration_scale") return v.value();
+  }
+  return 0.0;
+}
+
+// livox_ros_driver2 publishes the Mid-360's acceleration in g: read as m/s^2 an IMU at rest would
+// say the rig falls at 8.8 m/s^2. auto tells the two apart by the readings' mean.
+TEST(LoComponent, TellsAnImuInGFromOneInMetresPerSecondSquared) {
+  EXPECT_DOUBLE_EQ(accelerationScaleAfterAScan("auto", 1.0), 9.80665);
+  EXPECT_DOUBLE_EQ(accelerationScaleAfterAScan("auto", 9.81), 1.0);
+  EXPECT_DOUBLE_EQ(accelerationScaleAfterAScan("g", 9.81), 9.80665);  // told: not guessed
+  EXPECT_DOUBLE_EQ(accelerationScaleAfterAScan("m/s^2", 1.0), 1.0);
+  EXPECT_DOUBLE_EQ(accelerationScaleAfterAScan("auto", 4.0), 1.0);  // neither: as sensor_msgs says
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 
 #include "uampc/frames/motor_angle_track.hpp"
 #include "uampc/frames/motorized_lidar.hpp"
+#include "uampc/lo/acceleration_unit.hpp"
 #include "uampc/lo/derotation.hpp"
 #include "uampc/lo/inertial.hpp"
 #include "uampc/lo/iterated_ekf.hpp"
@@ -138,6 +139,9 @@ struct OdometryConfig {
   // the constant-velocity prediction wherever they cover the time since the last scan.
   bool use_imu = false;
   InertialNoise imu_noise;
+  // The unit of the readings' acceleration (acceleration_unit.hpp): the component scales them to
+  // m/s^2 before addImu.
+  AccelerationUnit imu_acceleration_unit = AccelerationUnit::kAuto;
   // Lost: no registration accepted for longer than this. The estimate then rests on the motion
   // model alone; the status says so until a scan registers again.
   double lost_after = 1.0;  // s
