@@ -40,6 +40,7 @@ std::optional<RunMetrics> readRunMetrics(const std::string& run_directory) {
   m.mean_speed = file->motor.mean_speed;
   m.distance_m = file->trajectory.distance_m;  // NaN from evaluators before it was added
   m.runaway_time_s = file->trajectory.speed_error.first_runaway_time.value_or(kMissing);
+  m.velocity_resets = file->lo.velocity_resets;
   return m;
 }
 
@@ -106,6 +107,7 @@ void writeResultsJson(const std::string& path, const Experiment& experiment, con
                            {"mean_speed", r.metrics.mean_speed},
                            {"distance_m", r.metrics.distance_m},
                            {"lost_track_at_s", r.metrics.runaway_time_s},
+                           {"velocity_resets", r.metrics.velocity_resets},
                            {"sim_time_s", r.metrics.sim_time_s},
                            {"wall_time_s", r.wall_time_s},
                            {"real_time_factor", r.real_time_factor}};

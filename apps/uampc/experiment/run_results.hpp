@@ -29,6 +29,7 @@ struct RunMetrics {
   // Loss of track judged against ground truth: when the estimated speed first strayed more than
   // 1 m/s from the true one (over 1 s); NaN when it never did.
   double runaway_time_s = kMissing;
+  long long velocity_resets = 0;  // the LO's (metrics.json lo.velocity_resets): held with some, it recovered
 };
 
 // Reads RUN_DIR/metrics.json; nullopt when missing or unreadable (the run did not finish).

@@ -32,7 +32,8 @@ std::string lossesOfTrack(const ResultsTable& t) {
       "## Losses of track\n\nRuns that lost track (the estimated speed more than 1 m/s off the true one over 1 s, "
       "at some point; when, in the Runs table) of the finished runs; \"at start-up\": lost within the first " +
       std::to_string(static_cast<int>(kStartUpLossWindowS)) +
-      " s, where the LO's first map, not the controller, decides (docs/decisions/start-hold.md).\n\n| controller |";
+      " s, where the LO's first map, not the controller, decides (docs/decisions/start-hold.md); \"recovered\": held, "
+      "but with velocity resets of the LO (docs/decisions/lo-velocity-reset.md).\n\n| controller |";
   for (const auto& s : t.scenes) md += " " + s + " |";
   md += "\n|---|";
   for (std::size_t i = 0; i < t.scenes.size(); ++i) md += "---|";
@@ -40,9 +41,10 @@ std::string lossesOfTrack(const ResultsTable& t) {
   for (std::size_t c = 0; c < t.controllers.size(); ++c) {
     md += "| " + t.controllers[c] + " |";
     for (std::size_t s = 0; s < t.scenes.size(); ++s) {
-      const int start_up = t.start_up_lost_runs[c][s];
+      const int start_up = t.start_up_lost_runs[c][s], recovered = t.recovered_runs[c][s];
       md += " " + std::to_string(t.lost_runs[c][s]) + " lost of " + std::to_string(t.finished_runs[c][s]) +
-            (start_up > 0 ? " (" + std::to_string(start_up) + " at start-up)" : "") + " |";
+            (start_up > 0 ? " (" + std::to_string(start_up) + " at start-up)" : "") +
+            (recovered > 0 ? ", " + std::to_string(recovered) + " recovered" : "") + " |";
     }
     md += "\n";
   }
@@ -67,12 +69,14 @@ ResultsTable summarize(const Experiment& experiment, const std::vector<RunResult
   t.finished_runs.assign(nc, std::vector<int>(ns, 0));
   t.lost_runs = t.finished_runs;
   t.start_up_lost_runs = t.finished_runs;
+  t.recovered_runs = t.finished_runs;
   for (const RunResult& r : results) {
     const int c = indexOf(t.controllers, r.controller), s = indexOf(t.scenes, r.scene);
     if (c < 0 || s < 0 || !r.finished()) continue;
     ++t.finished_runs[c][s];
     if (std::isfinite(r.metrics.runaway_time_s)) ++t.lost_runs[c][s];
     if (r.metrics.runaway_time_s <= kStartUpLossWindowS) ++t.start_up_lost_runs[c][s];
+    if (!std::isfinite(r.metrics.runaway_time_s) && r.metrics.velocity_resets > 0) ++t.recovered_runs[c][s];
     if (std::isfinite(r.metrics.ate_m)) {
       ate_sum[c][s] += r.metrics.ate_m;
       ++t.ate[c][s].runs;

@@ -35,6 +35,7 @@ struct ResultsTable {
   // this does not.
   std::vector<std::vector<int>> finished_runs, lost_runs;
   std::vector<std::vector<int>> start_up_lost_runs;  // of lost_runs, lost within kStartUpLossWindowS
+  std::vector<std::vector<int>> recovered_runs;      // not lost, with velocity resets of the LO
   std::string subject;
   std::string baseline;
   int subject_index = -1;  // -1: not among the controllers

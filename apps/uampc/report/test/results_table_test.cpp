@@ -67,6 +67,21 @@ TEST(ResultsTable, CountsLossesOfTrackThatMeansHide) {
   EXPECT_NE(md.find("| beta | ua_mpc | 1 | reused | 3.000 | 1.500 | 50 | 55 | 3.60 | never |"), std::string::npos) << md;
 }
 
+// A run that held only thanks to the LO's velocity resets is counted as recovered, apart from the
+// runs that held without them and from those lost.
+TEST(ResultsTable, CountsRunsThatRecoveredApart) {
+  auto fake = test::makeFakeExperiment(test::freshDirectory("results_table_recovered_test"));
+  for (RunResult& r : fake.results) {
+    if (r.controller == "ua_mpc" && r.scene == "alpha" && r.seed == 1) r.metrics.velocity_resets = 3;
+    if (r.controller == "zero" && r.scene == "alpha") r.metrics.velocity_resets = 5;  // lost all the same
+  }
+  const ResultsTable t = summarize(fake.experiment, fake.results);
+  EXPECT_EQ(t.recovered_runs[0], (std::vector<int>{1, 0}));
+  EXPECT_EQ(t.recovered_runs[2], (std::vector<int>{0, 0}));
+  const std::string md = renderMarkdown(fake.experiment, t, fake.results);
+  EXPECT_NE(md.find("| ua_mpc | 0 lost of 2, 1 recovered | 0 lost of 2 |"), std::string::npos) << md;
+}
+
 TEST(ResultsJson, EveryRunWithItsFigures) {
   const auto fake = test::makeFakeExperiment(test::freshDirectory("results_json_test"));
   const std::string path = fake.directory + "/results.json";
