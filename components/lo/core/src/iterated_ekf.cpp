@@ -149,9 +149,14 @@ void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew,
   correspondences.clear();
   spreads.clear();
   PlaneSpread spread;
-  for (const TimedPoint& point : points) {
-    const Eigen::Vector3d q = deskew.toWorld(point);
-    if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
+  std::vector<Eigen::Vector3d> queries;
+  queries.reserve(points.size());
+  for (const TimedPoint& point : points) queries.push_back(deskew.toWorld(point));
+  LocalMap::Search search(map, queries);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const TimedPoint& point = points[i];
+    const Eigen::Vector3d& q = queries[i];
+    if (search.next(options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
     if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
     const std::optional<Plane> plane =
         fitPlane(neighbours, options.plane_max_point_distance, &spread, options.plane_min_spread_ratio);
