@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "uampc/frames/gravity.hpp"
+#include "uampc/lo/normal_equations.hpp"
 #include "uampc/lo/plane_fit.hpp"
 #include "uampc/lo/so3.hpp"
 #include "uampc/lo/voxel_downsample.hpp"
@@ -123,15 +124,6 @@ void IteratedEkf::predictInertial(const std::vector<InertialStep>& steps, const 
 
 namespace {
 
-struct Correspondence {
-  const TimedPoint* point;
-  Plane plane;
-};
-
-// Jacobian of the residuals, dz/d(error state), one row per correspondence; row-major so that a
-// row is written contiguously. 12 columns, or 18 with the frame's deviation e = (dv, dw) from the
-// state's velocity: one matrix, so that one symmetric rank update gives every product.
-using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using Matrix18d = Eigen::Matrix<double, 18, 18>;
 using Vector18d = Eigen::Matrix<double, 18, 1>;
 
@@ -157,9 +149,14 @@ void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew,
   correspondences.clear();
   spreads.clear();
   PlaneSpread spread;
-  for (const TimedPoint& point : points) {
-    const Eigen::Vector3d q = deskew.toWorld(point);
-    if (map.nearest(q, options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
+  std::vector<Eigen::Vector3d> queries;
+  queries.reserve(points.size());
+  for (const TimedPoint& point : points) queries.push_back(deskew.toWorld(point));
+  LocalMap::Search search(map, queries);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const TimedPoint& point = points[i];
+    const Eigen::Vector3d& q = queries[i];
+    if (search.next(options.nearest_neighbours, neighbours, &views) < options.nearest_neighbours) continue;
     if ((neighbours.back() - q).squaredNorm() > max_neighbour_distance2) continue;
     const std::optional<Plane> plane =
         fitPlane(neighbours, options.plane_max_point_distance, &spread, options.plane_min_spread_ratio);
@@ -170,37 +167,6 @@ void associate(const std::vector<TimedPoint>& points, const FrameDeskew& deskew,
     if (options.association_gate == AssociationGate::kRangeScaled && !withinRangeScaledGate(*plane, q, point)) continue;
     correspondences.push_back({&point, *plane});
     spreads.push_back(spread);
-  }
-}
-
-// The measurement model h(x) linearised at x: one row of H and one residual z per plane; with a
-// frame deviation, H's columns 12-17 are the deviation's.
-void linearise(const std::vector<Correspondence>& correspondences, const BaseState& x,
-               const FrameDeviation* deviation, Jacobian& H, Eigen::VectorXd& z) {
-  H.resize(static_cast<Eigen::Index>(correspondences.size()), deviation ? 18 : 12);
-  z.resize(static_cast<Eigen::Index>(correspondences.size()));
-  const FrameDeskew deskew(x, deviation);
-  const Eigen::Matrix3d R_BW = x.R_WB.transpose();
-  for (std::size_t i = 0; i < correspondences.size(); ++i) {
-    const Correspondence& c = correspondences[i];
-    const TimedPoint& point = *c.point;
-    const Eigen::Vector3d& n = c.plane.normal;
-    const FrameDeskew::Rotation E = deskew.rotation(point.tau);  // deskew rotation, Exp(w tau)
-    const Eigen::Vector3d s = E * point.p_B;                      // point in B at the scan end
-    const Eigen::Vector3d q = x.R_WB * s + x.r_WB + deskew.translation(point.tau);
-    const Eigen::Vector3d n_B = R_BW * n;
-    const auto row = static_cast<Eigen::Index>(i);
-    z(row) = n.dot(q) + c.plane.offset;                 // residual
-    H.block<1, 3>(row, 0) = s.cross(n_B).transpose();   // rotation (right)
-    H.block<1, 3>(row, 3) = n.transpose();              // position
-    const Eigen::Vector3d p_x_n = point.p_B.cross(E.transposeTimes(n_B));
-    H.block<1, 3>(row, 6) = point.tau * n.transpose();   // linear velocity
-    H.block<1, 3>(row, 9) = point.tau * p_x_n.transpose();  // angular velocity
-    if (deviation) {  // the same within the frame, about its middle
-      const double within = point.tau - deviation->tau_mid;
-      H.block<1, 3>(row, 12) = within * n.transpose();
-      H.block<1, 3>(row, 15) = within * p_x_n.transpose();
-    }
   }
 }
 
@@ -216,28 +182,6 @@ double residualGate(const Eigen::VectorXd& z, double min_gate) {
   return std::max(min_gate, 3.0 * 1.4826 * *middle);
 }
 
-// Zeroes the rows beyond the gate (a zero row contributes nothing to H^T H and H^T z); returns
-// how many rows are left.
-std::size_t applyGate(double gate, Jacobian& H, Eigen::VectorXd& z) {
-  std::size_t used = static_cast<std::size_t>(z.size());
-  for (Eigen::Index i = 0; i < z.size(); ++i) {
-    if (std::abs(z(i)) > gate) {
-      H.row(i).setZero();
-      z(i) = 0.0;
-      --used;
-    }
-  }
-  return used;
-}
-
-// H^T H through a symmetric rank update: half the work of the general product.
-Eigen::MatrixXd gramian(const Jacobian& H) {
-  Eigen::MatrixXd HtH = Eigen::MatrixXd::Zero(H.cols(), H.cols());
-  HtH.selfadjointView<Eigen::Upper>().rankUpdate(H.transpose());
-  HtH.triangularView<Eigen::StrictlyLower>() = HtH.transpose();
-  return HtH;
-}
-
 // What the planes' own noise adds to the unit-weight information H^T H of the state (12x12).
 // A row is J_i = A_i n_i, linear in the plane's normal (A_i: 12x3, below). A normal fitted to a few
 // noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = sigma^2 C_i (C_i:
@@ -247,19 +191,19 @@ Eigen::MatrixXd gramian(const Jacobian& H) {
 // (docs/results/lo-degenerate-geometry.md, "The plain corridor"). sigma^2 is the median of the
 // planes' own estimates: one plane's scatter also holds whatever bend of the surface it spans (an
 // edge within the 0.1 m tolerance), which is not noise, and with those the sum came out up to twice
-// what the corridor's axis had. Rows the gate dropped (zero) add nothing. An expectation, so it is
+// what the corridor's axis had. Rows the gate dropped add nothing. An expectation, so it is
 // estimated from every kStride-th row (the rows are in spatial order, so those spread over the
 // whole scan), times kStride: a quarter of the cost, about 0.5 ms a frame.
 Matrix12d planeNoiseInformation(const std::vector<Correspondence>& correspondences,
-                                const std::vector<PlaneSpread>& spreads, const Jacobian& H, const BaseState& x,
-                                const FrameDeviation* deviation) {
+                                const std::vector<PlaneSpread>& spreads, const Eigen::VectorXd& z, double gate,
+                                const BaseState& x, const FrameDeviation* deviation) {
   constexpr std::size_t kStride = 4;
   Matrix12d noise = Matrix12d::Zero();
-  // After a re-association that found too few planes, H is still the previous set's: nothing to
+  // After a re-association that found too few planes, z is still the previous set's: nothing to
   // pair its rows with.
-  if (static_cast<std::size_t>(H.rows()) != correspondences.size()) return noise;
+  if (static_cast<std::size_t>(z.size()) != correspondences.size()) return noise;
   auto used = [&](std::size_t i) {
-    return spreads[i].scatter_variance > 0.0 && !H.block<1, 3>(static_cast<Eigen::Index>(i), 3).isZero();
+    return spreads[i].scatter_variance > 0.0 && !beyondGate(z(static_cast<Eigen::Index>(i)), gate);
   };
   std::vector<double> variances;
   for (std::size_t i = 0; i < correspondences.size(); i += kStride) {
@@ -319,26 +263,6 @@ std::optional<FrameDeviation> frameDeviationOf(const std::vector<TimedPoint>& po
   return FrameDeviation{middleTime(points), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
 }
 
-// The unit-weight normal equations of one linearisation: H^T H and H^T z of the state's 12
-// unknowns, and with a frame deviation the cross terms and its own 6 (in gram and Hz).
-struct NormalEquations {
-  Eigen::MatrixXd gram;
-  Eigen::VectorXd Hz;
-  Matrix12d HtH;
-  Vector12d Htz;
-  Eigen::Matrix<double, 12, 6> HtHe;  // with a frame deviation: the state's and e's cross terms
-};
-
-NormalEquations normalEquations(const Jacobian& H, const Eigen::VectorXd& z, bool with_frame) {
-  NormalEquations n;
-  n.gram = gramian(H);
-  n.Hz = H.transpose() * z;
-  n.HtH = n.gram.topLeftCorner<12, 12>();
-  n.Htz = n.Hz.head<12>();
-  if (with_frame) n.HtHe = n.gram.topRightCorner<12, 6>();
-  return n;
-}
-
 // Directions the scan cannot see get none of its information (Zhang et al. 2016): projected out of
 // the state's normal equations with the degeneracy analysis's projector.
 void projectOutDegenerateDirections(const Matrix12d& pi, bool with_frame, NormalEquations& n) {
@@ -362,8 +286,8 @@ Vector12d gaussNewtonStep(const NormalEquations& n, const Matrix12d& prior_infor
   // With the frame's deviation as 6 more unknowns.
   Vector6d e;
   e << deviation->dv_W, deviation->dw_B;
-  const Matrix6d A_ee = Matrix6d(deviation_prior.asDiagonal()) + inverse_variance * n.gram.bottomRightCorner<6, 6>();
-  const Vector6d b_e = -inverse_variance * n.Hz.tail<6>() - deviation_prior.cwiseProduct(e);
+  const Matrix6d A_ee = Matrix6d(deviation_prior.asDiagonal()) + inverse_variance * n.Hee;
+  const Vector6d b_e = -inverse_variance * n.Hez - deviation_prior.cwiseProduct(e);
   const Vector18d step = stepWithDeviation(A, inverse_variance * n.HtHe, A_ee, b, b_e, posterior_information);
   deviation->dv_W += step.segment<3>(12);
   deviation->dw_B += step.segment<3>(15);
@@ -395,8 +319,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
   bool gated = false;  // the residual gate is applied once the ungated iterations converged
   double gate = std::numeric_limits<double>::infinity();
   double rotation_since_association = 0.0, translation_since_association = 0.0;
-  Jacobian H;
-  Eigen::VectorXd z;                          // point-to-plane residuals
+  Linearisation linearisation;  // point-to-plane residuals and rows
   Matrix12d information = Matrix12d::Zero();  // unit-weight H^T H of the last linearisation
   BaseState linearised_at = x;                // and where it was linearised
   // What the planes' noise adds to information, once known for the last linearisation (every
@@ -411,22 +334,21 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
       summary.correspondences = correspondences.size();
       if (correspondences.size() < options.min_correspondences) break;  // keep last good iterate
     }
-    linearise(correspondences, x, frame, H, z);
+    linearise(correspondences, x, frame, linearisation);
     // The gate is set once, when the gated iterations start, so that they converge on a fixed
     // set of residuals.
     if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kResidual)
-      gate = residualGate(z, options.min_residual_gate);
-    const std::size_t used = std::isfinite(gate) ? applyGate(gate, H, z) : correspondences.size();
-    summary.correspondences = used;
-    if (used < options.min_correspondences) break;
-    NormalEquations normal = normalEquations(H, z, frame != nullptr);
+      gate = residualGate(linearisation.z, options.min_residual_gate);
+    NormalEquations normal = normalEquations(linearisation, frame, gate);
+    summary.correspondences = normal.used;
+    if (normal.used < options.min_correspondences) break;
     information = normal.HtH;
     linearised_at = x;
     information_noise.reset();
     // The analysis of what the scan cannot see is redone at every linearisation only when it
     // decides the step; for the report it is made once, after the loop.
     if (options.project_degenerate) {
-      information_noise = planeNoiseInformation(correspondences, spreads, H, x, frame);
+      information_noise = planeNoiseInformation(correspondences, spreads, linearisation.z, gate, x, frame);
       summary.state_degeneracy =
           analyseStateDegeneracy(options.degeneracy_information_scale * (normal.HtH - *information_noise),
                                  options.degeneracy_scales, options.degeneracy_threshold);
@@ -466,7 +388,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
                   translation_since_association > options.reassociation_translation;
   }
   if (summary.applied) {
-    if (!information_noise) information_noise = planeNoiseInformation(correspondences, spreads, H, linearised_at, frame);
+    if (!information_noise)
+      information_noise = planeNoiseInformation(correspondences, spreads, linearisation.z, gate, linearised_at, frame);
     reportDegeneracy(information, options.degeneracy_information_scale * (information - *information_noise), options,
                      summary);
   }

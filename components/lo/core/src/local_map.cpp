@@ -299,7 +299,15 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vect
   if (views != nullptr) views->clear();
   if (k == 0) return 0;
   const NearbyBlocks nearby = nearbyBlocks(q);
-  const std::array<const Block*, 8> blocks = lookUp(nearby);
+  return searchBlocks(q, nearby, lookUp(nearby), k, neighbours, views);
+}
+
+std::size_t LocalMap::searchBlocks(const Eigen::Vector3d& q, const NearbyBlocks& nearby,
+                                   const std::array<const Block*, 8>& blocks, std::size_t k,
+                                   std::vector<Eigen::Vector3d>& neighbours, std::vector<Eigen::Vector3f>* views) const {
+  neighbours.clear();
+  if (views != nullptr) views->clear();
+  if (k == 0) return 0;
   KNearest<Block, View> best(k);
   const Eigen::Vector3f qf = q.cast<float>();
   for (int c = 0; c < 8; ++c) {
@@ -307,6 +315,28 @@ std::size_t LocalMap::nearest(const Eigen::Vector3d& q, std::size_t k, std::vect
     best.offer(*blocks[c], qf);
   }
   return best.copyOut(neighbours, views);
+}
+
+LocalMap::Search::Search(const LocalMap& map, const std::vector<Eigen::Vector3d>& queries)
+    : map_(map), queries_(queries) {
+  for (std::size_t i = 0; i < kSlotsAhead && i < queries_.size(); ++i) fetchSlots(i);
+  for (std::size_t i = 0; i < kBlocksAhead && i < queries_.size(); ++i) fetchBlocks(i);
+}
+
+void LocalMap::Search::fetchSlots(std::size_t i) { ring_[i % kRing].nearby = map_.nearbyBlocks(queries_[i]); }
+
+void LocalMap::Search::fetchBlocks(std::size_t i) {
+  Stage& stage = ring_[i % kRing];
+  stage.blocks = map_.lookUp(stage.nearby);
+}
+
+std::size_t LocalMap::Search::next(std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
+                                   std::vector<Eigen::Vector3f>* views) {
+  const std::size_t i = next_++;
+  if (i + kSlotsAhead < queries_.size()) fetchSlots(i + kSlotsAhead);
+  if (i + kBlocksAhead < queries_.size()) fetchBlocks(i + kBlocksAhead);
+  const Stage& stage = ring_[i % kRing];
+  return map_.searchBlocks(queries_[i], stage.nearby, stage.blocks, k, neighbours, views);
 }
 
 // The block pool is walked in memory order: freed blocks hold no occupied voxel, so they add

@@ -52,6 +52,13 @@ class LocalMap {
   std::size_t nearest(const Eigen::Vector3d& q, std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
                       std::vector<Eigen::Vector3f>* views = nullptr) const;
 
+  // nearest() of many queries in turn, with the same results. A search waits on memory: it reads
+  // 8 table slots, then the 8 blocks they point to. Here the slots of the query kSlotsAhead places
+  // on and the blocks of the one kBlocksAhead on are fetched while the current one is searched, so
+  // the cache misses of successive queries overlap instead of following one another.
+  class Search;
+
+
   // Points observed at or after observed_since (s); all points by default.
   std::vector<MapPoint> points(
       double observed_since = -std::numeric_limits<double>::infinity()) const;
@@ -123,6 +130,9 @@ class LocalMap {
   };
   NearbyBlocks nearbyBlocks(const Eigen::Vector3d& q) const;
   std::array<const Block*, 8> lookUp(const NearbyBlocks& nearby) const;
+  std::size_t searchBlocks(const Eigen::Vector3d& q, const NearbyBlocks& nearby,
+                           const std::array<const Block*, 8>& blocks, std::size_t k,
+                           std::vector<Eigen::Vector3d>& neighbours, std::vector<Eigen::Vector3f>* views) const;
   // visit(point, observation time) for every occupied voxel observed at or after observed_since.
   template <class Visit>
   void forEachPointSince(double observed_since, Visit&& visit) const;
@@ -144,6 +154,30 @@ class LocalMap {
   std::size_t blocks_used_ = 0;               // live blocks
   std::size_t erased_ = 0;                    // tombstones
   int shift_ = 64;                            // 64 - log2(capacity), for Fibonacci hashing
+};
+
+class LocalMap::Search {
+ public:
+  // queries must outlive the search, and the map must not change during it.
+  Search(const LocalMap& map, const std::vector<Eigen::Vector3d>& queries);
+  // The neighbours of the next query, as nearest() gives them (at most queries.size() calls).
+  std::size_t next(std::size_t k, std::vector<Eigen::Vector3d>& neighbours,
+                   std::vector<Eigen::Vector3f>* views = nullptr);
+
+ private:
+  static constexpr std::size_t kSlotsAhead = 6;
+  static constexpr std::size_t kBlocksAhead = 3;
+  static constexpr std::size_t kRing = 8;  // a power of two above kSlotsAhead
+  struct Stage {
+    NearbyBlocks nearby;
+    std::array<const Block*, 8> blocks;
+  };
+  void fetchSlots(std::size_t i);
+  void fetchBlocks(std::size_t i);
+  const LocalMap& map_;
+  const std::vector<Eigen::Vector3d>& queries_;
+  std::array<Stage, kRing> ring_;
+  std::size_t next_ = 0;
 };
 
 }  // namespace uampc::lo
