@@ -45,9 +45,9 @@ bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds l
   return true;
 }
 
-int exitCodeOf(pid_t pid) {
+int exitCodeOf(pid_t pid, std::chrono::seconds limit) {
   int status = 0;
-  const bool exited = waitFor([&] { return waitpid(pid, &status, WNOHANG) == pid; }, std::chrono::seconds(30));
+  const bool exited = waitFor([&] { return waitpid(pid, &status, WNOHANG) == pid; }, limit);
   if (!exited) {
     kill(-pid, SIGKILL);
     waitpid(pid, &status, 0);

@@ -33,9 +33,9 @@ class KilledIfStillRunning {
 // Waits for condition, at most `limit` (a test that hangs is a failure, not a stall).
 bool waitFor(const std::function<bool()>& condition, std::chrono::milliseconds limit);
 
-// The launcher's exit code; -1 when it did not exit (or exited by a signal) within 30 s, after
+// The launcher's exit code; -1 when it did not exit (or exited by a signal) within `limit`, after
 // which its process group is killed.
-int exitCodeOf(pid_t pid);
+int exitCodeOf(pid_t pid, std::chrono::seconds limit = std::chrono::seconds(30));
 
 // The pids of a run's process groups (`uampc run-process ... --set domain_id=D`), optionally only
 // the one named `process`. The domain tells runs of parallel tests apart.
