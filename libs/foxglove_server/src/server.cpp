@@ -338,7 +338,9 @@ class Server::Impl {
   // Hands each client what its socket has room for.
   void pump() {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (auto& [handle, client] : clients_) {
+    for (auto& [bound_handle, client] : clients_) {
+      // C++17 lambdas cannot capture a structured binding: capture a copy.
+      const Handle handle = bound_handle;
       while (!client.closing) {
         const std::optional<QueuedMessage> message =
             client.queues.pop([&](std::size_t bytes) { return socketTakes(handle, bytes); });
