@@ -126,7 +126,7 @@ OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const fram
       keypoints.empty() ? 1.0 : static_cast<double>(keypoints.size()) / static_cast<double>(downsampled);
   const UpdateSummary summary =
       correct(keypoints, sampled_fraction, before_prediction, predicted, end_time, dt, result);
-  const bool lost = end_time - last_accepted_time_ > config_.lost_after;
+  const bool lost = lostAt(end_time);
   if (lost && !lost_ && velocityResets(result)) resetVelocityAtLoss(end_time, result);
   lost_ = lost;
   result.velocity_resets = velocity_resets_;
@@ -270,7 +270,7 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
   // Once lost, the prediction is what went wrong: judging the scan by it would reject every
   // correction and keep the wrong velocity for good (KTH at 324.4 s: 100 deg/s held;
   // docs/results/lo-degenerate-geometry.md, "The mechanism").
-  const bool lost_before = end_time - last_accepted_time_ > config_.lost_after;
+  const bool lost_before = lostAt(end_time);
   if (summary.applied &&
       (beyondSpeedLimits(filter_->state(), config_.max_speed, config_.max_angular_speed) ||
        (!lost_before && implausibleMotion(predicted, filter_->state(), dt)))) {
@@ -291,32 +291,33 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
 
 void MotorizedLidarOdometry::resetVelocityAfterRejection(const IteratedEkf& before_prediction, double dt,
                                                          OdometryResult& result) {
-  const std::optional<Motion> motion = accepted_poses_.meanMotion();
-  if (!motion) return;
-  IteratedEkf repredicted = withVelocity(before_prediction, *motion, std::nullopt);
-  repredicted.predict(dt, config_.linear_process_noise, config_.angular_process_noise);
-  *filter_ = repredicted;
-  result.velocity_reset = true;
-  ++velocity_resets_;
-  std::ostringstream why;
-  why << "velocity reset to the accepted poses' motion over " << config_.velocity_reset_window << " s ("
-      << motion->v_W.norm() << " m/s, " << motion->w_B.norm() << " rad/s)";
-  addWarning(result.warning, why.str());
+  std::ostringstream what;
+  what << "velocity reset to the accepted poses' motion over " << config_.velocity_reset_window << " s";
+  resetVelocity(before_prediction, std::nullopt, dt, what.str(), result);
 }
 
 void MotorizedLidarOdometry::resetVelocityAtLoss(double end_time, OdometryResult& result) {
+  if (!last_accepted_) return;
+  std::ostringstream what;
+  what << "lost track: going on from the last accepted pose (" << last_accepted_time_
+       << " s) with the accepted poses' motion";
+  resetVelocity(*last_accepted_, config_.initial_velocity_variance, end_time - last_accepted_time_, what.str(),
+                result);
+}
+
+bool MotorizedLidarOdometry::resetVelocity(const IteratedEkf& from, std::optional<double> velocity_variance,
+                                           double dt, const std::string& what, OdometryResult& result) {
   const std::optional<Motion> motion = accepted_poses_.meanMotion();
-  if (!motion || !last_accepted_) return;
-  IteratedEkf resumed = withVelocity(*last_accepted_, *motion, config_.initial_velocity_variance);
-  resumed.predict(end_time - last_accepted_time_, config_.linear_process_noise, config_.angular_process_noise);
-  *filter_ = resumed;
+  if (!motion) return false;
+  IteratedEkf reset = withVelocity(from, *motion, velocity_variance);
+  reset.predict(dt, config_.linear_process_noise, config_.angular_process_noise);
+  *filter_ = reset;
   result.velocity_reset = true;
   ++velocity_resets_;
   std::ostringstream why;
-  why << "lost track: going on from the last accepted pose (" << last_accepted_time_
-      << " s) with the accepted poses' motion (" << motion->v_W.norm() << " m/s, " << motion->w_B.norm()
-      << " rad/s)";
+  why << what << " (" << motion->v_W.norm() << " m/s, " << motion->w_B.norm() << " rad/s)";
   addWarning(result.warning, why.str());
+  return true;
 }
 
 // The scan's status (tracking, degenerate, predicted only, lost) and the warnings that explain it.
@@ -356,7 +357,7 @@ void MotorizedLidarOdometry::reportStatus(const UpdateSummary& summary, bool no_
     }
   }
 
-  if (end_time - last_accepted_time_ > config_.lost_after) {
+  if (lostAt(end_time)) {
     result.status = OdometryStatus::kLost;
     result.lost = true;
     std::ostringstream why;

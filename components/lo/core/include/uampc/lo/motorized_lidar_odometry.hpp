@@ -252,6 +252,13 @@ class MotorizedLidarOdometry {
   void resetVelocityAfterRejection(const IteratedEkf& before_prediction, double dt, OdometryResult& result);
   // A loss of track begins: back to the last accepted pose, carried to end_time with their motion.
   void resetVelocityAtLoss(double end_time, OdometryResult& result);
+  // Both resets: the filter becomes `from` with the accepted poses' motion (velocity variance as
+  // withVelocity takes it), predicted over dt; counted and explained by `what` in the warning.
+  // False when there is no accepted motion to reset to.
+  bool resetVelocity(const IteratedEkf& from, std::optional<double> velocity_variance, double dt,
+                     const std::string& what, OdometryResult& result);
+  // No registration accepted for longer than lost_after (OdometryStatus::kLost).
+  bool lostAt(double end_time) const { return end_time - last_accepted_time_ > config_.lost_after; }
   bool velocityResets(const OdometryResult& result) const {
     return config_.velocity_reset_window > 0.0 && !result.inertial_prediction;
   }
