@@ -28,6 +28,12 @@ void declareRigParameters(ComponentSpec& spec) {
              "t + time_offset, s")
       .between(-1.0, 1.0)
       .partOfRig();
+  spec.param("imu_offset", std::vector<double>{0.0, 0.0, 0.0},
+             "the IMU's origin in the LiDAR frame, its axes the LiDAR's, m (the Livox Mid-360's: "
+             "[0.011, 0.02329, -0.04412]); used by the LiDAR-inertial LO and the simulated IMU")
+      .ofLength(3)
+      .between(-1.0, 1.0)
+      .partOfRig();
 }
 
 void declareLidarModelParameters(ComponentSpec& spec) {
@@ -92,6 +98,7 @@ frames::MotorLidarCalibration calibrationFrom(const Double& number, const List& 
   }
   c.encoder_offset = number("encoder_offset_deg") * M_PI / 180.0;
   c.time_offset = number("time_offset");
+  c.imu_position_L = vector3("imu_offset");
   return c;
 }
 

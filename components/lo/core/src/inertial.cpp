@@ -11,19 +11,32 @@ namespace {
 constexpr double kMaxHold = 0.05;  // s
 
 // One reading in B (see the header for the formulas).
-InertialStep toBase(const ImuReading& reading, double theta, double theta_dot,
+InertialStep toBase(const ImuReading& reading, double theta, double theta_dot, double theta_ddot,
                     const frames::MotorLidarCalibration& calibration) {
   const Eigen::Isometry3d T_BL = frames::lidarPoseInBase(theta, calibration);
   const Eigen::Vector3d e_z = Eigen::Vector3d::UnitZ();
   InertialStep step;
   step.angular_velocity_B = T_BL.linear() * reading.angular_velocity_L - theta_dot * e_z;
   const Eigen::Vector3d& w = step.angular_velocity_B;
-  const Eigen::Vector3d t = T_BL.translation();
+  const Eigen::Vector3d t = T_BL * calibration.imu_position_L;  // the IMU's origin in B
   const Eigen::Vector3d t_dot = theta_dot * e_z.cross(t);
-  const Eigen::Vector3d t_ddot = theta_dot * theta_dot * e_z.cross(e_z.cross(t));
+  const Eigen::Vector3d t_ddot = theta_dot * theta_dot * e_z.cross(e_z.cross(t)) + theta_ddot * e_z.cross(t);
   step.specific_force_B =
       T_BL.linear() * reading.specific_force_L - (t_ddot + 2.0 * w.cross(t_dot) + w.cross(w.cross(t)));
   return step;
+}
+
+// The motor's angular acceleration at t, rad/s^2: the rate's central difference over
+// kAccelerationStep, one-sided at the track's ends, 0 where the track holds one rate only.
+constexpr double kAccelerationStep = 5e-3;  // s, one encoder interval at 200 Hz
+double motorAcceleration(const frames::MotorAngleTrack& motor, double t) {
+  const std::optional<double> before = motor.omegaAt(t - kAccelerationStep);
+  const std::optional<double> after = motor.omegaAt(t + kAccelerationStep);
+  const std::optional<double> at = motor.omegaAt(t);
+  if (before && after) return (*after - *before) / (2.0 * kAccelerationStep);
+  if (after) return (*after - *at) / kAccelerationStep;
+  if (before) return (*at - *before) / kAccelerationStep;
+  return 0.0;
 }
 
 }  // namespace
@@ -44,10 +57,11 @@ std::vector<InertialStep> inertialSteps(const std::deque<ImuReading>& readings, 
     const std::optional<double> theta = motor.thetaAt(reading.time);
     const std::optional<double> theta_dot = motor.omegaAt(reading.time);
     if (!theta || !theta_dot) return {};
+    const double theta_ddot = motorAcceleration(motor, reading.time);
     const double next = i + 1 < readings.size() ? readings[i + 1].time : t1;
     const double until = std::min(t1, std::max(next, reading.time));
     if (reading.time - covered_until > kMaxHold || until - reading.time > kMaxHold) return {};
-    InertialStep step = toBase(reading, *theta, *theta_dot, calibration);
+    InertialStep step = toBase(reading, *theta, *theta_dot, theta_ddot, calibration);
     step.dt = until - covered_until;
     if (step.dt > 0.0) steps.push_back(step);
     covered_until = until;

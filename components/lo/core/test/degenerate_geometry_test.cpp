@@ -351,6 +351,41 @@ TEST(Inertial, TakesTheMotorOutOfTheReadings) {
   EXPECT_TRUE(inertialSteps(readings, 0.2, 1.5, motor, lidar.calibration).empty());
 }
 
+// The Mid-360's IMU sits 5 cm from the LiDAR's origin, itself off the motor axis here, and the motor
+// speeds up: the IMU feels the rotor's centripetal and tangential acceleration (about 0.5 m/s^2),
+// which the rig's imu_offset takes out. Without it the base seems to accelerate.
+TEST(Inertial, TakesTheImuLeverArmOut) {
+  frames::MotorLidarCalibration calibration =
+      frames::MotorLidarCalibration::tiltedAboutX(30.0 * M_PI / 180.0, Eigen::Vector3d(0.03, 0.0, 0.05));
+  calibration.imu_position_L = Eigen::Vector3d(0.011, 0.02329, -0.04412);
+  auto theta = [](double t) { return 0.3 + 2.0 * t + 1.5 * t * t; };  // 2 -> 5 rad/s over 1 s
+  auto rate = [](double t) { return 2.0 + 3.0 * t; };
+  const raycaster::ImuMotion motion{[](double) { return Eigen::Isometry3d::Identity(); }, theta, rate};
+  raycaster::ImuSimulatorConfig imu_config;
+  imu_config.calibration = calibration;
+  imu_config.noise = raycaster::ImuNoiseParameters{0.0, 0.0, 0.0, 0.0};
+  raycaster::ImuSimulator imu(imu_config);
+  frames::MotorAngleTrack motor(10.0);
+  for (int k = 0; k <= 200; ++k) motor.add({0.005 * k, theta(0.005 * k), rate(0.005 * k)});
+  std::deque<ImuReading> readings;
+  for (std::uint64_t k = 10; k < 190; ++k) {
+    const raycaster::ImuSample s = imu.sample(k, motion);
+    readings.push_back({s.time, s.angular_velocity, s.linear_acceleration});
+  }
+  const Eigen::Vector3d at_rest(0.0, 0.0, 9.81);
+  double worst = 0.0, worst_without_offset = 0.0;
+  for (const InertialStep& step : inertialSteps(readings, 0.2, 0.8, motor, calibration)) {
+    worst = std::max(worst, (step.specific_force_B - at_rest).norm());
+  }
+  frames::MotorLidarCalibration without_offset = calibration;
+  without_offset.imu_position_L.setZero();
+  for (const InertialStep& step : inertialSteps(readings, 0.2, 0.8, motor, without_offset)) {
+    worst_without_offset = std::max(worst_without_offset, (step.specific_force_B - at_rest).norm());
+  }
+  EXPECT_LT(worst, 2e-3);
+  EXPECT_GT(worst_without_offset, 0.1);
+}
+
 // Bad IMU input is refused at the door, never integrated: a non-finite value or time, a reading
 // not newer than the last. The frame is then predicted from the good readings around it.
 TEST(Inertial, RefusesNonFiniteAndOutOfOrderReadings) {

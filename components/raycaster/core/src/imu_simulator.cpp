@@ -54,8 +54,10 @@ ImuKinematics imuKinematics(double t, const ImuMotion& motion, const frames::Mot
   k.angular_velocity =
       (rotationVector(R_LW * lidar_pose(t + h).linear()) - rotationVector(R_LW * lidar_pose(t - h).linear())) /
       (2.0 * h);
+  // The IMU's origin, off L's by the rig's imu_offset: it alone feels the lever arm's acceleration.
+  const Eigen::Vector3d& p_L = calibration.imu_position_L;
   const Eigen::Vector3d a_W =
-      (lidar_pose(t + h_a).translation() - 2.0 * T_WL.translation() + lidar_pose(t - h_a).translation()) / (h_a * h_a);
+      (lidar_pose(t + h_a) * p_L - 2.0 * (T_WL * p_L) + lidar_pose(t - h_a) * p_L) / (h_a * h_a);
   k.specific_force = R_LW * (a_W - frames::gravityInWorld());
   return k;
 }

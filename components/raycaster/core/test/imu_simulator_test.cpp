@@ -74,6 +74,27 @@ TEST(ImuSimulator, BaseAtRestMotorSpinning) {
   }
 }
 
+// An IMU off the LiDAR's origin (the rig's imu_offset) turns with the rotor: at rest it reads
+// gravity's reaction plus the centripetal acceleration of its own point, -theta_dot^2 times its
+// distance from the motor axis.
+TEST(ImuSimulator, AnImuOffTheLidarOriginFeelsTheRotorsCentripetalAcceleration) {
+  MotorLidarCalibration calibration = MotorLidarCalibration::referenceRig();
+  calibration.imu_position_L = Eigen::Vector3d(0.011, 0.02329, -0.04412);
+  const Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+  const ImuMotion motion{[&base](double) { return base; }, [](double t) { return 0.3 + kMotorSpeed * t; },
+                         [](double) { return kMotorSpeed; }};
+  ImuSimulator imu(noiseFree(calibration));
+  for (std::uint64_t k = 200; k < 260; ++k) {
+    const ImuSample s = imu.sample(k, motion);
+    const Eigen::Isometry3d T_BL = frames::lidarPoseInBase(0.3 + kMotorSpeed * s.time, calibration);
+    Eigen::Vector3d off_axis = T_BL * calibration.imu_position_L;
+    off_axis.z() = 0.0;
+    ASSERT_GT(off_axis.norm(), 0.01);
+    const Eigen::Vector3d expected_W = Eigen::Vector3d(0, 0, kGravity) - kMotorSpeed * kMotorSpeed * off_axis;
+    EXPECT_LT((T_BL.linear() * s.linear_acceleration - expected_W).norm(), 1e-3) << "t=" << s.time;
+  }
+}
+
 // A base accelerating at a constant rate and turning at a constant yaw rate, played through the
 // 200 Hz ground truth and encoder track, with the LiDAR origin off the motor axis.
 TEST(ImuSimulator, AcceleratingAndYawingBaseMatchesAnalyticReadings) {

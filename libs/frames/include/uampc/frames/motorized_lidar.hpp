@@ -27,6 +27,10 @@ struct MotorLidarCalibration {
   // The LiDAR-to-encoder clock offset, s: a point stamped t on the LiDAR's clock was measured when
   // the encoder's clock read t + time_offset (its angle is the encoder's theta(t + time_offset)).
   double time_offset = 0.0;
+  // The IMU's origin in the LiDAR frame L, m; its axes are L's (the Livox Mid-360's: 11.0, 23.29,
+  // -44.12 mm). Only the LiDAR-inertial LO and the simulated IMU use it: the IMU turns with the
+  // LiDAR, so a point off the motor axis feels the motor's centripetal acceleration.
+  Eigen::Vector3d imu_position_L = Eigen::Vector3d::Zero();
 
   // The reference rig: the LiDAR tilted about its own x axis by tilt_rad (30 degrees there).
   static MotorLidarCalibration tiltedAboutX(double tilt_rad,

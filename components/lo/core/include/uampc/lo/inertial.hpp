@@ -1,17 +1,18 @@
 // LiDAR-inertial mode: an IMU fixed in the LiDAR frame L (the Livox Mid-360's), turning with the
 // motor, replaces the constant-velocity prediction of the filter.
 //
-// A reading gives, in L, the angular velocity of L and the specific force at L's origin. The base
+// A reading gives, in L, the angular velocity of L and the specific force at the IMU's origin. The base
 // frame B is what the filter estimates, so the motor is taken out with the encoder (Eq. 1
-// differentiated). With t = t_BL(theta) = R_BM(theta) r_ML the LiDAR origin in B and the motor
-// turning about the base z axis e_z:
+// differentiated). With t = T_BL(theta) p_L the IMU's origin in B (p_L the rig's imu_offset: the
+// IMU's origin in L, whose axes it shares) and the motor turning about the base z axis e_z:
 //   omega_L = R_LB (omega_B + theta_dot e_z)
 //       =>  omega_B = R_BL omega_L - theta_dot e_z
-//   a_L = a_B + R_WB (t'' + 2 omega_B x t' + omega_B x (omega_B x t))      (alpha_B x t left out)
+//   a_I = a_B + R_WB (t'' + 2 omega_B x t' + omega_B x (omega_B x t))      (alpha_B x t left out)
 //       =>  f_B = R_BW (a_B - g) = R_BL f_L - (t'' + 2 omega_B x t' + omega_B x (omega_B x t))
-// with t' = theta_dot e_z x t and t'' = theta_dot^2 e_z x (e_z x t) (the motor's angular
-// acceleration left out). On the reference rig, with the LiDAR on the motor axis (r_ML = 0), the
-// lever-arm terms vanish.
+// with t' = theta_dot e_z x t and t'' = theta_dot^2 e_z x (e_z x t) + theta_ddot e_z x t (the
+// motor's acceleration from the encoder's rates). On the reference rig, with the LiDAR on the motor
+// axis (r_ML = 0) and the IMU at its origin, the lever-arm terms vanish; an IMU 5 cm off the axis
+// (the Mid-360's is up to that) feels theta_dot^2 |t| = 0.65 m/s^2 at 3.6 rad/s.
 //
 // Beyond the paper (its LO is LiDAR-only); not in the paper's protocol.
 #pragma once

@@ -5,8 +5,8 @@
 //   angular velocity  omega_L = angular velocity of L relative to the world, expressed in L
 //                               (the base's rotation and the motor's spin theta_dot together)
 //   specific force    f_L     = R_WL^T (a_W - g_W),   g_W = (0, 0, -9.81) m/s^2
-// where a_W is the acceleration of L's origin (the IMU sits at the LiDAR origin; an origin off
-// the motor axis adds the centripetal and tangential terms of the motor's turning) and
+// where a_W is the acceleration of the IMU's origin, the rig's imu_offset in L (an origin off the
+// motor axis adds the centripetal and tangential terms of the motor's turning), and
 // T_WL(t) = T_WB(t) * lidarPoseInBase(theta(t)) (Eq. 1, frames/motorized_lidar.hpp); plus white
 // noise and bias random walk (imu_noise.hpp). Samples depend only on (motion, seed, k).
 #pragma once
