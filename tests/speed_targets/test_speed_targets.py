@@ -162,7 +162,8 @@ class Choice(unittest.TestCase):
         return speed_targets.chosen_names(args, parser)
 
     def test_choices(self):
-        self.assertEqual(self.names(), ["loop", "lo", "mpc", "raycaster", "lockstep", "pointcloud", "split"])
+        self.assertEqual(self.names(), ["loop", "lo", "mpc", "raycaster", "lockstep", "pointcloud", "split",
+                                        "calibration"])
         self.assertEqual(self.names("memory")[0], "memory")
         self.assertEqual(self.names("build_times"), ["build", "tests"])
         self.assertEqual(self.names("build_times", "memory"), ["memory", "build", "tests"])
