@@ -4,14 +4,12 @@
 #include <sstream>
 
 #include "uampc/run_files/run_directory.hpp"
+#include "uampc/run_files/run_info.hpp"
 #include "uampc/runtime/scene.hpp"
 
 namespace uampc::app {
 
 namespace {
-
-// Sim times are sums of steps: a complete run may fall a rounding short of its last step.
-constexpr double kRoundingS = 1e-6;
 
 std::string withoutTrailingSpace(const std::string& text) {
   const std::size_t end = text.find_last_not_of("\r\n ");
@@ -34,7 +32,7 @@ SceneEnd sceneEndOf(const Scene& scene, std::string* problem) {
 }
 
 bool reachesSceneEnd(double sim_time_s, const SceneEnd& end) {
-  return sim_time_s + end.step_s + kRoundingS >= end.duration_s;  // false for NaN
+  return run_files::reachesEnd(sim_time_s, end.duration_s, end.step_s);
 }
 
 std::string simTimeOfEnd(double sim_time_s, const SceneEnd& end) {

@@ -290,7 +290,7 @@ class EvaluatorComponent : public Component {
   void markWhetherTheRunReachedItsEnd(run_files::MetricsDocument& metrics) const {
     if (!run_info_ || run_info_->duration_s <= 0.0) return;
     metrics.scene_duration = run_info_->duration_s;
-    metrics.reached_end = metrics.sim_time >= run_info_->duration_s - ctx_.step().seconds() - 1e-9;
+    metrics.reached_end = run_files::reachesEnd(metrics.sim_time, run_info_->duration_s, ctx_.step().seconds());
   }
 
   // The parameters that set CMPLT's config: declared from the core's defaults, read into them.

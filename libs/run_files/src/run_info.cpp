@@ -68,4 +68,9 @@ void writeRunInfoFile(const std::string& path, const RunInfo& info) { writeJsonF
 
 RunInfo readRunInfoFile(const std::string& path) { return runInfoFromJson(readJsonFile(path), path); }
 
+bool reachesEnd(double sim_time_s, double duration_s, double step_s) {
+  constexpr double kRounding = 1e-6;  // s
+  return sim_time_s + step_s + kRounding >= duration_s;
+}
+
 }  // namespace uampc::run_files

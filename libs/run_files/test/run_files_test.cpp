@@ -151,6 +151,17 @@ TEST(MetricsFile, UnfinishedRunsHaveNone) {
   EXPECT_TRUE(old->trajectory.rpe.empty());
 }
 
+// A run's end, as the evaluator and an experiment both judge it: up to a step (and a rounding)
+// short of the duration, never beyond it short, never for NaN.
+TEST(RunInfo, ARunReachesItsEndUpToALastStepShort) {
+  EXPECT_TRUE(run_files::reachesEnd(30.0, 30.0, 0.01));
+  EXPECT_TRUE(run_files::reachesEnd(29.99, 30.0, 0.01));
+  EXPECT_TRUE(run_files::reachesEnd(29.99 - 5e-7, 30.0, 0.01));  // a sum of steps, a rounding short
+  EXPECT_FALSE(run_files::reachesEnd(29.98, 30.0, 0.01));
+  EXPECT_FALSE(run_files::reachesEnd(13.9, 20.0, 0.01));
+  EXPECT_FALSE(run_files::reachesEnd(std::nan(""), 30.0, 0.01));
+}
+
 TEST(JsonText, ListsAndStrings) {
   Json json = Json::object();
   json["name"] = "ua \"mpc\"\n\\ \x01";

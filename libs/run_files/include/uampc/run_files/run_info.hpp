@@ -31,6 +31,13 @@ Json runInfoToJson(const RunInfo& info);
 // Throws std::runtime_error naming `where` and the key when a key is missing or of another type.
 RunInfo runInfoFromJson(const Json& json, const std::string& where);
 
+// Whether a lockstep run whose clock reached sim_time_s reached its scene's end, duration_s in
+// steps of step_s: its last step may end a step short of the duration, and sim times are sums of
+// steps (a rounding short). The one test of a run's end: the evaluator's metrics.json
+// "reached_end" and an experiment's done runs (docs/decisions/experiment-run-done.md) both ask it.
+// False for NaN.
+bool reachesEnd(double sim_time_s, double duration_s, double step_s);
+
 // Throws std::runtime_error naming path on failure.
 void writeRunInfoFile(const std::string& path, const RunInfo& info);
 // Throws std::runtime_error naming path when the file cannot be read, is not JSON or lacks a key.
