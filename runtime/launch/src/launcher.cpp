@@ -33,6 +33,11 @@ namespace uampc {
 
 namespace {
 
+// How long the launcher waits for its processes to stop before it kills them. A process writes its
+// outputs as it stops (the evaluator's metrics and figures): 5 s was too short on a machine loaded
+// by other work (two of 55 complete runs of an experiment killed, while a compiler ran beside them).
+constexpr std::chrono::seconds kStopWait{20};
+
 // How a process ended when the user asked everything to stop: exit 0 (stopped by SIGTERM) or 130
 // (it got the terminal's SIGINT too), or killed by a stop signal before it had its handlers
 // installed (a process still starting). Anything else is a failure, stop or no stop.
@@ -120,15 +125,16 @@ class ProcessSupervisor {
     return what;
   }
 
-  // Asks every process to stop, waits, and kills those that do not.
+  // Asks every process to stop, waits kStopWait, and kills those that do not.
   void stopAll() {
     children_.signalAll(SIGTERM);
-    const auto deadline = ChildProcesses::Clock::now() + std::chrono::seconds(5);
+    const auto deadline = ChildProcesses::Clock::now() + kStopWait;
     while (!children_.empty()) {
       const auto exit = children_.waitForExit(deadline);
       if (!exit) {
         for (const auto& [pid, name] : children_.running())
-          std::cerr << "uampc: process '" << name << "' did not stop within 5 s; killing it\n";
+          std::cerr << "uampc: process '" << name << "' did not stop within " << kStopWait.count()
+                    << " s; killing it\n";
         children_.killAll();
         failed_ = killed_ = true;
         break;
@@ -173,10 +179,10 @@ void removeWhatKilledProcessesLeft() {
 }
 
 // A process group asked to stop that does not (a component hung in a callback) ends itself after
-// kStopGrace. The launcher kills such a process after 5 s (stopAll); this is for when the launcher
+// kStopGrace. The launcher kills such a process after kStopWait (stopAll); this is for when the launcher
 // died first (killed, crashed): the process got SIGTERM through PR_SET_PDEATHSIG, and nobody would
 // ever kill it; a lockstep one would hold its DDS domain, a test's pipes or a terminal forever.
-constexpr std::chrono::seconds kStopGrace{10};
+constexpr std::chrono::seconds kStopGrace{30};
 void endIfTheStopHangs(const std::string& process) {
   std::thread([process] {
     while (!stopRequested()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
