@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
           const CalibrationResult r = estimateRig(recording, believed);
           e = recoveryErrors(r, truthInGaugeOf(rig.truth, believed));
           e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          csv << world << "," << seed << "," << c.name << "," << e.axis_deg << "," << e.axis_sd_deg << "," << e.offset_m
+          csv << world << "," << seed << ",\"" << c.name << "\"," << e.axis_deg << "," << e.axis_sd_deg << "," << e.offset_m
               << "," << e.offset_sd_m << "," << e.time_s << "," << e.time_sd_s << "," << e.time_estimated << ","
               << r.terms << "," << r.median_distance_before << "," << r.median_distance_after << "," << e.seconds;
           by_case[c.name].push_back(e);
@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
           }
           csv << "\n";
         } catch (const CalibrationError& error) {
-          csv << world << "," << seed << "," << c.name << ",,,,,,,,,,,,,,,,,,,,\n";
+          csv << world << "," << seed << ",\"" << c.name << "\",,,,,,,,,,,,,,,,,,,,\n";
           note = std::string(" refused: ") + error.what();
         }
         csv.flush();
