@@ -5,12 +5,12 @@
 # trajectories, the indoor worlds, the density worlds, the LiDAR-inertial campus loop;
 # docs/results/lo-degenerate-geometry.md, "A registration budget"), every run at a constant motor speed
 # and with the scenes' 2 cm range noise, and prints one line per run: its name, then lo_replay's summary.
-# LO_REPLAY_FLAGS are added to every run (e.g. --set lo.max_registration_points=2000). --only keeps the runs
+# REPLAY=PATH runs another lo_replay binary (e.g. a copy of an older build). LO_REPLAY_FLAGS are added to every run (e.g. --set lo.max_registration_points=2000). --only keeps the runs
 # whose name matches REGEX (grep -E). N runs at a time (default: the number of cores); the lines come in
 # the order of the list below whatever order the runs finish in, and stderr says each as it ends.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-replay=build/bench/lo_replay
+replay=${REPLAY:-build/bench/lo_replay}
 [ -x "$replay" ] || { echo "world_matrix: $replay not built (cmake --workflow --preset build)" >&2; exit 1; }
 
 jobs=$(nproc)

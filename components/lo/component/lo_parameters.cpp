@@ -30,7 +30,7 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
   b.bind("process_noise_window", c.process_noise_window,
          "adaptive process noise: each prediction's densities estimated from the accepted updates' velocity "
          "corrections over this long, s, within [min_*_process_noise, *_process_noise]; 0: the fixed densities "
-         "(see docs/decisions/lo-adaptive-process-noise.md)")
+         "(see docs/decisions/lo-process-noise-in-point-maps.md)")
       .between(0.0, 60.0);
   b.bind("min_linear_process_noise", c.min_linear_process_noise,
          "with process_noise_window: the linear density's floor, (m/s)^2/s")
@@ -40,7 +40,7 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
       .between(0.0, 100.0);
   b.bind("robust_kernel_scale", c.robust_kernel_scale,
          "the Cauchy kernel's scale on the point-to-plane residuals, m: a residual of this much counts half; 0: "
-         "plain least squares (see docs/decisions/lo-adaptive-process-noise.md)")
+         "plain least squares (see docs/decisions/lo-process-noise-in-point-maps.md)")
       .between(0.0, 10.0);
   b.bind("max_iterations", c.max_iterations, "iterated EKF: at most this many re-linearisations").between(1, 100);
   b.bind("degeneracy_aware", c.degeneracy_aware,

@@ -1,5 +1,5 @@
 // The constant-velocity model's process noise estimated from what the scans corrected
-// (docs/decisions/lo-adaptive-process-noise.md).
+// (docs/decisions/lo-process-noise-in-point-maps.md).
 //
 // A fixed velocity random walk density q is either too loose or too tight: at 0.1 (m/s)^2/s and
 // (rad/s)^2/s a misleading map turns into velocity and the LO runs away; at 0.001, I2EKF-LO's,
