@@ -26,16 +26,16 @@ InertialStep toBase(const ImuReading& reading, double theta, double theta_dot, d
   return step;
 }
 
-// The motor's angular acceleration at t, rad/s^2: the rate's central difference over
-// kAccelerationStep, one-sided at the track's ends, 0 where the track holds one rate only.
+// The motor's angular acceleration at t, rad/s^2, given its rate there: the rate's central
+// difference over kAccelerationStep, one-sided at the track's ends, 0 where the track holds one
+// rate only.
 constexpr double kAccelerationStep = 5e-3;  // s, one encoder interval at 200 Hz
-double motorAcceleration(const frames::MotorAngleTrack& motor, double t) {
+double motorAcceleration(const frames::MotorAngleTrack& motor, double t, double rate_at_t) {
   const std::optional<double> before = motor.omegaAt(t - kAccelerationStep);
   const std::optional<double> after = motor.omegaAt(t + kAccelerationStep);
-  const std::optional<double> at = motor.omegaAt(t);
   if (before && after) return (*after - *before) / (2.0 * kAccelerationStep);
-  if (after) return (*after - *at) / kAccelerationStep;
-  if (before) return (*at - *before) / kAccelerationStep;
+  if (after) return (*after - rate_at_t) / kAccelerationStep;
+  if (before) return (rate_at_t - *before) / kAccelerationStep;
   return 0.0;
 }
 
@@ -57,7 +57,7 @@ std::vector<InertialStep> inertialSteps(const std::deque<ImuReading>& readings, 
     const std::optional<double> theta = motor.thetaAt(reading.time);
     const std::optional<double> theta_dot = motor.omegaAt(reading.time);
     if (!theta || !theta_dot) return {};
-    const double theta_ddot = motorAcceleration(motor, reading.time);
+    const double theta_ddot = motorAcceleration(motor, reading.time, *theta_dot);
     const double next = i + 1 < readings.size() ? readings[i + 1].time : t1;
     const double until = std::min(t1, std::max(next, reading.time));
     if (reading.time - covered_until > kMaxHold || until - reading.time > kMaxHold) return {};

@@ -316,10 +316,10 @@ void MotorizedLidarOdometry::resetVelocityAtLoss(double end_time, OdometryResult
                 result);
 }
 
-bool MotorizedLidarOdometry::resetVelocity(const IteratedEkf& from, std::optional<double> velocity_variance,
+void MotorizedLidarOdometry::resetVelocity(const IteratedEkf& from, std::optional<double> velocity_variance,
                                            double dt, const std::string& what, OdometryResult& result) {
   const std::optional<Motion> motion = accepted_poses_.meanMotion();
-  if (!motion) return false;
+  if (!motion) return;
   IteratedEkf reset = withVelocity(from, *motion, velocity_variance);
   reset.predict(dt, config_.linear_process_noise, config_.angular_process_noise);
   *filter_ = reset;
@@ -328,7 +328,6 @@ bool MotorizedLidarOdometry::resetVelocity(const IteratedEkf& from, std::optiona
   std::ostringstream why;
   why << what << " (" << motion->v_W.norm() << " m/s, " << motion->w_B.norm() << " rad/s)";
   addWarning(result.warning, why.str());
-  return true;
 }
 
 // The scan's status (tracking, degenerate, predicted only, lost) and the warnings that explain it.

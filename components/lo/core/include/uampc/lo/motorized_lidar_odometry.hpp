@@ -263,8 +263,8 @@ class MotorizedLidarOdometry {
   void resetVelocityAtLoss(double end_time, OdometryResult& result);
   // Both resets: the filter becomes `from` with the accepted poses' motion (velocity variance as
   // withVelocity takes it), predicted over dt; counted and explained by `what` in the warning.
-  // False when there is no accepted motion to reset to.
-  bool resetVelocity(const IteratedEkf& from, std::optional<double> velocity_variance, double dt,
+  // Nothing happens when there is no accepted motion to reset to.
+  void resetVelocity(const IteratedEkf& from, std::optional<double> velocity_variance, double dt,
                      const std::string& what, OdometryResult& result);
   // No registration accepted for longer than lost_after (OdometryStatus::kLost).
   bool lostAt(double end_time) const { return end_time - last_accepted_time_ > config_.lost_after; }
