@@ -27,21 +27,6 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
   b.bind("angular_process_noise", c.angular_process_noise,
          "angular velocity random walk density of the constant-velocity model, (rad/s)^2/s")
       .between(0.0, 100.0);
-  b.bind("process_noise_window", c.process_noise_window,
-         "adaptive process noise: each prediction's densities estimated from the accepted updates' velocity "
-         "corrections over this long, s, within [min_*_process_noise, *_process_noise]; 0: the fixed densities "
-         "(see docs/decisions/lo-process-noise-in-point-maps.md)")
-      .between(0.0, 60.0);
-  b.bind("min_linear_process_noise", c.min_linear_process_noise,
-         "with process_noise_window: the linear density's floor, (m/s)^2/s")
-      .between(0.0, 100.0);
-  b.bind("min_angular_process_noise", c.min_angular_process_noise,
-         "with process_noise_window: the angular density's floor, (rad/s)^2/s")
-      .between(0.0, 100.0);
-  b.bind("robust_kernel_scale", c.robust_kernel_scale,
-         "the Cauchy kernel's scale on the point-to-plane residuals, m: a residual of this much counts half; 0: "
-         "plain least squares (see docs/decisions/lo-process-noise-in-point-maps.md)")
-      .between(0.0, 10.0);
   b.bind("max_iterations", c.max_iterations, "iterated EKF: at most this many re-linearisations").between(1, 100);
   b.bind("degeneracy_aware", c.degeneracy_aware,
          "leave the state directions a scan does not constrain to the motion prior (suits LiDAR-inertial rigs in "

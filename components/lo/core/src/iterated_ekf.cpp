@@ -339,7 +339,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     // set of residuals.
     if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kResidual)
       gate = residualGate(linearisation.z, options.min_residual_gate);
-    NormalEquations normal = normalEquations(linearisation, frame, gate, options.robust_kernel_scale);
+    NormalEquations normal = normalEquations(linearisation, frame, gate);
     summary.correspondences = normal.used;
     if (normal.used < options.min_correspondences) break;
     information = normal.HtH;

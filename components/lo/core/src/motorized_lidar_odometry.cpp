@@ -74,7 +74,6 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
   options.association_gate = config.association_gate;
   options.match_seen_side_only = config.match_seen_side_only;
   options.measurement_variance = config.measurement_variance;
-  options.robust_kernel_scale = config.robust_kernel_scale;
   options.max_iterations = config.max_iterations;
   options.min_correspondences = config.min_correspondences;
   options.project_degenerate = config.degeneracy_aware;
@@ -94,10 +93,7 @@ UpdateOptions updateOptionsFrom(const OdometryConfig& config) {
 MotorizedLidarOdometry::MotorizedLidarOdometry(const OdometryConfig& config)
     : config_(config),
       map_(config.map_voxel_size, config.map_radius, config.map_mean_points),
-      accepted_poses_(config.velocity_reset_window),
-      process_noise_(config.process_noise_window,
-                     {config.min_linear_process_noise, config.min_angular_process_noise},
-                     {config.linear_process_noise, config.angular_process_noise}) {}
+      accepted_poses_(config.velocity_reset_window) {}
 
 OdometryResult MotorizedLidarOdometry::registerScan(const Scan& scan, const frames::MotorAngleTrack& motor) {
   OdometryResult result;
@@ -236,10 +232,7 @@ void MotorizedLidarOdometry::predict(double end_time, double dt, const frames::M
     filter_->predictInertial(steps, config_.imu_noise);
     result.inertial_prediction = true;
   } else {
-    const ProcessNoise q = config_.process_noise_window > 0.0
-                               ? process_noise_.estimate()
-                               : ProcessNoise{config_.linear_process_noise, config_.angular_process_noise};
-    filter_->predict(dt, q.linear, q.angular);
+    filter_->predict(dt, config_.linear_process_noise, config_.angular_process_noise);
     if (config_.use_imu) addWarning(result.warning, "no IMU readings cover the frame: constant-velocity prediction");
   }
   last_time_ = end_time;
@@ -288,10 +281,6 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
     if (velocityResets(result)) resetVelocityAfterRejection(before_prediction, dt, result);
   }
   if (summary.applied) {
-    if (!result.inertial_prediction) {
-      process_noise_.add(end_time, dt, filter_->state().v_W - predicted.state().v_W,
-                         filter_->state().w_B - predicted.state().w_B);
-    }
     last_accepted_time_ = end_time;
     accepted_poses_.add(end_time, filter_->state());
     last_accepted_.emplace(*filter_);

@@ -31,25 +31,14 @@ void linearise(const std::vector<Correspondence>& correspondences, const BaseSta
   }
 }
 
-double cauchyWeight(double z, double scale) {
-  if (!(scale > 0.0)) return 1.0;
-  const double u = z / scale;
-  return 1.0 / (1.0 + u * u);
-}
-
-NormalEquations normalEquations(Linearisation& linearisation, const FrameDeviation* deviation, double gate,
-                                double kernel_scale) {
+NormalEquations normalEquations(Linearisation& linearisation, const FrameDeviation* deviation, double gate) {
   NormalEquations n;
   auto& rows = linearisation.rows;
   n.used = static_cast<std::size_t>(rows.rows());
   for (Eigen::Index i = 0; i < rows.rows(); ++i) {
-    const double z = linearisation.z(i);
-    if (beyondGate(z, gate)) {
+    if (beyondGate(linearisation.z(i), gate)) {
       rows.row(i).setZero();
       --n.used;
-    } else if (kernel_scale > 0.0) {
-      // The row and its residual (the last column) times sqrt(w): its products carry w.
-      rows.row(i) *= std::sqrt(cauchyWeight(z, kernel_scale));
     }
   }
   // [G z]^T [G z] through a symmetric rank update: half the work of the general product.

@@ -91,9 +91,6 @@ struct UpdateOptions {
   AssociationGate association_gate = AssociationGate::kResidual;
   // kResidual: residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
   double min_residual_gate = 0.05;  // m
-  // The Cauchy kernel's scale (normal_equations.hpp), m: every residual is reweighted at every
-  // linearisation, from the first iteration; 0: plain least squares (within the gate).
-  double robust_kernel_scale = 0.0;
   // Skip a plane whose map points were mostly seen from its other side (see the header).
   bool match_seen_side_only = true;
   // Degeneracy (degeneracy.hpp): directions whose scaled information eigenvalue (an effective

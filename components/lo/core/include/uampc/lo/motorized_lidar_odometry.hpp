@@ -25,7 +25,6 @@
 #include "uampc/lo/iterated_ekf.hpp"
 #include "uampc/lo/local_map.hpp"
 #include "uampc/lo/scan.hpp"
-#include "uampc/lo/adaptive_process_noise.hpp"
 #include "uampc/lo/velocity_reset.hpp"
 
 namespace uampc::lo {
@@ -79,8 +78,6 @@ struct OdometryConfig {
   double plane_min_spread_ratio = 0.0;
   double max_neighbour_distance = 1.0;    // m, the k-th neighbour must be closer (I2EKF-LO: sqrt(5))
   double measurement_variance = 0.001;    // m^2
-  // The Cauchy kernel's scale on the point-to-plane residuals (normal_equations.hpp), m; 0: off.
-  double robust_kernel_scale = 0.0;  // m
   // Velocity random walk densities of the constant-velocity model, linear and angular (they can
   // be set apart). 0.1 for both: hand-held rigs (MCD KTH and TUHH) change their yaw rate by
   // ~70 deg/s within 0.2 s. Measured with tools/lo_replay over the whole KTH trajectory, constant
@@ -88,12 +85,6 @@ struct OdometryConfig {
   // a degenerate stretch (docs/results/lo-degenerate-geometry.md, "What is still missed").
   double linear_process_noise = 0.1;   // (m/s)^2/s
   double angular_process_noise = 0.1;  // (rad/s)^2/s
-  // Adaptive process noise (adaptive_process_noise.hpp): with a window > 0 (s), the densities
-  // above are ceilings, and each prediction uses the density estimated from the accepted updates'
-  // velocity corrections over the window, at least the floors below. 0: the fixed densities above.
-  double process_noise_window = 0.0;        // s
-  double min_linear_process_noise = 0.001;  // (m/s)^2/s
-  double min_angular_process_noise = 0.001;  // (rad/s)^2/s
   int max_iterations = 10;
   std::size_t min_correspondences = 30;
 
@@ -288,7 +279,6 @@ class MotorizedLidarOdometry {
   double last_weakest_information_ = 0.0;
   std::size_t rejected_updates_ = 0;
   AcceptedPoses accepted_poses_;
-  AdaptiveProcessNoise process_noise_;
   std::optional<IteratedEkf> last_accepted_;  // the filter after the last accepted registration
   bool lost_ = false;                         // the previous frame was lost
   std::size_t velocity_resets_ = 0;

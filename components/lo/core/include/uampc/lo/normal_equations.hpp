@@ -57,15 +57,8 @@ void linearise(const std::vector<Correspondence>& correspondences, const BaseSta
 // Whether a residual is left out by the gate (a wrong plane, see iterated_ekf.hpp).
 inline bool beyondGate(double z, double gate) { return std::abs(z) > gate; }
 
-// The Cauchy kernel's weight of a residual z at scale c (m): w = 1 / (1 + (z / c)^2), the
-// iteratively reweighted least-squares weight of the cost c^2 / 2 log(1 + (z / c)^2). A residual of
-// c counts half, one of 3c a tenth: a wrong plane pulls with a bounded force (c^2 / 2z falls as z
-// grows) instead of one that grows with z. c <= 0: 1 (plain least squares).
-double cauchyWeight(double z, double scale);
-
 // The normal equations of the rows within the gate (infinity: every row); the rows beyond it are
-// zeroed (a zero row adds nothing). kernel_scale > 0: every row kept weighted by cauchyWeight.
-NormalEquations normalEquations(Linearisation& linearisation, const FrameDeviation* deviation, double gate,
-                                double kernel_scale = 0.0);
+// zeroed (a zero row adds nothing).
+NormalEquations normalEquations(Linearisation& linearisation, const FrameDeviation* deviation, double gate);
 
 }  // namespace uampc::lo
