@@ -174,11 +174,17 @@ TEST(Viewer, FoxgloveDecodesTheDefaultSceneAndTheRunsOutputsStayTheSame) {
 
 TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
   const std::string log = freshDirectory("viewer_lazy") + "/run.log";
-  const pid_t run = startLaunch(defaultScene(2, 16) + viewOptions(2), log);
+  // 1 MiB, not the default 32: the lazy client's queue passes it within seconds (the kernel's socket
+  // buffers fill first), so that the drops do not depend on how fast this machine casts.
+  const pid_t run = startLaunch(defaultScene(2, 16) + viewOptions(2) + " --view-max-queued-bytes-per-client 1MiB", log);
   const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
-  const json seen =
-      watch(url(2) + " --topics /lidar/points,/lo/local_map,/lo/registered,/world/points,/tf --lazy-client --until-closed");
+  // The bound reached the viewer (it says its bounds just after it serves).
+  EXPECT_TRUE(
+      waitFor([&] { return logHas(log, "1024 subscriptions and 1 MiB waiting per client"); }, std::chrono::seconds(5)))
+      << readFile(log);
+  const json seen = watch(
+      url(2) + " --topics /lidar/points,/lo/local_map,/lo/registered,/world/points,/tf --lazy-client --until-closed");
   ASSERT_EQ(exitCodeOf(run, kRunEnds), 0) << readFile(log);
   EXPECT_TRUE(seen["decode_errors"].empty());
   EXPECT_GT(seen["topics"]["/lidar/points"]["decoded"].get<int>(), 0);
@@ -192,7 +198,8 @@ TEST(Viewer, AClientThatNeverReadsLosesItsOwnMessagesOnly) {
 
 TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
   const std::string log = freshDirectory("viewer_bad_clients") + "/run.log";
-  const pid_t view = startUampc("view --domain " + std::to_string(domain(3)) + " --port " + std::to_string(port(3)), log);
+  const pid_t view =
+      startUampc("view --domain " + std::to_string(domain(3)) + " --port " + std::to_string(port(3)), log);
   const KilledIfStillRunning view_guard(view);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
 
@@ -219,7 +226,8 @@ TEST(Viewer, MisbehavingClientsGetErrorsThenTheDoorAndTheServerGoesOn) {
 
 TEST(Viewer, APortInUseIsAClearErrorBeforeAnythingStarts) {
   const std::string log = freshDirectory("viewer_port") + "/run.log";
-  const pid_t view = startUampc("view --domain " + std::to_string(domain(4)) + " --port " + std::to_string(port(4)), log);
+  const pid_t view =
+      startUampc("view --domain " + std::to_string(domain(4)) + " --port " + std::to_string(port(4)), log);
   const KilledIfStillRunning view_guard(view);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
   const std::string where = "cannot serve on 127.0.0.1:" + std::to_string(port(4));
@@ -229,8 +237,8 @@ TEST(Viewer, APortInUseIsAClearErrorBeforeAnythingStarts) {
   EXPECT_NE(launch.output.find(where), std::string::npos) << launch.output;
   EXPECT_NE(launch.output.find("nothing was started"), std::string::npos) << launch.output;
 
-  const CommandResult second = runUampc("view --domain " + std::to_string(domain(4)) + " --port " +
-                                        std::to_string(port(4)) + " --duration 1");
+  const CommandResult second =
+      runUampc("view --domain " + std::to_string(domain(4)) + " --port " + std::to_string(port(4)) + " --duration 1");
   EXPECT_EQ(second.exit_code, 1) << second.output;
   EXPECT_NE(second.output.find(where), std::string::npos) << second.output;
   kill(view, SIGTERM);
@@ -248,9 +256,9 @@ TEST(Viewer, APortInUseIsAClearErrorBeforeAnythingStarts) {
 
 TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
   const std::string recorded = freshDirectory("viewer_recording");
-  const CommandResult record = runUampc("launch " + sourcePath("config/scenes/record_default.yaml") +
-                                        " --set clock.duration=3 --set domain_id=" + std::to_string(domain(5)) +
-                                        " --out " + recorded);
+  const CommandResult record =
+      runUampc("launch " + sourcePath("config/scenes/record_default.yaml") +
+               " --set clock.duration=3 --set domain_id=" + std::to_string(domain(5)) + " --out " + recorded);
   ASSERT_EQ(record.exit_code, 0) << record.output;
   std::string file;
   for (const auto& entry : fs::directory_iterator(recorded)) {
@@ -260,9 +268,13 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
 
   const std::string log = freshDirectory("viewer_play") + "/run.log";
   const pid_t play = startUampc(
-      "play " + file + " --rate 2 --domain " + std::to_string(domain(5)) + viewOptions(5), log);
+      "play " + file + " --rate 2 --domain " + std::to_string(domain(5)) + viewOptions(5) + " --view-max-clients 2",
+      log);
   const KilledIfStillRunning play_guard(play);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
+  // The bound reached the viewer (it says its bounds just after it serves).
+  EXPECT_TRUE(waitFor([&] { return logHas(log, "uampc view: at most 2 clients"); }, std::chrono::seconds(5)))
+      << readFile(log);
   const json seen = watch(url(5) + " --topics /lidar/points,/lo/odometry --until-closed --duplicate-subscription");
   ASSERT_EQ(exitCodeOf(play, kRunEnds), 0) << readFile(log);
   EXPECT_TRUE(seen["decode_errors"].empty());

@@ -241,7 +241,7 @@ void addPlayCommand(CommandSet& commands) {
   CLI::App* sub = commands.add(
       "play",
       "uampc play FILE.mcap [--domain N] [--rate R] [--start S] [--topics TOPIC ...] [--loop]\n[--clock] "
-      "[--wait-for-readers] [--restamp] [--security DIR] [--view [--view-port P] [--view-address A]]",
+      "[--wait-for-readers] [--restamp] [--security DIR] [--view [--view-port P] [--view-address A] [--view-max-...]]",
       "Publish a recording's samples (MCAP as rosbag2 and uampc's recorder write it) with their recorded\n"
       "timing, in real time; prints the cost of each topic's publishing at the end. Inside a lockstep scene,\n"
       "use the player component instead (config/scenes/replay_lo.yaml).");

@@ -58,7 +58,7 @@ void addLaunch(CommandSet& commands) {
   CLI::App* sub = commands.add(
       "launch",
       "uampc launch SCENE.yaml [--set NAME=VALUE ...] [--out DIR [--overwrite]]\n"
-      "[--view [--view-port P] [--view-address A]]",
+      "[--view [--view-port P] [--view-address A] [--view-max-...]]",
       "Validate and run a scene. NAME is component.parameter, clock.key or a top-level key\n"
       "(seed, domain_id, ...). --out DIR collects the run's outputs, with DIR/scene.yaml (the\n"
       "resolved scene: launch it to run the same again) and DIR/run_info.json (scene, overrides,\n"

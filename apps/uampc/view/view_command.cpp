@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "cli/command_set.hpp"
 #include "topic/topic_discovery.hpp"
@@ -34,6 +35,41 @@ void reportClients(std::size_t& known, const foxglove::ServerStatistics& now) {
   known = now.clients;
 }
 
+// "32 MiB" for a whole number of MiB, else "N bytes".
+std::string byteCount(std::size_t bytes) {
+  constexpr std::size_t kMiB = std::size_t(1) << 20;
+  return bytes % kMiB == 0 ? std::to_string(bytes / kMiB) + " MiB" : std::to_string(bytes) + " bytes";
+}
+
+// The bounds on what clients cost, as --PREFIXmax-clients ...; a client over one is told in a status
+// error and disconnected. The defaults printed are the server's.
+std::vector<CLI::Option*> addLimitOptions(CLI::App* sub, const std::string& prefix, ViewerLimits& limits) {
+  const foxglove::ServerOptions defaults;
+  std::vector<CLI::Option*> added;
+  added.push_back(sub->add_option("--" + prefix + "max-clients", limits.max_clients,
+                                  "Clients served at once (default " + std::to_string(defaults.max_clients) +
+                                      "); one more is told so and disconnected.")
+                      ->check(CLI::Range(std::size_t(1), std::size_t(10000)))
+                      ->type_name("N"));
+  added.push_back(sub->add_option("--" + prefix + "max-subscriptions-per-client", limits.max_subscriptions_per_client,
+                                  "Subscriptions one client may hold (default " +
+                                      std::to_string(defaults.max_subscriptions_per_client) +
+                                      "); a client that asks for more is told so and\ndisconnected.")
+                      ->check(CLI::Range(std::size_t(1), std::size_t(1000000)))
+                      ->type_name("N"));
+  added.push_back(
+      sub->add_option(
+             "--" + prefix + "max-queued-bytes-per-client", limits.max_queued_bytes_per_client,
+             "Bytes one client may have waiting, in its queues and its socket together (default " +
+                 std::to_string(defaults.max_client_queued_bytes >> 20) +
+                 " MiB;\nsuffixes kB, MB, KiB, MiB, ...): beyond that its oldest messages are dropped, as for a\n"
+                 "client that reads too slowly; one message larger than that still goes, alone.")
+          ->transform(CLI::AsSizeValue(true))
+          ->check(CLI::Range(std::size_t(1) << 16, std::size_t(1) << 40))
+          ->type_name("B"));
+  return added;
+}
+
 }  // namespace
 
 std::string exposureWarning(const net::ListenAddress& address, int port) {
@@ -56,9 +92,14 @@ int viewCommand(const ViewOptions& options) {
     server_options.address = address->numeric;
     server_options.port = static_cast<std::uint16_t>(options.port);
     server_options.name = "uampc view (DDS domain " + std::to_string(domain) + ")";
-    server_options.max_clients = options.max_clients;
-    server_options.max_subscriptions_per_client = options.max_subscriptions_per_client;
-    server_options.max_client_queued_bytes = options.max_queued_bytes_per_client;
+    const ViewerLimits& limits = options.limits;
+    if (limits.max_clients > 0) server_options.max_clients = limits.max_clients;
+    if (limits.max_subscriptions_per_client > 0) {
+      server_options.max_subscriptions_per_client = limits.max_subscriptions_per_client;
+    }
+    if (limits.max_queued_bytes_per_client > 0) {
+      server_options.max_client_queued_bytes = limits.max_queued_bytes_per_client;
+    }
     foxglove::Server server(server_options);
     if (const std::string warning = exposureWarning(*address, server.port()); !warning.empty()) {
       std::cerr << warning << "\n";
@@ -67,6 +108,9 @@ int viewCommand(const ViewOptions& options) {
     TopicBridge bridge(discovery, server);
     std::cerr << "uampc view: serving DDS domain " << domain << " on " << net::webSocketUrl(*address, server.port())
               << " (Foxglove: Open connection; Ctrl-C stops)" << std::endl;
+    std::cerr << "uampc view: at most " << server_options.max_clients << " clients, "
+              << server_options.max_subscriptions_per_client << " subscriptions and "
+              << byteCount(server_options.max_client_queued_bytes) << " waiting per client\n";
     const auto started = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
     std::size_t clients = 0;
@@ -87,8 +131,8 @@ int viewCommand(const ViewOptions& options) {
 }
 
 void addViewerOptions(CLI::App* sub, ViewerOptions& o) {
-  sub->add_flag("--view", o.enabled,
-                "Serve the topics live to Foxglove (WebSocket, ws://127.0.0.1:8765; docs/user/viewing.md).");
+  CLI::Option* view = sub->add_flag(
+      "--view", o.enabled, "Serve the topics live to Foxglove (WebSocket, ws://127.0.0.1:8765; docs/user/viewing.md).");
   sub->add_option("--view-port", o.port, "The viewer's TCP port (default 8765).")
       ->check(CLI::Range(1, 65535))
       ->type_name("P");
@@ -97,6 +141,7 @@ void addViewerOptions(CLI::App* sub, ViewerOptions& o) {
                   "numbers, an IPv6 one, or localhost, refused before anything starts otherwise; another address\n"
                   "is warned about: anyone who reaches it sees every topic). A viewer that fails fails the run.")
       ->type_name("A");
+  for (CLI::Option* limit : addLimitOptions(sub, "view-", o.limits)) limit->needs(view);
 }
 
 void addViewCommand(CommandSet& commands) {
@@ -128,25 +173,7 @@ void addViewCommand(CommandSet& commands) {
   sub->add_option("--duration", o.duration_s, "Stop after S seconds (default: at Ctrl-C).")
       ->check(command_line::kFiniteNonNegative)
       ->type_name("S");
-  // The bounds on what clients cost; a client over one is told in a status error and disconnected.
-  sub->add_option("--max-clients", o.max_clients,
-                  "Clients served at once (default " + std::to_string(o.max_clients) +
-                      "); one more is told so and disconnected.")
-      ->check(CLI::Range(std::size_t(1), std::size_t(10000)))
-      ->type_name("N");
-  sub->add_option("--max-subscriptions-per-client", o.max_subscriptions_per_client,
-                  "Subscriptions one client may hold (default " + std::to_string(o.max_subscriptions_per_client) +
-                      "); a client that asks for more is told so and\ndisconnected.")
-      ->check(CLI::Range(std::size_t(1), std::size_t(1000000)))
-      ->type_name("N");
-  sub->add_option("--max-queued-bytes-per-client", o.max_queued_bytes_per_client,
-                  "Bytes one client may have waiting, in its queues and its socket together (default " +
-                      std::to_string(o.max_queued_bytes_per_client >> 20) +
-                      " MiB;\nsuffixes kB, MB, KiB, MiB, ...): beyond that its oldest messages are dropped, as for a\n"
-                      "client that reads too slowly; one message larger than that still goes, alone.")
-      ->transform(CLI::AsSizeValue(true))
-      ->check(CLI::Range(std::size_t(1) << 16, std::size_t(1) << 40))
-      ->type_name("B");
+  addLimitOptions(sub, "", o.limits);
   commands.onRun(sub, [options] { return viewCommand(*options); });
 }
 

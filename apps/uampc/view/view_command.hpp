@@ -8,7 +8,6 @@
 #include "uampc/listen_address/listen_address.hpp"
 #include "uampc/runtime/viewer_process.hpp"
 
-#include <cstddef>
 #include <string>
 
 namespace uampc::app {
@@ -19,10 +18,7 @@ struct ViewOptions {
   int port = 8765;
   std::string security_dir;  // a secured domain: DIR of uampc security init (its observer identity)
   double duration_s = 0.0;   // 0: until Ctrl-C or SIGTERM
-  // What clients may cost (docs/decisions/viewer-memory-bounds.md); the defaults are the server's.
-  std::size_t max_clients = foxglove::ServerOptions{}.max_clients;
-  std::size_t max_subscriptions_per_client = foxglove::ServerOptions{}.max_subscriptions_per_client;
-  std::size_t max_queued_bytes_per_client = foxglove::ServerOptions{}.max_client_queued_bytes;
+  ViewerLimits limits;       // 0 in a field: the server's default
 };
 
 // The warning for an address other than the loopback one; empty for a loopback address.
@@ -34,7 +30,8 @@ int viewCommand(const ViewOptions& options);
 
 // `uampc view` and its options.
 void addViewCommand(CommandSet& commands);
-// --view, --view-port and --view-address, for launch and play: a `uampc view` beside the run.
+// --view, --view-port, --view-address and --view-max-..., for launch and play: a `uampc view` beside
+// the run, with the bounds of `uampc view`.
 void addViewerOptions(CLI::App* sub, ViewerOptions& options);
 
 }  // namespace uampc::app

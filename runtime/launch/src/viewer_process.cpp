@@ -51,6 +51,14 @@ ViewerProcess::ViewerProcess(const ViewerOptions& options, int domain_id, const 
     command.argv.push_back("--security");
     command.argv.push_back(security_directory);
   }
+  const auto pass = [&command](const char* option, std::size_t value) {
+    if (value == 0) return;
+    command.argv.push_back(option);
+    command.argv.push_back(std::to_string(value));
+  };
+  pass("--max-clients", options.limits.max_clients);
+  pass("--max-subscriptions-per-client", options.limits.max_subscriptions_per_client);
+  pass("--max-queued-bytes-per-client", options.limits.max_queued_bytes_per_client);
   command.exec_failure_message = "uampc: exec of the viewer failed\n";
   child_.start(command);
 }

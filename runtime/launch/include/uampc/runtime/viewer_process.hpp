@@ -4,6 +4,7 @@
 // early, the run fails (docs/decisions/run-fails-with-its-viewer.md).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -11,10 +12,19 @@
 
 namespace uampc {
 
+// What the viewer's clients may cost (docs/decisions/viewer-memory-bounds.md); 0: the viewer's own
+// default, which `uampc view --help` prints.
+struct ViewerLimits {
+  std::size_t max_clients = 0;
+  std::size_t max_subscriptions_per_client = 0;
+  std::size_t max_queued_bytes_per_client = 0;
+};
+
 struct ViewerOptions {
   bool enabled = false;
   std::string address = "127.0.0.1";
   int port = 8765;
+  ViewerLimits limits;
 };
 
 // Why the viewer could not serve on its address and port (not an address as the viewer reads it,
@@ -24,7 +34,8 @@ std::string viewerAddressProblem(const ViewerOptions& options);
 
 class ViewerProcess {
  public:
-  // Starts `uampc view --domain D --address A --port P [--security DIR]` (this executable).
+  // Starts `uampc view --domain D --address A --port P [--security DIR]` (this executable), with
+  // the limits that are set.
   ViewerProcess(const ViewerOptions& options, int domain_id, const std::string& security_directory);
   ~ViewerProcess();  // SIGTERM, then SIGKILL if it has not ended within 3 s
   ViewerProcess(const ViewerProcess&) = delete;
