@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "lo_drive.hpp"
 #include "simulated_lidar.hpp"
 #include "uampc/evaluator/speed_error.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -40,33 +41,24 @@ LoDriveResult driveLo(const LoDrive& drive, const frames::MotorLidarCalibration&
   caster_config.seed = drive.seed;
   caster_config.point_radius = world.point_radius;
   raycaster::RayCaster caster(world.mesh, world.points, caster_config);
-  const double frame = caster.frameDuration();
   const double end = std::min(path.endTime() - 0.2, drive.seconds);
   const frames::MotorAngleTrack rotor = believedRotorTrack(drive.motor_speed, end + 1.0, truth, believed);
-  const auto base_at = [&path](double t) { return path.poseAt(t); };
-  const auto rotor_at = [&drive](double t) { return drive.motor_speed * t; };  // the truth's angle
+  tools::ReplaySettings frames;
+  frames.start = caster.frameDuration();  // from the second frame
+  frames.end = end;
+  frames.rotor_angle = [&drive](double t) { return drive.motor_speed * t; };  // the truth's angle
 
   lo::OdometryConfig config;
   config.calibration = believed;
-  lo::MotorizedLidarOdometry odometry;
-  bool started = false;
   evaluator::AbsoluteTrajectoryError ate;
   std::vector<evaluator::TimedPose> estimates, truths;
   LoDriveResult result;
-  for (std::uint64_t k = 1; (static_cast<double>(k) + 1.0) * frame <= end; ++k) {
-    const lo::Scan scan = tools::toOdometryScan(caster.castFrame(k, static_cast<double>(k) * frame, base_at, rotor_at));
-    if (!started) {
-      tools::startAtTruth(config, path, tools::scanEndTime(scan));
-      odometry = lo::MotorizedLidarOdometry(config);
-      started = true;
-    }
-    const lo::OdometryResult r = odometry.registerScan(scan, rotor);
-    const Eigen::Isometry3d T = path.poseAt(r.time);
-    ate.add(r.time, r.T_WB.translation(), T.translation());
-    estimates.push_back({r.time, r.T_WB});
-    truths.push_back({r.time, T});
+  tools::driveLo(caster, path, config, rotor, frames, [&](const tools::DrivenFrame& f) {
+    ate.add(f.result.time, f.result.T_WB.translation(), f.truth.translation());
+    estimates.push_back({f.result.time, f.result.T_WB});
+    truths.push_back({f.result.time, f.truth});
     ++result.frames;
-  }
+  });
   result.ate = ate.rmse();
   result.runaway_at = evaluator::speedError(estimates, truths).first_runaway_time;
   return result;

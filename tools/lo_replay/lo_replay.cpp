@@ -11,8 +11,8 @@
 // (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD scenes); for a
 // procedural world its generated path at 1.5 m/s; any of them as a point map with
 // world.point_map_resolution. Spins the motor at a constant speed, casts Mid-360 frames at 10 Hz
-// (exact ranges unless --set lidar.range_noise=M; the scenes have 2 cm), registers them, and prints per frame the rotation and
-// position error against ground truth, the estimated and true yaw rate, and the LO's figures
+// (exact ranges unless --set lidar.range_noise=M; the scenes have 2 cm), registers them, and prints per frame the
+// rotation and position error against ground truth, the estimated and true yaw rate, and the LO's figures
 // (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
 // degenerate directions of the 12-dimensional state; the weakest pose direction, rotation scaled
 // at 10 m); then a summary line (with the evaluator's runaway test, speed_error.hpp).
@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "lo_drive.hpp"
 #include "lo_parameters.hpp"
 #include "parameter_overrides.hpp"
 #include "scan_parameters.hpp"
@@ -66,9 +67,13 @@ int replay(int argc, char** argv) {
   int every = 1;
   std::vector<std::string> assignments;
   app.add_option("SOURCE", source, "an MCD trajectory (.csv), or corridor, multilevel or campus")->required();
-  app.add_option("--start", start, "s of the trajectory skipped")->check(command_line::kFiniteNonNegative)->capture_default_str();
+  app.add_option("--start", start, "s of the trajectory skipped")
+      ->check(command_line::kFiniteNonNegative)
+      ->capture_default_str();
   app.add_option("--duration", duration, "s replayed")->check(command_line::kFiniteNonNegative)->capture_default_str();
-  app.add_option("--motor", motor_speed, "constant motor speed, rad/s")->check(command_line::kFinite)->capture_default_str();
+  app.add_option("--motor", motor_speed, "constant motor speed, rad/s")
+      ->check(command_line::kFinite)
+      ->capture_default_str();
   app.add_option("--seed", seed, "the world's and the noise's seed")->capture_default_str();
   app.add_option("--every", every, "print every N-th frame (and every frame more than 1 degree off)")
       ->check(command_line::kPositiveCount)
@@ -117,38 +122,37 @@ int replay(int argc, char** argv) {
                                         [motor_speed](double t) { return motor_speed * t; },
                                         [motor_speed](double) { return motor_speed; }};
   std::uint64_t next_imu = imu.firstIndexAtOrAfter(std::max(0.0, start - 0.5) + raycaster::kImuStencilHalfWidth);
-  lo::MotorizedLidarOdometry odometry;  // replaced once the first frame's end is known
-  bool started = false;
+  tools::ReplaySettings replay;
+  replay.start = start;
+  replay.end = end;
+  replay.rotor_angle = [&motor](double t) { return *motor.thetaAt(t); };
+  if (use_imu) {
+    replay.before_frame = [&](double frame_end, lo::MotorizedLidarOdometry& odometry) {
+      for (; imu.sampleTime(next_imu) <= frame_end + 0.01; ++next_imu) {
+        const raycaster::ImuSample sample = imu.sample(next_imu, imu_motion);
+        odometry.addImu({sample.time, sample.angular_velocity, sample.linear_acceleration});
+      }
+    };
+  }
   double worst_position = 0.0, worst_rotation = 0.0, worst_speed = 0.0, lost_at = -1.0;
   double squared_position_sum = 0.0, registration_seconds = 0.0;  // for the RMS error and the LO's time
   std::size_t frames = 0, degenerate_frames = 0;  // registered frames, and those with a degenerate pose direction
-  std::size_t velocity_resets = 0;
-  std::vector<evaluator::TimedPose> estimates, truths;  // for the evaluator's runaway test
+  std::size_t velocity_resets = 0, map_voxels = 0, map_bytes = 0;  // the last, and the map's largest
+  std::vector<evaluator::TimedPose> estimates, truths;             // for the evaluator's runaway test
   Eigen::Isometry3d previous_estimate = Eigen::Isometry3d::Identity(), previous_truth = previous_estimate;
   std::printf(
       "#    t  rot_err  pos_err  w_est  w_true    pts  corr  min_eig  it  v_err  nd  weakest direction [rx ry rz x y "
       "z]  status\n");
   const char* debug_env = std::getenv("LO_REPLAY_DEBUG");  // read once, not per frame
   const double debug_from = debug_env ? tools::number("LO_REPLAY_DEBUG", debug_env) : INFINITY;
-  std::uint64_t k = static_cast<std::uint64_t>(std::llround(start / frame));
-  for (double t0 = k * frame; t0 + frame <= end; t0 = (++k) * frame) {
-    const lo::Scan scan = tools::toOdometryScan(caster.castFrame(k, t0, truth, motor));
-    if (!started) {
-      tools::startAtTruth(config, truth, tools::scanEndTime(scan));
-      odometry = lo::MotorizedLidarOdometry(config);
-      started = true;
-    }
-    for (; use_imu && imu.sampleTime(next_imu) <= t0 + frame + 0.01; ++next_imu) {
-      const raycaster::ImuSample sample = imu.sample(next_imu, imu_motion);
-      odometry.addImu({sample.time, sample.angular_velocity, sample.linear_acceleration});
-    }
-    const auto registration_start = std::chrono::steady_clock::now();
-    const lo::OdometryResult r = odometry.registerScan(scan, motor);
-    registration_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - registration_start).count();
+  tools::driveLo(caster, truth, config, motor, replay, [&](const tools::DrivenFrame& f) {
+    const lo::OdometryResult& r = f.result;
+    const Eigen::Isometry3d& T = f.truth;
+    registration_seconds += f.registration_seconds;
     ++frames;
+    map_voxels = std::max(map_voxels, f.odometry.localMap().size());
+    map_bytes = std::max(map_bytes, f.odometry.localMap().memoryBytes());
     if (r.degeneracy.degenerate_directions > 0) ++degenerate_frames;
-    const Eigen::Isometry3d T = truth.poseAt(r.time);
     const double rot_err = degrees(tools::rotationAngle(T.linear().transpose() * r.T_WB.linear()));
     const double pos_err = (T.translation() - r.T_WB.translation()).norm();
     const double w_est =
@@ -175,7 +179,7 @@ int replay(int argc, char** argv) {
                   e(1), e(2), e(3), e(4), e(5), r.angular_velocity_B.x(), r.angular_velocity_B.y(),
                   r.angular_velocity_B.z(), std::sqrt(r.covariance(11, 11)), degrees(std::sqrt(r.covariance(2, 2))));
     }
-    if (k % static_cast<std::uint64_t>(every) == 0 || rot_err > 1.0) {
+    if (f.index % static_cast<std::uint64_t>(every) == 0 || rot_err > 1.0) {
       const auto weakest = r.degeneracy.eigenvectors.col(0);
       std::printf(
           "%6.2f %7.2f %8.3f %6.1f %6.1f %6zu %5zu %8.1f %3d %6.2f %3d  [%5.2f %5.2f %5.2f %5.2f %5.2f %5.2f]  %s\n",
@@ -183,17 +187,19 @@ int replay(int argc, char** argv) {
           r.iterations, v_err, r.degenerate_state_directions, weakest(0), weakest(1), weakest(2), weakest(3),
           weakest(4), weakest(5), lo::toString(r.status));
     }
-  }
+  });
   const evaluator::SpeedErrorReport runaway = evaluator::speedError(estimates, truths);
   std::printf(
       "summary: %s %.0f-%.0f s: worst rotation %.2f deg, worst position %.3f m, worst speed error %.2f m/s, lost at "
       "%s, runaway at %s (the evaluator's test: speed over 1 s off by more than 1 m/s; worst %.2f m/s), velocity "
-      "resets %zu, degenerate frames %zu of %zu, RMS position %.3f m, LO %.2f ms per frame\n",
+      "resets %zu, degenerate frames %zu of %zu, RMS position %.3f m, LO %.2f ms per frame, map at most %zu voxels "
+      "(%.1f MB)\n",
       source.c_str(), start, end, worst_rotation, worst_position, worst_speed,
       lost_at < 0 ? "never" : std::to_string(lost_at).c_str(),
       runaway.first_runaway_time ? std::to_string(*runaway.first_runaway_time).c_str() : "never", runaway.max,
       velocity_resets, degenerate_frames, frames,
       frames > 0 ? std::sqrt(squared_position_sum / static_cast<double>(frames)) : 0.0,
-      frames > 0 ? 1e3 * registration_seconds / static_cast<double>(frames) : 0.0);
+      frames > 0 ? 1e3 * registration_seconds / static_cast<double>(frames) : 0.0, map_voxels,
+      static_cast<double>(map_bytes) / 1e6);
   return 0;
 }
