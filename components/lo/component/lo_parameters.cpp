@@ -91,10 +91,13 @@ void bindLoParameters(ParameterBinding& b, lo::OdometryConfig& c) {
                "use_imu: the unit of the IMU's acceleration: 'm/s^2' as sensor_msgs/Imu says, 'g' as "
                "livox_ros_driver2 publishes it, 'auto' told apart by the first 50 readings' mean (about 1 or 9.8)");
   b.bindChoice("association_gate", c.association_gate,
-               {{"residual", lo::AssociationGate::kResidual}, {"range_scaled", lo::AssociationGate::kRangeScaled}},
+               {{"residual", lo::AssociationGate::kResidual},
+                {"range_scaled", lo::AssociationGate::kRangeScaled},
+                {"model_deviation", lo::AssociationGate::kModelDeviation}},
                "which correspondences register: 'residual', all until converged, then within 3 robust standard "
                "deviations; 'range_scaled', FAST-LIO2's and I2EKF-LO's 1 - 0.9 |residual| / sqrt(range) > 0.9 at "
-               "every association");
+               "every association; 'model_deviation', as 'residual' with the gate 3 times the motion model's RMS "
+               "deviation (KISS-ICP's adaptive threshold)");
   b.bind("match_seen_side_only", c.match_seen_side_only,
          "match a map plane only from the side its points were seen from (docs/decisions/lo-seen-side-planes.md; "
          "I2EKF-LO has no such check)");

@@ -339,6 +339,8 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     // set of residuals.
     if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kResidual)
       gate = residualGate(linearisation.z, options.min_residual_gate);
+    if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kModelDeviation)
+      gate = std::max(options.min_residual_gate, options.model_deviation_gate);
     NormalEquations normal = normalEquations(linearisation, frame, gate);
     summary.correspondences = normal.used;
     if (normal.used < options.min_correspondences) break;

@@ -262,6 +262,7 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
     // it, an open field's unobservable directions took up the noise: 0.10 -> 0.23 m, measured in
     // degenerate_geometry_test.)
     if (result.inertial_prediction) options.frame_velocity_std_linear = options.frame_velocity_std_angular = 0.0;
+    options.model_deviation_gate = modelDeviationGate();
     summary = filter_->update(keypoints, map_, options);
   }
   result.correspondences = summary.correspondences;
@@ -281,12 +282,27 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
     if (velocityResets(result)) resetVelocityAfterRejection(before_prediction, dt, result);
   }
   if (summary.applied) {
+    countModelDeviation(predicted.state(), filter_->state());
     last_accepted_time_ = end_time;
     accepted_poses_.add(end_time, filter_->state());
     last_accepted_.emplace(*filter_);
   }
   result.rejected_updates = rejected_updates_;
   return summary;
+}
+
+void MotorizedLidarOdometry::countModelDeviation(const BaseState& predicted, const BaseState& updated) {
+  const double theta = Eigen::AngleAxisd(predicted.R_WB.transpose() * updated.R_WB).angle();
+  const double delta = (updated.r_WB - predicted.r_WB).norm() + 2.0 * config_.max_range * std::sin(0.5 * theta);
+  if (delta <= 0.1) return;
+  model_deviation_sse_ += delta * delta;
+  ++model_deviations_;
+}
+
+double MotorizedLidarOdometry::modelDeviationGate() const {
+  const double sigma =
+      model_deviations_ == 0 ? 2.0 : std::sqrt(model_deviation_sse_ / static_cast<double>(model_deviations_));
+  return 3.0 * sigma;
 }
 
 void MotorizedLidarOdometry::resetVelocityAfterRejection(const IteratedEkf& before_prediction, double dt,

@@ -71,8 +71,9 @@ namespace uampc::lo {
 // converge, then those within the residual gate below. kRangeScaled (FAST-LIO2's and I2EKF-LO's,
 // laserMapping.cpp): at every association, a plane only if s = 1 - 0.9 |z| / sqrt(|p|) > 0.9,
 // |z| the point's residual and |p| its range, so a far point may lie farther off its plane; no
-// residual gate.
-enum class AssociationGate { kResidual, kRangeScaled };
+// residual gate. kModelDeviation: as kResidual, with the gate from how far the motion model's
+// predictions were off (KISS-ICP's adaptive threshold, MotorizedLidarOdometry sets it).
+enum class AssociationGate { kResidual, kRangeScaled, kModelDeviation };
 
 struct UpdateOptions {
   std::size_t nearest_neighbours = 5;
@@ -91,6 +92,8 @@ struct UpdateOptions {
   AssociationGate association_gate = AssociationGate::kResidual;
   // kResidual: residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
   double min_residual_gate = 0.05;  // m
+  // kModelDeviation: the gate (m), at least min_residual_gate.
+  double model_deviation_gate = 2.0;
   // Skip a plane whose map points were mostly seen from its other side (see the header).
   bool match_seen_side_only = true;
   // Degeneracy (degeneracy.hpp): directions whose scaled information eigenvalue (an effective

@@ -265,6 +265,11 @@ class MotorizedLidarOdometry {
   std::size_t registrationBudget(std::size_t downsampled_points) const;
   void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
   void fillState(OdometryResult& result) const;
+  // KISS-ICP (Vizzo et al. 2023, Sec. III-C): delta = |t| + 2 r_max sin(theta / 2) between the
+  // predicted and the updated pose, counted above 0.1 m; the gate is 3 sigma, sigma =
+  // sqrt(mean delta^2), 2 m before the first.
+  void countModelDeviation(const BaseState& predicted, const BaseState& updated);
+  double modelDeviationGate() const;
   // Whether the update from predicted to updated needs an acceleration beyond the configured ones.
   bool implausibleMotion(const IteratedEkf& predicted, const BaseState& updated, double dt) const;
 
@@ -281,6 +286,10 @@ class MotorizedLidarOdometry {
   AcceptedPoses accepted_poses_;
   std::optional<IteratedEkf> last_accepted_;  // the filter after the last accepted registration
   bool lost_ = false;                         // the previous frame was lost
+  // KISS-ICP's adaptive threshold (AssociationGate::kModelDeviation): the sum of the squared
+  // deviations of the accepted updates from their predictions, and how many were counted.
+  double model_deviation_sse_ = 0.0;
+  std::size_t model_deviations_ = 0;
   std::size_t velocity_resets_ = 0;
   std::deque<ImuReading> imu_;
 };
