@@ -264,21 +264,31 @@ TEST(IteratedEkf, MatchesAPlaneOnlyFromTheSideItWasSeenFrom) {
   EXPECT_GT(correspondencesFrom(-1.0, 0.0, true), 250u);  // underside from below: matched
 }
 
+// A floor of map points at z = 0 over (2 half_x + 1) x (2 half_y + 1) voxels of 0.3 m, seen from
+// above; and a filter whose sensor stands 1 m above it, its state held by a tiny covariance.
+LocalMap floorMap(int half_x, int half_y) {
+  LocalMap map(0.3, 1000.0);
+  std::vector<Eigen::Vector3d> floor;
+  for (int i = -half_x; i <= half_x; ++i) {
+    for (int j = -half_y; j <= half_y; ++j) floor.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
+  }
+  map.insert(floor, 0.0, Eigen::Vector3d(0.0, 0.0, 2.0));
+  return map;
+}
+
+IteratedEkf filterAboveTheFloor() {
+  BaseState x;
+  x.r_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
+  return IteratedEkf(x, Matrix12d::Identity() * 1e-12);
+}
+
 // FAST-LIO2's range-scaled gate (I2EKF-LO's): a point 0.2 m off a plane is kept at 25 m
 // (1 - 0.9 * 0.2 / 5 = 0.964 > 0.9) and dropped at 1 m (0.82); the residual gate keeps both until
 // the iterations converge. A plane of map points at z = 0, the points 0.2 m above it.
 TEST(IteratedEkf, TheRangeScaledGateKeepsFarPointsFartherOffTheirPlane) {
-  LocalMap map(0.3, 1000.0);
-  std::vector<Eigen::Vector3d> floor;
-  for (int i = -120; i <= 120; ++i) {
-    for (int j = -10; j <= 10; ++j) floor.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
-  }
-  map.insert(floor, 0.0, Eigen::Vector3d(0.0, 0.0, 2.0));
+  const LocalMap map = floorMap(120, 10);
   const auto correspondencesAt = [&](double distance, AssociationGate gate) {
-    BaseState x;  // the sensor 1 m above the plane, seen from above as the map was
-    x.r_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
-    Matrix12d P = Matrix12d::Identity() * 1e-12;
-    IteratedEkf filter(x, P);
+    IteratedEkf filter = filterAboveTheFloor();
     std::vector<TimedPoint> scan;
     for (int i = 0; i < 40; ++i) scan.push_back({Eigen::Vector3d(distance, 0.05 * (i - 20), -0.8), 0.0});
     UpdateOptions options;
@@ -296,16 +306,9 @@ TEST(IteratedEkf, TheRangeScaledGateKeepsFarPointsFartherOffTheirPlane) {
 // beyond the gate the odometry hands in are left out, however the residuals spread. A floor of map
 // points at z = 0; 200 scan points on it and 40 that lie 0.2 m above it.
 TEST(IteratedEkf, TheModelDeviationGateLeavesOutWhatLiesBeyondIt) {
-  LocalMap map(0.3, 1000.0);
-  std::vector<Eigen::Vector3d> floor;
-  for (int i = -20; i <= 20; ++i) {
-    for (int j = -20; j <= 20; ++j) floor.emplace_back(0.3 * i + 0.15, 0.3 * j + 0.15, 0.0);
-  }
-  map.insert(floor, 0.0, Eigen::Vector3d(0.0, 0.0, 2.0));
+  const LocalMap map = floorMap(20, 20);
   const auto correspondencesWith = [&](AssociationGate gate, double model_deviation_gate) {
-    BaseState x;  // the sensor 1 m above the floor, as the map was seen
-    x.r_WB = Eigen::Vector3d(0.0, 0.0, 1.0);
-    IteratedEkf filter(x, Matrix12d::Identity() * 1e-12);
+    IteratedEkf filter = filterAboveTheFloor();
     std::vector<TimedPoint> scan;
     for (int i = 0; i < 200; ++i)
       scan.push_back({Eigen::Vector3d(0.1 * (i % 20) - 1.0, 0.1 * (i / 20) - 0.5, -1.0), 0.0});
