@@ -400,12 +400,23 @@ TEST(Derotation, DropsAndCountsNonFiniteAndOutOfTrackPoints) {
   EXPECT_THROW(derotate(bad, motor, lidar.calibration, 0.1, 100.0), std::invalid_argument);
 }
 
-TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
+// With either residual gate: 3 robust standard deviations, or the motion model's deviation (which
+// starts wide, at 6 m, and follows the predictions' deviations from there). The wider gate keeps
+// more of the feature room's wrong planes: its worst frame turns 0.11 degrees off where the
+// residual gate's turns 0.035, as on the meshes (docs/results/lo-robustness.md).
+struct GateCase {
+  AssociationGate gate;
+  double worst_rotation_deg;  // per frame
+};
+class KnownMotion : public ::testing::TestWithParam<GateCase> {};
+
+TEST_P(KnownMotion, IsRecoveredFrameByFrame) {
   const sim::World world = sim::featureRoom();
   const sim::LidarModel lidar;
   const sim::Trajectory truth = featureRoomWeave();
   OdometryConfig config;
   config.initial_pose = truth(0.0);
+  config.association_gate = GetParam().gate;
   MotorizedLidarOdometry odometry(config);
   Eigen::Isometry3d previous_estimate, previous_truth;
   double worst_rotation = 0.0, worst_translation = 0.0, min_eigenvalue = 1e30;
@@ -428,7 +439,7 @@ TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
                 previous_estimate = result.T_WB;
                 previous_truth = T_true;
               });
-  EXPECT_LT(worst_rotation, 0.1 * kDegree);
+  EXPECT_LT(worst_rotation, GetParam().worst_rotation_deg * kDegree);
   EXPECT_LT(worst_translation, 0.01);
   EXPECT_GT(min_eigenvalue, config.degeneracy_threshold);
   const Eigen::Isometry3d final_error = truth(3.99).inverse() * previous_estimate;
@@ -438,24 +449,9 @@ TEST(MotorizedLidarOdometry, RecoversKnownMotionFrameByFrame) {
       worst_rotation / kDegree, worst_translation, final_error.translation().norm(), min_eigenvalue);
 }
 
-// With the model-deviation gate the odometry still recovers the known motion (the gate starts
-// wide, 6 m, and follows the predictions' deviations from there).
-TEST(MotorizedLidarOdometry, RecoversKnownMotionWithTheModelDeviationGate) {
-  const sim::World world = sim::featureRoom();
-  const sim::LidarModel lidar;
-  const sim::Trajectory truth = featureRoomWeave();
-  OdometryConfig config;
-  config.initial_pose = truth(0.0);
-  config.association_gate = AssociationGate::kModelDeviation;
-  MotorizedLidarOdometry odometry(config);
-  double worst_position = 0.0;
-  runOdometry(odometry, world, truth, lidar, 40,
-              [&](int k, const OdometryResult& result, const Eigen::Isometry3d& T_true) {
-                if (k > 0) EXPECT_EQ(result.status, OdometryStatus::kTracking) << result.warning;
-                worst_position = std::max(worst_position, (result.T_WB.translation() - T_true.translation()).norm());
-              });
-  EXPECT_LT(worst_position, 0.02);
-}
+INSTANTIATE_TEST_SUITE_P(MotorizedLidarOdometry, KnownMotion,
+                         ::testing::Values(GateCase{AssociationGate::kResidual, 0.1},
+                                           GateCase{AssociationGate::kModelDeviation, 0.15}));
 
 // With a registration budget each frame registers that many points (the map still takes them all),
 // the known motion is still recovered, and the degeneracy figure still counts the scan's points
