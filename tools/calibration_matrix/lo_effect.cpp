@@ -43,17 +43,17 @@ LoDriveResult driveLo(const LoDrive& drive, const frames::MotorLidarCalibration&
   raycaster::RayCaster caster(world.mesh, world.points, caster_config);
   const double end = std::min(path.endTime() - 0.2, drive.seconds);
   const frames::MotorAngleTrack rotor = believedRotorTrack(drive.motor_speed, end + 1.0, truth, believed);
-  tools::ReplaySettings frames;
-  frames.start = caster.frameDuration();  // from the second frame
-  frames.end = end;
-  frames.rotor_angle = [&drive](double t) { return drive.motor_speed * t; };  // the truth's angle
+  tools::ReplaySettings replay;
+  replay.start = caster.frameDuration();  // from the second frame
+  replay.end = end;
+  replay.rotor_angle = [&drive](double t) { return drive.motor_speed * t; };  // the truth's angle
 
   lo::OdometryConfig config;
   config.calibration = believed;
   evaluator::AbsoluteTrajectoryError ate;
   std::vector<evaluator::TimedPose> estimates, truths;
   LoDriveResult result;
-  tools::driveLo(caster, path, config, rotor, frames, [&](const tools::DrivenFrame& f) {
+  tools::driveLo(caster, path, config, rotor, replay, [&](const tools::DrivenFrame& f) {
     ate.add(f.result.time, f.result.T_WB.translation(), f.truth.translation());
     estimates.push_back({f.result.time, f.result.T_WB});
     truths.push_back({f.result.time, f.truth});

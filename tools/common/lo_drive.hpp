@@ -17,7 +17,6 @@ namespace uampc::tools {
 // One frame the LO registered, with the ground truth at the time its pose refers to.
 struct DrivenFrame {
   std::uint64_t index = 0;  // the raycaster's frame number
-  double start = 0.0;       // s, the frame's first ray
   const lo::OdometryResult& result;
   const lo::MotorizedLidarOdometry& odometry;  // after the frame: its map, for instance
   Eigen::Isometry3d truth;

@@ -182,6 +182,20 @@ double residualGate(const Eigen::VectorXd& z, double min_gate) {
   return std::max(min_gate, 3.0 * 1.4826 * *middle);
 }
 
+// The gate of the gated iterations: the residuals' own (above), the one the odometry handed in
+// (kModelDeviation), or none (kRangeScaled gates at association already).
+double gateFor(const UpdateOptions& options, const Eigen::VectorXd& z) {
+  switch (options.association_gate) {
+    case AssociationGate::kResidual:
+      return residualGate(z, options.min_residual_gate);
+    case AssociationGate::kModelDeviation:
+      return std::max(options.min_residual_gate, options.model_deviation_gate);
+    case AssociationGate::kRangeScaled:
+      break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 // What the planes' own noise adds to the unit-weight information H^T H of the state (12x12).
 // A row is J_i = A_i n_i, linear in the plane's normal (A_i: 12x3, below). A normal fitted to a few
 // noisy map points is tilted at random, n = n_true + dn with E[dn dn^T] = sigma^2 C_i (C_i:
@@ -337,10 +351,7 @@ UpdateSummary IteratedEkf::update(const std::vector<TimedPoint>& points, const L
     linearise(correspondences, x, frame, linearisation);
     // The gate is set once, when the gated iterations start, so that they converge on a fixed
     // set of residuals.
-    if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kResidual)
-      gate = residualGate(linearisation.z, options.min_residual_gate);
-    if (gated && !std::isfinite(gate) && options.association_gate == AssociationGate::kModelDeviation)
-      gate = std::max(options.min_residual_gate, options.model_deviation_gate);
+    if (gated && !std::isfinite(gate)) gate = gateFor(options, linearisation.z);
     NormalEquations normal = normalEquations(linearisation, frame, gate);
     summary.correspondences = normal.used;
     if (normal.used < options.min_correspondences) break;

@@ -292,6 +292,7 @@ UpdateSummary MotorizedLidarOdometry::correct(const std::vector<TimedPoint>& key
 }
 
 void MotorizedLidarOdometry::countModelDeviation(const BaseState& predicted, const BaseState& updated) {
+  if (config_.association_gate != AssociationGate::kModelDeviation) return;
   const double theta = Eigen::AngleAxisd(predicted.R_WB.transpose() * updated.R_WB).angle();
   const double delta = (updated.r_WB - predicted.r_WB).norm() + 2.0 * config_.max_range * std::sin(0.5 * theta);
   if (delta <= 0.1) return;
@@ -300,9 +301,8 @@ void MotorizedLidarOdometry::countModelDeviation(const BaseState& predicted, con
 }
 
 double MotorizedLidarOdometry::modelDeviationGate() const {
-  const double sigma =
-      model_deviations_ == 0 ? 2.0 : std::sqrt(model_deviation_sse_ / static_cast<double>(model_deviations_));
-  return 3.0 * sigma;
+  if (model_deviations_ == 0) return UpdateOptions{}.model_deviation_gate;
+  return 3.0 * std::sqrt(model_deviation_sse_ / static_cast<double>(model_deviations_));
 }
 
 void MotorizedLidarOdometry::resetVelocityAfterRejection(const IteratedEkf& before_prediction, double dt,

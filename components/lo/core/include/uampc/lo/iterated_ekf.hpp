@@ -92,8 +92,9 @@ struct UpdateOptions {
   AssociationGate association_gate = AssociationGate::kResidual;
   // kResidual: residuals beyond max(min_residual_gate, 3 robust standard deviations) are left out.
   double min_residual_gate = 0.05;  // m
-  // kModelDeviation: the gate (m), at least min_residual_gate.
-  double model_deviation_gate = 2.0;
+  // kModelDeviation: the gate (m), at least min_residual_gate; by default KISS-ICP's start, 3 x its
+  // initial 2 m, which MotorizedLidarOdometry keeps until a deviation is counted.
+  double model_deviation_gate = 6.0;
   // Skip a plane whose map points were mostly seen from its other side (see the header).
   bool match_seen_side_only = true;
   // Degeneracy (degeneracy.hpp): directions whose scaled information eigenvalue (an effective

@@ -266,8 +266,8 @@ class MotorizedLidarOdometry {
   void reportStatus(const UpdateSummary& summary, bool no_keypoints, double end_time, OdometryResult& result) const;
   void fillState(OdometryResult& result) const;
   // KISS-ICP (Vizzo et al. 2023, Sec. III-C): delta = |t| + 2 r_max sin(theta / 2) between the
-  // predicted and the updated pose, counted above 0.1 m; the gate is 3 sigma, sigma =
-  // sqrt(mean delta^2), 2 m before the first.
+  // predicted and the updated pose, counted above 0.1 m (with that gate only); the gate is 3 sigma,
+  // sigma = sqrt(mean delta^2), and UpdateOptions' default 6 m before the first.
   void countModelDeviation(const BaseState& predicted, const BaseState& updated);
   double modelDeviationGate() const;
   // Whether the update from predicted to updated needs an acceleration beyond the configured ones.
