@@ -2,7 +2,7 @@
 // LO on a trajectory quickly (a development tool: the scenes run the real components over DDS).
 //
 //   lo_replay (TRAJECTORY.csv | corridor | multilevel | campus) [--start S] [--duration S]
-//             [--motor RAD_PER_S] [--seed N] [--every N] [--set GROUP.NAME=VALUE ...]
+//             [--motor RAD_PER_S] [--lidar MODEL] [--seed N] [--every N] [--set GROUP.NAME=VALUE ...]
 //
 // --set takes the components' own parameters, with their defaults and bounds (uampc components
 // lists them): lo.* the LO's (lo_parameters.hpp), world.* map_provider's world and trajectory
@@ -10,7 +10,7 @@
 // map_provider does (world::buildWorld): for an MCD trajectory the world generated around it
 // (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD scenes); for a
 // procedural world its generated path at 1.5 m/s; any of them as a point map with
-// world.point_map_resolution. Spins the motor at a constant speed, casts Mid-360 frames at 10 Hz
+// world.point_map_resolution. Spins the motor at a constant speed, casts the LiDAR's frames (--lidar; the Mid-360's by default)
 // (exact ranges unless --set lidar.range_noise=M; the scenes have 2 cm), registers them, and prints per frame the
 // rotation and position error against ground truth, the estimated and true yaw rate, and the LO's figures
 // (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
@@ -38,6 +38,7 @@
 #include "tool_main.hpp"
 #include "uampc/command_line/finite_number.hpp"
 #include "uampc/evaluator/speed_error.hpp"
+#include "uampc/lidar/lidar_model.hpp"
 #include "uampc/lo/motorized_lidar_odometry.hpp"
 #include "uampc/raycaster/imu_simulator.hpp"
 #include "uampc/raycaster/ray_caster.hpp"
@@ -65,6 +66,7 @@ int replay(int argc, char** argv) {
   double start = 0.0, duration = 30.0, motor_speed = 3.6;
   std::uint64_t seed = 1;
   int every = 1;
+  std::string lidar_name = "livox_mid360";
   std::vector<std::string> assignments;
   app.add_option("SOURCE", source, "an MCD trajectory (.csv), or corridor, multilevel or campus")->required();
   app.add_option("--start", start, "s of the trajectory skipped")
@@ -73,6 +75,9 @@ int replay(int argc, char** argv) {
   app.add_option("--duration", duration, "s replayed")->check(command_line::kFiniteNonNegative)->capture_default_str();
   app.add_option("--motor", motor_speed, "constant motor speed, rad/s")
       ->check(command_line::kFinite)
+      ->capture_default_str();
+  app.add_option("--lidar", lidar_name, "the LiDAR model on the motor, as a scene's rig.lidar_model")
+      ->check(CLI::IsMember({"livox_mid360", "livox_avia", "velodyne_vlp16"}))
       ->capture_default_str();
   app.add_option("--seed", seed, "the world's and the noise's seed")->capture_default_str();
   app.add_option("--every", every, "print every N-th frame (and every frame more than 1 degree off)")
@@ -91,6 +96,7 @@ int replay(int argc, char** argv) {
   settings.seed = seed;
   lo::OdometryConfig config;
   raycaster::RayCasterConfig caster_config;  // exact casts unless --set lidar.range_noise=M (scenes: 0.02)
+  caster_config.model = lidar::lidarModelByName(lidar_name);
   try {
     tools::ParameterOverrides set(assignments);
     set.apply("lo", bindLoParameters, config);
