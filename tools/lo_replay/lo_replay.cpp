@@ -10,7 +10,8 @@
 // map_provider does (world::buildWorld): for an MCD trajectory the world generated around it
 // (attitude turned z-up, 0.5 s smoothing, smooth interpolation, as the MCD scenes); for a
 // procedural world its generated path at 1.5 m/s; any of them as a point map with
-// world.point_map_resolution. Spins the motor at a constant speed, casts the LiDAR's frames (--lidar; the Mid-360's by default)
+// world.point_map_resolution. Spins the motor at a constant speed, casts the frames of the LiDAR model
+// (--lidar, as a scene's rig.lidar_model; the Mid-360 by default) with the reference rig's tilt
 // (exact ranges unless --set lidar.range_noise=M; the scenes have 2 cm), registers them, and prints per frame the
 // rotation and position error against ground truth, the estimated and true yaw rate, and the LO's figures
 // (`pts`: points the LO kept after its downsampling; `v_err`: the velocity's error, m/s; `nd`:
@@ -116,6 +117,8 @@ int replay(int argc, char** argv) {
   caster_config.seed = settings.seed;
   caster_config.point_radius = world.point_radius;
   raycaster::RayCaster caster(world.mesh, world.points, caster_config);
+  std::printf("# lidar: %s, %.0f points per second at %.0f Hz\n", caster_config.model.name.c_str(),
+              caster_config.model.points_per_second, caster_config.model.frame_rate_hz);
 
   const double frame = caster.frameDuration();
   const double end = std::min(truth.endTime() - 0.2, start + duration);
