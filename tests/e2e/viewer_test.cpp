@@ -292,11 +292,13 @@ TEST(Viewer, PlayServesARecordingFromWhenAClientSubscribes) {
 // serves, are each told in a status error and disconnected; the others are served on.
 TEST(Viewer, ClientsOverTheViewersBoundsAreToldAndDisconnected) {
   const std::string log = freshDirectory("viewer_bounds") + "/run.log";
-  const pid_t run = startLaunch(defaultScene(6, 20) + viewOptions(6), log);
+  // Each client ends as soon as the viewer closes it; the windows and the run are long enough for a
+  // machine busy with other tests, where the first channels took more than 10 s to be advertised.
+  const pid_t run = startLaunch(defaultScene(6, 40) + viewOptions(6), log);
   const KilledIfStillRunning run_guard(run);
   ASSERT_TRUE(waitUntilServing(log)) << readFile(log);
 
-  const json greedy = watch(url(6) + " --topics /tf --subscriptions-per-topic 1025 --seconds 10");
+  const json greedy = watch(url(6) + " --topics /tf --subscriptions-per-topic 1025 --seconds 20");
   EXPECT_TRUE(greedy["closed_by_server"].get<bool>()) << greedy.dump();
   ASSERT_EQ(greedy["statuses"].size(), 1u) << greedy.dump();
   EXPECT_EQ(greedy["statuses"][0]["level"], 2);
@@ -305,7 +307,7 @@ TEST(Viewer, ClientsOverTheViewersBoundsAreToldAndDisconnected) {
   EXPECT_FALSE(greedy["topics"].contains("/tf")) << "nothing was served to it";
 
   // 16 clients connected and staying: the 17th is one too many.
-  const json one_more = watch(url(6) + " --topics /tf --hold-clients 16 --seconds 10");
+  const json one_more = watch(url(6) + " --topics /tf --hold-clients 16 --seconds 20");
   EXPECT_TRUE(one_more["closed_by_server"].get<bool>()) << one_more.dump();
   ASSERT_EQ(one_more["statuses"].size(), 1u) << one_more.dump();
   EXPECT_EQ(one_more["statuses"][0]["level"], 2);
