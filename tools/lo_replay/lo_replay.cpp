@@ -85,7 +85,7 @@ std::optional<int> parseArguments(int argc, char** argv, ReplayArguments& argume
       ->check(command_line::kFinite)
       ->capture_default_str();
   app.add_option("--lidar", lidar_name, "the LiDAR model on the motor, as a scene's rig.lidar_model")
-      ->check(CLI::IsMember({"livox_mid360", "livox_avia", "velodyne_vlp16"}))
+      ->check(CLI::IsMember(lidar::namedLidarModels()))
       ->capture_default_str();
   app.add_option("--seed", a.seed, "the world's and the noise's seed")->capture_default_str();
   app.add_option("--every", a.every, "print every N-th frame (and every frame more than 1 degree off)")

@@ -37,8 +37,11 @@ void declareRigParameters(ComponentSpec& spec) {
 }
 
 void declareLidarModelParameters(ComponentSpec& spec) {
-  spec.param("lidar_model", "livox_mid360", "LiDAR model: livox_mid360, velodyne_vlp16, livox_avia or spinning")
-      .oneOf({"livox_mid360", "velodyne_vlp16", "livox_avia", "spinning"})
+  std::vector<std::string> models = lidar::namedLidarModels();
+  models.emplace_back("spinning");
+  spec.param("lidar_model", "livox_mid360",
+             "LiDAR model: one known by name, or spinning (any spinning LiDAR, the lidar_* parameters below)")
+      .oneOf(models)
       .partOfRig();
   spec.param("lidar_elevations_deg", std::vector<double>{-15, -13, -11, -9, -7, -5, -3, -1, 1, 3, 5, 7, 9, 11, 13, 15},
              "lidar_model spinning: the beam elevations, degrees")

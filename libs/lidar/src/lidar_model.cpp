@@ -52,12 +52,30 @@ LidarModel livoxAvia() {
   return m;
 }
 
+namespace {
+
+struct NamedModel {
+  const char* name;
+  LidarModel (*make)();
+};
+const NamedModel kNamedModels[] = {
+    {"livox_mid360", livoxMid360}, {"velodyne_vlp16", velodyneVlp16}, {"livox_avia", livoxAvia}};
+
+}  // namespace
+
+std::vector<std::string> namedLidarModels() {
+  std::vector<std::string> names;
+  for (const NamedModel& model : kNamedModels) names.emplace_back(model.name);
+  return names;
+}
+
 LidarModel lidarModelByName(const std::string& name) {
-  if (name == "livox_mid360") return livoxMid360();
-  if (name == "velodyne_vlp16") return velodyneVlp16();
-  if (name == "livox_avia") return livoxAvia();
-  throw std::invalid_argument("unknown LiDAR model '" + name +
-                              "' (expected livox_mid360, velodyne_vlp16 or livox_avia)");
+  for (const NamedModel& model : kNamedModels) {
+    if (name == model.name) return model.make();
+  }
+  std::string expected;
+  for (const NamedModel& model : kNamedModels) expected += (expected.empty() ? "" : ", ") + std::string(model.name);
+  throw std::invalid_argument("unknown LiDAR model '" + name + "' (expected one of " + expected + ")");
 }
 
 LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_second, double frame_rate_hz,

@@ -59,7 +59,10 @@ LidarModel velodyneVlp16();
 // Livox Avia: non-repetitive rosette over 70.4 x 77.2 degrees, 240k points/s, 6 lasers, 1..200 m;
 // datasheet precision 2 cm (1 sigma at 20 m) and 0.05 degrees.
 LidarModel livoxAvia();
-// "livox_mid360", "velodyne_vlp16" or "livox_avia"; throws std::invalid_argument otherwise.
+// The models known by name: "livox_mid360", "velodyne_vlp16" and "livox_avia" (what a scene's
+// rig.lidar_model and the tools' --lidar offer, besides a spinning LiDAR described in full).
+std::vector<std::string> namedLidarModels();
+// One of namedLidarModels(); throws std::invalid_argument otherwise.
 LidarModel lidarModelByName(const std::string& name);
 // Any spinning LiDAR from its table of beam elevations.
 LidarModel spinningLidar(std::vector<double> elevations_deg, double points_per_second, double frame_rate_hz,
