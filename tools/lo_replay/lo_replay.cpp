@@ -27,7 +27,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -213,23 +212,33 @@ class RunSummary {
   Eigen::Isometry3d previous_estimate_ = Eigen::Isometry3d::Identity(), previous_truth_ = previous_estimate_;
 };
 
-// With lo.use_imu, the simulated IMU's readings up to each frame's end go to the LO before it.
-void feedImu(const ReplayArguments& a, const world::Trajectory& truth, tools::ReplaySettings& replay) {
-  raycaster::ImuSimulatorConfig imu_config;
-  imu_config.seed = a.world.seed;
-  auto imu = std::make_shared<raycaster::ImuSimulator>(imu_config);
-  const double speed = a.motor_speed;
-  const raycaster::ImuMotion motion{[&truth](double t) { return truth.poseAt(t); },
-                                    [speed](double t) { return speed * t; }, [speed](double) { return speed; }};
-  auto next = std::make_shared<std::uint64_t>(
-      imu->firstIndexAtOrAfter(std::max(0.0, a.start - 0.5) + raycaster::kImuStencilHalfWidth));
-  replay.before_frame = [imu, motion, next](double frame_end, lo::MotorizedLidarOdometry& odometry) {
-    for (; imu->sampleTime(*next) <= frame_end + 0.01; ++*next) {
-      const raycaster::ImuSample sample = imu->sample(*next, motion);
+// With lo.use_imu: the simulated IMU's readings up to each frame's end, handed to the LO before
+// the frame (ReplaySettings::before_frame).
+class ImuFeed {
+ public:
+  ImuFeed(const ReplayArguments& a, const world::Trajectory& truth)
+      : imu_(configFor(a)),
+        motion_{[&truth](double t) { return truth.poseAt(t); }, [speed = a.motor_speed](double t) { return speed * t; },
+                [speed = a.motor_speed](double) { return speed; }},
+        next_(imu_.firstIndexAtOrAfter(std::max(0.0, a.start - 0.5) + raycaster::kImuStencilHalfWidth)) {}
+
+  void operator()(double frame_end, lo::MotorizedLidarOdometry& odometry) {
+    for (; imu_.sampleTime(next_) <= frame_end + 0.01; ++next_) {
+      const raycaster::ImuSample sample = imu_.sample(next_, motion_);
       odometry.addImu({sample.time, sample.angular_velocity, sample.linear_acceleration});
     }
-  };
-}
+  }
+
+ private:
+  static raycaster::ImuSimulatorConfig configFor(const ReplayArguments& a) {
+    raycaster::ImuSimulatorConfig config;
+    config.seed = a.world.seed;
+    return config;
+  }
+  raycaster::ImuSimulator imu_;
+  raycaster::ImuMotion motion_;
+  std::uint64_t next_;  // the next sample's index
+};
 
 }  // namespace
 
@@ -257,7 +266,13 @@ int replay(int argc, char** argv) {
   replay.start = a.start;
   replay.end = end;
   replay.rotor_angle = [&motor](double t) { return *motor.thetaAt(t); };
-  if (a.odometry.use_imu) feedImu(a, truth, replay);
+  std::optional<ImuFeed> imu;
+  if (a.odometry.use_imu) {
+    imu.emplace(a, truth);
+    replay.before_frame = [&imu](double frame_end, lo::MotorizedLidarOdometry& odometry) {
+      (*imu)(frame_end, odometry);
+    };
+  }
 
   RunSummary summary(truth, caster.frameDuration());
   printFrameHeader();
