@@ -295,7 +295,8 @@ void MotorizedLidarOdometry::countModelDeviation(const BaseState& predicted, con
   if (config_.association_gate != AssociationGate::kModelDeviation) return;
   const double theta = Eigen::AngleAxisd(predicted.R_WB.transpose() * updated.R_WB).angle();
   const double delta = (updated.r_WB - predicted.r_WB).norm() + 2.0 * config_.max_range * std::sin(0.5 * theta);
-  if (delta <= 0.1) return;
+  constexpr double kSmallestCounted = 0.1;  // m, KISS-ICP's min_motion_th: a smaller deviation is noise
+  if (delta <= kSmallestCounted) return;
   model_deviation_sse_ += delta * delta;
   ++model_deviations_;
 }
